@@ -1,0 +1,47 @@
+// ParticleData: per-particle arrays keyed by particle id, the in-memory twin of wire::FieldSet.
+// Contiguous arrays (x,y,z interleaved for vectors) so models and solvers can loop over them.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cosim::wire {
+class FieldSet;
+}
+
+namespace cosim::link {
+
+class ParticleData {
+ public:
+  std::vector<std::int64_t> ids;
+
+  std::size_t size() const { return ids.size(); }
+  bool has(const std::string& name) const { return fields_.count(name) != 0; }
+
+  // Field storage, created zero-filled with the right length if absent.
+  std::vector<double>& field(const std::string& name);
+  // Read-only access; throws std::out_of_range naming the field if absent.
+  const std::vector<double>& get(const std::string& name) const;
+  // Resize every field to the current ids.size().
+  void resizeFields();
+  void erase(const std::string& name) { fields_.erase(name); }
+  std::vector<std::string> names() const;
+
+  // Keep only the named fields (packets carry what the scene uses, nothing else).
+  ParticleData select(const std::vector<std::string>& names) const;
+
+  // Map id -> index (built on demand).
+  std::map<std::int64_t, std::size_t> index() const;
+
+  void toWire(wire::FieldSet& out) const;
+  // Validates lengths and component counts; throws ProtocolError with the field name.
+  static ParticleData fromWire(const wire::FieldSet& in);
+
+ private:
+  std::map<std::string, std::vector<double>> fields_;
+};
+
+}  // namespace cosim::link

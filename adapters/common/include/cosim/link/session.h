@@ -1,0 +1,97 @@
+// Participant side of the protocol: handshake, step checks, heartbeat, error reporting.
+// An adapter implements Solver and calls runParticipant(); MPI adapters call it on rank 0 and
+// forward to their other ranks themselves. C++17.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cosim.pb.h"
+#include "cosim/link/particle_data.h"
+#include "cosim/link/transport.h"
+
+namespace cosim::link {
+
+// Command line every adapter understands (the orchestrator passes these).
+struct ParticipantOptions {
+  std::string endpoint;  // --endpoint
+  std::string name;      // --name
+  std::string run_id;    // --run-id (checked against the Welcome header when given)
+  int heartbeat_ms = 500;
+  int handshake_timeout_ms = 30000;
+  int command_timeout_ms = 600000;  // orchestrator silent this long: give up
+  // Parse --endpoint/--name/--run-id/--heartbeat-ms; unknown args are left in `rest`.
+  static ParticipantOptions parse(int argc, char** argv, std::vector<std::string>* rest = nullptr);
+};
+
+struct Capabilities {
+  wire::Role role = wire::ROLE_UNSPECIFIED;
+  std::string adapter;
+  std::vector<std::string> provides;
+  std::vector<std::string> accepts;
+};
+
+// What an adapter implements. Throw std::exception with a clear message on any failure: the
+// session sends it to the orchestrator as wire::Error and exits non-zero.
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual Capabilities capabilities() const = 0;
+  // After the Welcome: read configuration, set up the solver.
+  virtual void configure(const wire::Welcome& welcome) = 0;
+  // Fluid only: sample the requested fields (welcome.send) at the given particles.
+  virtual void sample(const ParticleData& particles, ParticleData& out,
+                      std::vector<std::int64_t>& lost_ids) {
+    (void)particles; (void)out; (void)lost_ids;
+    throw std::runtime_error("this adapter does not sample fluid fields");
+  }
+  // Advance one coupling interval (dt == 0: only report the current state).
+  virtual void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced& out,
+                       ParticleData& state) = 0;
+  virtual std::vector<std::string> checkpoint(const std::string& path) {
+    (void)path;
+    return {};
+  }
+  virtual void finish() {}
+};
+
+// Runs the whole participant life: connect, Hello, Welcome, command loop, Goodbye.
+// Returns the process exit code (0 on a clean Shutdown).
+int runParticipant(Solver& solver, const ParticipantOptions& options);
+
+// Lower-level pieces, for tests and custom loops.
+class Session {
+ public:
+  Session(const ParticipantOptions& options, const Capabilities& caps);
+  ~Session();
+  // Sends Hello, waits for Welcome. Throws PeerError if refused.
+  wire::Welcome handshake();
+  // Next command from the orchestrator. Heartbeats are sent in the background meanwhile.
+  // Checks version, run id and step order: a command whose step is behind the last one seen
+  // or more than one ahead is answered with Error and a ProtocolError is thrown.
+  wire::Envelope nextCommand();
+  void reply(wire::Envelope& env);  // fills the header (step/time of the current command)
+  void sendError(const std::string& message, const std::string& where = "");
+  const std::string& runId() const { return run_id_; }
+  std::uint64_t step() const { return step_; }
+  double time() const { return time_; }
+
+ private:
+  void fillHeader(wire::Header* h) const;
+  ParticipantOptions options_;
+  Capabilities caps_;
+  std::unique_ptr<Channel> channel_;
+  std::string run_id_;
+  std::uint64_t step_ = 0;
+  double time_ = 0.0;
+  bool any_command_ = false;
+  std::atomic<bool> stop_heartbeat_{false};
+  std::thread heartbeat_;
+};
+
+}  // namespace cosim::link

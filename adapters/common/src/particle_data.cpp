@@ -1,0 +1,93 @@
+#include "cosim/link/particle_data.h"
+
+#include "cosim.pb.h"
+#include "cosim/link/errors.h"
+#include "cosim/link/fields.h"
+
+namespace cosim::link {
+
+namespace {
+unsigned componentsOrOne(const std::string& name) {
+  unsigned c = field::components(name);
+  return c == 0 ? 1U : c;
+}
+}  // namespace
+
+std::vector<double>& ParticleData::field(const std::string& name) {
+  auto& v = fields_[name];
+  const std::size_t want = ids.size() * componentsOrOne(name);
+  if (v.size() != want) v.resize(want, 0.0);
+  return v;
+}
+
+const std::vector<double>& ParticleData::get(const std::string& name) const {
+  auto it = fields_.find(name);
+  if (it == fields_.end()) {
+    throw std::out_of_range("particle field '" + name + "' is not in this packet");
+  }
+  return it->second;
+}
+
+void ParticleData::resizeFields() {
+  for (auto& [name, v] : fields_) v.resize(ids.size() * componentsOrOne(name), 0.0);
+}
+
+std::vector<std::string> ParticleData::names() const {
+  std::vector<std::string> v;
+  v.reserve(fields_.size());
+  for (const auto& [k, x] : fields_) v.push_back(k);
+  return v;
+}
+
+ParticleData ParticleData::select(const std::vector<std::string>& wanted) const {
+  ParticleData out;
+  out.ids = ids;
+  for (const auto& n : wanted) {
+    auto it = fields_.find(n);
+    if (it != fields_.end()) out.fields_[n] = it->second;
+  }
+  return out;
+}
+
+std::map<std::int64_t, std::size_t> ParticleData::index() const {
+  std::map<std::int64_t, std::size_t> m;
+  for (std::size_t i = 0; i < ids.size(); ++i) m.emplace(ids[i], i);
+  return m;
+}
+
+void ParticleData::toWire(wire::FieldSet& out) const {
+  out.Clear();
+  out.mutable_ids()->Assign(ids.begin(), ids.end());
+  for (const auto& [name, v] : fields_) {
+    auto* f = out.add_fields();
+    f->set_name(name);
+    f->set_components(componentsOrOne(name));
+    f->mutable_values()->Assign(v.begin(), v.end());
+  }
+}
+
+ParticleData ParticleData::fromWire(const wire::FieldSet& in) {
+  ParticleData d;
+  d.ids.assign(in.ids().begin(), in.ids().end());
+  for (const auto& f : in.fields()) {
+    const unsigned known = field::components(f.name());
+    if (known == 0) {
+      throw ProtocolError("unknown particle field '" + f.name() + "'");
+    }
+    if (f.components() != known) {
+      throw ProtocolError("particle field '" + f.name() + "' has " +
+                          std::to_string(f.components()) + " components, expected " +
+                          std::to_string(known));
+    }
+    if (static_cast<std::size_t>(f.values_size()) != d.ids.size() * known) {
+      throw ProtocolError("particle field '" + f.name() + "' has " +
+                          std::to_string(f.values_size()) + " values for " +
+                          std::to_string(d.ids.size()) + " particles (expected " +
+                          std::to_string(d.ids.size() * known) + ")");
+    }
+    d.fields_[f.name()].assign(f.values().begin(), f.values().end());
+  }
+  return d;
+}
+
+}  // namespace cosim::link

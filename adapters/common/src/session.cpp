@@ -1,0 +1,244 @@
+#include "cosim/link/session.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <iostream>
+
+#include "cosim/link/errors.h"
+
+namespace cosim::link {
+
+namespace {
+const char* bodyName(const wire::Envelope& e) {
+  switch (e.body_case()) {
+    case wire::Envelope::kHello: return "Hello";
+    case wire::Envelope::kWelcome: return "Welcome";
+    case wire::Envelope::kRefused: return "Refused";
+    case wire::Envelope::kSample: return "Sample";
+    case wire::Envelope::kSamples: return "Samples";
+    case wire::Envelope::kAdvance: return "Advance";
+    case wire::Envelope::kAdvanced: return "Advanced";
+    case wire::Envelope::kCheckpoint: return "Checkpoint";
+    case wire::Envelope::kCheckpointWritten: return "CheckpointWritten";
+    case wire::Envelope::kShutdown: return "Shutdown";
+    case wire::Envelope::kGoodbye: return "Goodbye";
+    case wire::Envelope::kError: return "Error";
+    case wire::Envelope::kHeartbeat: return "Heartbeat";
+    default: return "(none)";
+  }
+}
+}  // namespace
+
+ParticipantOptions ParticipantOptions::parse(int argc, char** argv,
+                                             std::vector<std::string>* rest) {
+  ParticipantOptions o;
+  auto need = [&](int& i, const char* flag) -> std::string {
+    if (i + 1 >= argc) throw std::runtime_error(std::string("option ") + flag + " needs a value");
+    return argv[++i];
+  };
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--endpoint") {
+      o.endpoint = need(i, "--endpoint");
+    } else if (a == "--name") {
+      o.name = need(i, "--name");
+    } else if (a == "--run-id") {
+      o.run_id = need(i, "--run-id");
+    } else if (a == "--heartbeat-ms") {
+      o.heartbeat_ms = std::stoi(need(i, "--heartbeat-ms"));
+    } else if (a == "--command-timeout") {
+      o.command_timeout_ms = 1000 * std::stoi(need(i, "--command-timeout"));
+    } else if (rest != nullptr) {
+      rest->push_back(a);
+    }
+  }
+  if (o.endpoint.empty() || o.name.empty()) {
+    throw std::runtime_error(
+        "usage: " + std::string(argc > 0 ? argv[0] : "adapter") +
+        " --endpoint ENDPOINT --name PARTICIPANT [--run-id ID] (normally started by `cosim run`)");
+  }
+  return o;
+}
+
+Session::Session(const ParticipantOptions& options, const Capabilities& caps)
+    : options_(options), caps_(caps),
+      channel_(std::make_unique<Channel>(options.endpoint, options.name)) {}
+
+Session::~Session() {
+  stop_heartbeat_ = true;
+  if (heartbeat_.joinable()) heartbeat_.join();
+}
+
+void Session::fillHeader(wire::Header* h) const {
+  h->set_protocol_version(wire::PROTOCOL_VERSION);
+  h->set_run_id(run_id_);
+  h->set_participant(options_.name);
+  h->set_step(step_);
+  h->set_time(time_);
+}
+
+wire::Welcome Session::handshake() {
+  wire::Envelope hello;
+  fillHeader(hello.mutable_header());
+  auto* h = hello.mutable_hello();
+  h->set_role(caps_.role);
+  h->set_adapter(caps_.adapter);
+  for (const auto& f : caps_.provides) h->add_provides(f);
+  for (const auto& f : caps_.accepts) h->add_accepts(f);
+  h->set_pid(static_cast<int>(getpid()));
+  char host[256] = {0};
+  gethostname(host, sizeof(host) - 1);
+  h->set_host(host);
+  channel_->send(hello);
+
+  auto reply = channel_->receive(Millis(options_.handshake_timeout_ms));
+  if (!reply) {
+    throw TimeoutError("no answer from the orchestrator at " + options_.endpoint + " within " +
+                       std::to_string(options_.handshake_timeout_ms / 1000) + " s");
+  }
+  if (reply->has_refused()) {
+    throw PeerError("the orchestrator refused this participant: " + reply->refused().reason());
+  }
+  if (!reply->has_welcome()) {
+    throw ProtocolError(std::string("expected Welcome from the orchestrator, got ") +
+                        bodyName(*reply));
+  }
+  if (!options_.run_id.empty() && reply->header().run_id() != options_.run_id) {
+    throw ProtocolError("run id mismatch: started for run '" + options_.run_id +
+                        "' but the orchestrator runs '" + reply->header().run_id() + "'");
+  }
+  run_id_ = reply->header().run_id();
+
+  // Heartbeats from a socket of their own (ZeroMQ sockets belong to one thread).
+  heartbeat_ = std::thread([this] {
+    Channel hb(options_.endpoint, options_.name + "#hb");
+    std::uint64_t seq = 0;
+    while (!stop_heartbeat_) {
+      wire::Envelope e;
+      fillHeader(e.mutable_header());
+      e.mutable_heartbeat()->set_sequence(seq++);
+      try {
+        hb.send(e);
+      } catch (...) {
+      }
+      for (int waited = 0; waited < options_.heartbeat_ms && !stop_heartbeat_; waited += 50) {
+        std::this_thread::sleep_for(Millis(50));
+      }
+    }
+  });
+  return reply->welcome();
+}
+
+wire::Envelope Session::nextCommand() {
+  auto env = channel_->receive(Millis(options_.command_timeout_ms));
+  if (!env) {
+    throw TimeoutError("the orchestrator sent nothing for " +
+                       std::to_string(options_.command_timeout_ms / 1000) + " s; giving up");
+  }
+  const auto& h = env->header();
+  if (h.protocol_version() != wire::PROTOCOL_VERSION) {
+    throw ProtocolError("orchestrator speaks protocol version " +
+                        std::to_string(h.protocol_version()) + ", this adapter " +
+                        std::to_string(wire::PROTOCOL_VERSION));
+  }
+  if (h.run_id() != run_id_) {
+    throw ProtocolError("message for run '" + h.run_id() + "' but this participant is in run '" +
+                        run_id_ + "'");
+  }
+  if (env->has_error()) {
+    throw PeerError("orchestrator aborted the run: " + env->error().message());
+  }
+  const bool in_order = !any_command_ ? true : (h.step() == step_ || h.step() == step_ + 1);
+  if (!in_order) {
+    const std::string msg = std::string(bodyName(*env)) + " for step " +
+                            std::to_string(h.step()) + " refused: this participant is at step " +
+                            std::to_string(step_) + " (out-of-order step)";
+    sendError(msg, "header.step");
+    throw ProtocolError(msg);
+  }
+  any_command_ = true;
+  step_ = h.step();
+  time_ = h.time();
+  return std::move(*env);
+}
+
+void Session::reply(wire::Envelope& env) {
+  fillHeader(env.mutable_header());
+  channel_->send(env);
+}
+
+void Session::sendError(const std::string& message, const std::string& where) {
+  wire::Envelope e;
+  fillHeader(e.mutable_header());
+  e.mutable_error()->set_message(message);
+  e.mutable_error()->set_where(where);
+  try {
+    channel_->send(e);
+  } catch (...) {
+  }
+}
+
+int runParticipant(Solver& solver, const ParticipantOptions& options) {
+  Session session(options, solver.capabilities());
+  try {
+    const wire::Welcome welcome = session.handshake();
+    solver.configure(welcome);
+    while (true) {
+      wire::Envelope cmd = session.nextCommand();
+      wire::Envelope out;
+      const auto t0 = std::chrono::steady_clock::now();
+      switch (cmd.body_case()) {
+        case wire::Envelope::kSample: {
+          const ParticleData in = ParticleData::fromWire(cmd.sample().particles());
+          ParticleData samples;
+          samples.ids = in.ids;
+          std::vector<std::int64_t> lost;
+          solver.sample(in, samples, lost);
+          auto* s = out.mutable_samples();
+          samples.toWire(*s->mutable_at_particles());
+          s->mutable_lost_ids()->Assign(lost.begin(), lost.end());
+          break;
+        }
+        case wire::Envelope::kAdvance: {
+          const ParticleData terms = ParticleData::fromWire(cmd.advance().terms());
+          ParticleData state;
+          auto* adv = out.mutable_advanced();
+          solver.advance(cmd.advance(), terms, *adv, state);
+          state.toWire(*adv->mutable_state());
+          adv->set_wall_seconds(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+          break;
+        }
+        case wire::Envelope::kCheckpoint: {
+          auto files = solver.checkpoint(cmd.checkpoint().path());
+          auto* w = out.mutable_checkpoint_written();
+          for (const auto& f : files) w->add_files(f);
+          break;
+        }
+        case wire::Envelope::kShutdown: {
+          solver.finish();
+          out.mutable_goodbye()->set_message("done");
+          session.reply(out);
+          return 0;
+        }
+        default:
+          throw ProtocolError(std::string("unexpected message from the orchestrator: ") +
+                              bodyName(cmd));
+      }
+      session.reply(out);
+    }
+  } catch (const PeerError& e) {
+    std::cerr << "[" << options.name << "] " << e.what() << std::endl;
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "[" << options.name << "] error: " << e.what() << std::endl;
+    session.sendError(e.what());
+    // Give ZeroMQ a moment to flush the error before the process ends.
+    std::this_thread::sleep_for(Millis(200));
+    return 1;
+  }
+}
+
+}  // namespace cosim::link

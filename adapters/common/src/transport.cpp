@@ -1,0 +1,132 @@
+#include "cosim/link/transport.h"
+
+#include <zmq.hpp>
+
+#include "cosim/link/errors.h"
+
+namespace cosim::link {
+
+namespace {
+zmq::context_t& context() {
+  static zmq::context_t ctx(1);
+  return ctx;
+}
+
+void configure(zmq::socket_t& s) {
+  s.set(zmq::sockopt::linger, 0);
+  // Connection-level liveness (ZMTP heartbeats) on top of our own application heartbeats.
+  s.set(zmq::sockopt::heartbeat_ivl, 1000);
+  s.set(zmq::sockopt::heartbeat_timeout, 5000);
+}
+}  // namespace
+
+std::string serialize(const wire::Envelope& env) {
+  std::string out;
+  if (!env.SerializeToString(&out)) throw ProtocolError("cannot serialise message");
+  return out;
+}
+
+wire::Envelope parse(const void* data, std::size_t size) {
+  wire::Envelope env;
+  if (size > static_cast<std::size_t>(INT32_MAX) ||
+      !env.ParseFromArray(data, static_cast<int>(size))) {
+    throw ProtocolError("received " + std::to_string(size) +
+                        " bytes that are not a cosim message (wrong peer or corrupted data)");
+  }
+  if (!env.has_header()) throw ProtocolError("received a cosim message without header");
+  if (env.body_case() == wire::Envelope::BODY_NOT_SET) {
+    throw ProtocolError("received a cosim message without body (unknown message type?)");
+  }
+  return env;
+}
+
+// ---- Channel ---------------------------------------------------------------------------------
+
+struct Channel::Impl {
+  zmq::socket_t socket{context(), zmq::socket_type::dealer};
+};
+
+Channel::Channel(const std::string& endpoint, const std::string& identity)
+    : impl_(std::make_unique<Impl>()) {
+  configure(impl_->socket);
+  impl_->socket.set(zmq::sockopt::routing_id, identity);
+  impl_->socket.connect(endpoint);
+}
+
+Channel::~Channel() = default;
+
+void Channel::send(const wire::Envelope& env) { sendRaw(serialize(env)); }
+
+void Channel::sendRaw(const std::string& bytes) {
+  impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::none);
+}
+
+std::optional<wire::Envelope> Channel::receive(Millis timeout) {
+  zmq::pollitem_t item{impl_->socket.handle(), 0, ZMQ_POLLIN, 0};
+  zmq::poll(&item, 1, timeout);
+  if (!(item.revents & ZMQ_POLLIN)) return std::nullopt;
+  zmq::message_t msg;
+  if (!impl_->socket.recv(msg, zmq::recv_flags::dontwait)) return std::nullopt;
+  return parse(msg.data(), msg.size());
+}
+
+// ---- Hub -------------------------------------------------------------------------------------
+
+struct Hub::Impl {
+  zmq::socket_t socket{context(), zmq::socket_type::router};
+  std::string endpoint;
+};
+
+Hub::Hub(const std::string& endpoint) : impl_(std::make_unique<Impl>()) {
+  configure(impl_->socket);
+  // Fail loudly when sending to a peer that is not (or no longer) connected.
+  impl_->socket.set(zmq::sockopt::router_mandatory, true);
+  impl_->socket.bind(endpoint);
+  impl_->endpoint = impl_->socket.get(zmq::sockopt::last_endpoint);
+}
+
+Hub::~Hub() = default;
+
+const std::string& Hub::endpoint() const { return impl_->endpoint; }
+
+void Hub::send(const std::string& peer, const wire::Envelope& env) {
+  const std::string bytes = serialize(env);
+  try {
+    impl_->socket.send(zmq::buffer(peer), zmq::send_flags::sndmore);
+    impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::none);
+  } catch (const zmq::error_t& e) {
+    throw PeerError("cannot send to participant '" + peer + "': " + e.what() +
+                    " (not connected or gone)");
+  }
+}
+
+std::optional<Hub::Incoming> Hub::receive(Millis timeout) {
+  zmq::pollitem_t item{impl_->socket.handle(), 0, ZMQ_POLLIN, 0};
+  zmq::poll(&item, 1, timeout);
+  if (!(item.revents & ZMQ_POLLIN)) return std::nullopt;
+  zmq::message_t id;
+  zmq::message_t body;
+  if (!impl_->socket.recv(id, zmq::recv_flags::dontwait)) return std::nullopt;
+  Incoming in;
+  in.peer = id.to_string();
+  // A frame after the routing id is expected; extra frames are drained and reported.
+  if (!id.more() || !impl_->socket.recv(body, zmq::recv_flags::dontwait)) {
+    in.parse_error = "empty message";
+    return in;
+  }
+  while (body.more()) {
+    zmq::message_t extra;
+    if (!impl_->socket.recv(extra, zmq::recv_flags::dontwait)) break;
+    in.parse_error = "unexpected multi-part message";
+    if (!extra.more()) break;
+  }
+  if (!in.parse_error.empty()) return in;
+  try {
+    in.envelope = parse(body.data(), body.size());
+  } catch (const ProtocolError& e) {
+    in.parse_error = e.what();
+  }
+  return in;
+}
+
+}  // namespace cosim::link

@@ -1,0 +1,32 @@
+// What a coupling model sees: a batch of parcels as contiguous arrays, and the scene constants.
+#pragma once
+
+#include <cstddef>
+
+namespace cosim::models {
+
+// Scene-wide constants every law may use.
+struct SceneConstants {
+  double cg = 1.0;             // coarse-graining factor: parcel diameter = cg * real diameter
+  double min_voidage = 0.35;   // voidage is clamped to [min_voidage, 1] before any law sees it
+  double gravity[3] = {0.0, 0.0, -9.81};
+  double schmidt = 1.0;        // Sc = mu / (rho D)
+};
+
+// Per-parcel inputs. Vectors are interleaved x,y,z (3n doubles). A pointer is null when the
+// scene does not carry that field (a model must declare the fields it needs, see Model).
+struct ParcelBatch {
+  std::size_t n = 0;
+  const double* position = nullptr;            // [m] 3n
+  const double* velocity = nullptr;            // [m/s] 3n
+  const double* radius = nullptr;              // [m] n, parcel (simulated) radius
+  const double* fluid_velocity = nullptr;      // [m/s] 3n
+  const double* voidage = nullptr;             // [-] n
+  const double* fluid_density = nullptr;       // [kg/m3] n
+  const double* fluid_viscosity = nullptr;     // [Pa s] n
+  const double* pressure_gradient = nullptr;   // [Pa/m] 3n
+  const double* precursor_fraction = nullptr;  // [-] n
+  const double* cell_size = nullptr;           // [m] n
+};
+
+}  // namespace cosim::models

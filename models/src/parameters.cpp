@@ -1,0 +1,108 @@
+#include "cosim/models/parameters.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace cosim::models {
+
+namespace {
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+bool Parameters::has(const std::string& k) const {
+  return numbers_.count(k) || texts_.count(k) || lists_.count(k) || children_.count(k);
+}
+
+double Parameters::number(const std::string& k) const {
+  auto it = numbers_.find(k);
+  if (it == numbers_.end()) {
+    if (texts_.count(k)) {
+      throw ModelError(owner_ + ": parameter '" + k + "' must be a number, got '" +
+                       texts_.at(k) + "'");
+    }
+    throw ModelError(owner_ + ": missing parameter '" + k + "'");
+  }
+  if (!std::isfinite(it->second)) {
+    throw ModelError(owner_ + ": parameter '" + k + "' must be finite");
+  }
+  return it->second;
+}
+
+double Parameters::number(const std::string& k, double fallback) const {
+  return has(k) ? number(k) : fallback;
+}
+
+double Parameters::number(const std::string& k, double lo, double hi) const {
+  double v = number(k);
+  if (v < lo || v > hi) {
+    throw ModelError(owner_ + ": parameter '" + k + "' = " + fmt(v) + " is out of range [" +
+                     fmt(lo) + ", " + fmt(hi) + "]");
+  }
+  return v;
+}
+
+double Parameters::positive(const std::string& k) const {
+  double v = number(k);
+  if (!(v > 0.0)) {
+    throw ModelError(owner_ + ": parameter '" + k + "' = " + fmt(v) + " must be > 0");
+  }
+  return v;
+}
+
+double Parameters::positive(const std::string& k, double fallback) const {
+  return has(k) ? positive(k) : fallback;
+}
+
+std::string Parameters::text(const std::string& k) const {
+  auto it = texts_.find(k);
+  if (it == texts_.end()) throw ModelError(owner_ + ": missing parameter '" + k + "'");
+  return it->second;
+}
+
+std::string Parameters::text(const std::string& k, const std::string& fallback) const {
+  return texts_.count(k) ? texts_.at(k) : fallback;
+}
+
+std::vector<double> Parameters::list(const std::string& k, std::size_t n) const {
+  auto it = lists_.find(k);
+  if (it == lists_.end()) throw ModelError(owner_ + ": missing parameter '" + k + "'");
+  if (n != 0 && it->second.size() != n) {
+    throw ModelError(owner_ + ": parameter '" + k + "' must have " + std::to_string(n) +
+                     " numbers, got " + std::to_string(it->second.size()));
+  }
+  return it->second;
+}
+
+const std::vector<Parameters>& Parameters::children(const std::string& k) const {
+  auto it = children_.find(k);
+  if (it == children_.end()) throw ModelError(owner_ + ": missing parameter '" + k + "'");
+  return it->second;
+}
+
+std::vector<std::string> Parameters::keys() const {
+  std::vector<std::string> v;
+  for (const auto& [k, x] : numbers_) v.push_back(k);
+  for (const auto& [k, x] : texts_) v.push_back(k);
+  for (const auto& [k, x] : lists_) v.push_back(k);
+  for (const auto& [k, x] : children_) v.push_back(k);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+void Parameters::rejectUnknown(const std::vector<std::string>& known) const {
+  for (const auto& k : keys()) {
+    if (std::find(known.begin(), known.end(), k) == known.end()) {
+      std::string list;
+      for (const auto& q : known) list += (list.empty() ? "" : ", ") + q;
+      throw ModelError(owner_ + ": unknown parameter '" + k + "' (known: " +
+                       (list.empty() ? "none" : list) + ")");
+    }
+  }
+}
+
+}  // namespace cosim::models

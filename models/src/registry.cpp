@@ -1,0 +1,85 @@
+#include "cosim/models/registry.h"
+
+#include <dlfcn.h>
+
+#include <sstream>
+
+namespace cosim::models {
+
+void registerBuiltins(Registry& r);  // builtins.cpp
+
+Registry& Registry::instance() {
+  static Registry r;
+  return r;
+}
+
+Registry::Registry() { registerBuiltins(*this); }
+
+void Registry::addDrag(const std::string& n, Factory<DragLaw> f) { drag_[n] = std::move(f); }
+void Registry::addForce(const std::string& n, Factory<ForceModel> f) { force_[n] = std::move(f); }
+void Registry::addMassTransfer(const std::string& n, Factory<MassTransferLaw> f) {
+  mass_[n] = std::move(f);
+}
+void Registry::addZone(const std::string& n, Factory<CoatingZone> f) { zone_[n] = std::move(f); }
+
+namespace {
+template <class M>
+std::vector<std::string> namesOf(const M& m) {
+  std::vector<std::string> v;
+  for (const auto& [k, f] : m) v.push_back(k);
+  return v;
+}
+
+template <class T, class M>
+std::unique_ptr<T> make(const M& m, const std::string& kind, const std::string& name,
+                        const Parameters& p) {
+  auto it = m.find(name);
+  if (it == m.end()) {
+    std::ostringstream os;
+    os << "unknown " << kind << " '" << name << "'; known: ";
+    bool first = true;
+    for (const auto& [k, f] : m) {
+      os << (first ? "" : ", ") << k;
+      first = false;
+    }
+    os << " (or load a plugin that provides it: models.plugins)";
+    throw ModelError(os.str());
+  }
+  return it->second(p);
+}
+}  // namespace
+
+std::unique_ptr<DragLaw> Registry::makeDrag(const std::string& n, const Parameters& p) const {
+  return make<DragLaw>(drag_, "drag law", n, p);
+}
+std::unique_ptr<ForceModel> Registry::makeForce(const std::string& n, const Parameters& p) const {
+  return make<ForceModel>(force_, "force model", n, p);
+}
+std::unique_ptr<MassTransferLaw> Registry::makeMassTransfer(const std::string& n,
+                                                            const Parameters& p) const {
+  return make<MassTransferLaw>(mass_, "mass transfer law", n, p);
+}
+std::unique_ptr<CoatingZone> Registry::makeZone(const std::string& n, const Parameters& p) const {
+  return make<CoatingZone>(zone_, "coating zone shape", n, p);
+}
+
+std::vector<std::string> Registry::dragNames() const { return namesOf(drag_); }
+std::vector<std::string> Registry::forceNames() const { return namesOf(force_); }
+std::vector<std::string> Registry::massTransferNames() const { return namesOf(mass_); }
+std::vector<std::string> Registry::zoneNames() const { return namesOf(zone_); }
+
+void Registry::loadPlugin(const std::string& path) {
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) {
+    throw ModelError("cannot load model plugin '" + path + "': " + dlerror());
+  }
+  using Fn = void (*)(Registry&);
+  auto* fn = reinterpret_cast<Fn>(dlsym(handle, "cosim_register_models"));
+  if (fn == nullptr) {
+    throw ModelError("model plugin '" + path +
+                     "' has no function cosim_register_models (declare it extern \"C\")");
+  }
+  fn(*this);
+}
+
+}  // namespace cosim::models
