@@ -1,0 +1,35 @@
+// Precursor mass balance over a run, like the paper's Table 3:
+//   expected coating = in - out - (held_end - held_start)
+//   error            = expected - obtained       (obtained = coated_end - coated_start)
+//   error %          = 100 error / expected
+// From a time series (time_series.h columns): in and out are summed over all rows. If the
+// first row has zero in and out it is the initial state and gives held_start and coated_start;
+// otherwise the run is taken to start with no precursor in the gas and uncoated particles.
+#pragma once
+
+#include <string>
+
+#include "cosim/analysis/time_series.h"
+
+namespace cosim::analysis {
+
+struct MassBalance {
+  double precursor_in = 0;     // [kg]
+  double precursor_out = 0;    // [kg]
+  double held_start = 0, held_end = 0;      // [kg] precursor in the gas
+  double held_change = 0;      // [kg]
+  double expected_coating = 0; // [kg]
+  double coated_start = 0, coated_end = 0;  // [kg] on the particles
+  double obtained_coating = 0; // [kg]
+  double error = 0;            // [kg] expected - obtained
+  double error_percent = 0;    // [%]; NaN when expected = 0
+  std::string initial_state;   // where held_start/coated_start came from, in words
+};
+
+MassBalance massBalance(double in, double out, double held_start, double held_end,
+                        double coated_start, double coated_end);
+
+// Throws std::runtime_error naming the file and the missing column.
+MassBalance massBalance(const TimeSeries& series);
+
+}  // namespace cosim::analysis

@@ -1,0 +1,49 @@
+// Mixing verdict: may the Eqs. 9-10 fit be extrapolated to long coating times? It refuses, with
+// each reason in words, when mixing is poor (paper section 2.3 and 4.5, PHYSICS.md section 5):
+//  1. never-coated share at the last snapshot above max_uncoated_share (the paper's 1 L/min
+//     case has 15 % uncoated after 20 s);
+//  2. large misfit: relative RMS residual of the mean or variance fit above its limit;
+//  3. distribution far from normal at the last snapshot: the D'Agostino-Pearson test rejects
+//     (p < normality_alpha) AND the departure is material (|g1| > max_abs_skewness or
+//     |b2 - 3| > max_abs_excess_kurtosis). With tens of thousands of parcels the test alone
+//     rejects even tiny departures, hence the effect-size condition;
+//  4. no valid fit at all.
+// Structured residuals (runs test p < runs_alpha) and an untestable normality give warnings.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cosim/analysis/coating_statistics.h"
+#include "cosim/analysis/growth_fit.h"
+#include "cosim/analysis/normality_test.h"
+#include "cosim/analysis/runs_test.h"
+
+namespace cosim::analysis {
+
+struct MixingCriteria {
+  double max_uncoated_share = 0.05;
+  double max_mean_relative_rms = 0.10;
+  double max_variance_relative_rms = 0.25;
+  double normality_alpha = 1e-3;
+  double max_abs_skewness = 0.5;
+  double max_abs_excess_kurtosis = 1.0;
+  double runs_alpha = 1e-3;
+};
+
+struct MixingVerdict {
+  bool well_mixed = false;            // true: extrapolation allowed
+  std::vector<std::string> reasons;   // why refused (empty when well mixed)
+  std::vector<std::string> warnings;  // worth knowing, not refusing
+  RunsTest mean_runs, variance_runs;
+  NormalityTest normality;            // on the last snapshot
+  double uncoated_share = 0;          // at the last snapshot
+  double last_time = 0;
+  std::string summary() const;        // one line: "well mixed" or "poorly mixed: ..."
+};
+
+// last: statistics of the last snapshot; last_values: its coating masses (for the normality test).
+MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
+                          const std::vector<double>& last_values, const MixingCriteria& criteria = {});
+
+}  // namespace cosim::analysis

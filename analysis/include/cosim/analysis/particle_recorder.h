@@ -1,0 +1,67 @@
+// ParticleRecorder: per-particle snapshots of a run in run_dir/particles.h5 (HDF5) plus
+// run_dir/particles.xmf (XDMF temporal collection of Polyvertex grids) so ParaView shows the
+// particles coloured by any recorded field (e.g. coating_mass).
+//
+// Layout of particles.h5 (see docs/analysis.md):
+//   /                     attributes format="cosim-particles", version=1, fields="a,b,..."
+//   /snapshots/000000     group, attributes time [s], count [-]
+//     id                  int64 [N]
+//     <field>             float64 [N] or [N, components]   (e.g. position [N,3])
+//
+// Crash safety: the file is opened, the snapshot written, flushed and closed on every write(),
+// so a crash of the run between writes leaves a complete, readable file. The XDMF file is
+// replaced atomically (write + rename) after every snapshot.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cosim/link/particle_data.h"
+
+namespace cosim::analysis {
+
+inline constexpr const char* kParticlesFile = "particles.h5";
+inline constexpr const char* kParticlesXdmf = "particles.xmf";
+
+class ParticleRecorder {
+ public:
+  enum class Mode {
+    create,  // start a new particles.h5 (an existing one is replaced)
+    append,  // continue an existing particles.h5 (restart); created if absent
+  };
+
+  // fields: names of the per-particle fields to record (cosim::field names; ids always are).
+  // Throws std::runtime_error naming the file if it cannot be created.
+  ParticleRecorder(const std::filesystem::path& run_dir, std::vector<std::string> fields,
+                   Mode mode = Mode::create);
+
+  // Append one snapshot. `particles` must hold every recorded field with ids.size() rows.
+  // Times must increase. Throws std::runtime_error with the field / time at fault.
+  void write(double time, const cosim::link::ParticleData& particles);
+
+  std::size_t snapshots() const { return entries_.size(); }
+  const std::filesystem::path& file() const { return h5_; }
+  const std::filesystem::path& xdmf() const { return xmf_; }
+
+ private:
+  struct Entry {
+    std::string group;
+    double time;
+    std::uint64_t count;
+  };
+  struct FieldShape {
+    std::string name;
+    std::uint64_t components;
+  };
+  void writeXdmf() const;
+
+  std::filesystem::path h5_;
+  std::filesystem::path xmf_;
+  std::vector<std::string> fields_;
+  std::vector<FieldShape> shapes_;  // components known after the first snapshot with particles
+  std::vector<Entry> entries_;
+};
+
+}  // namespace cosim::analysis

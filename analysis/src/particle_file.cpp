@@ -1,0 +1,74 @@
+#include "cosim/analysis/particle_file.h"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "hdf5_handle.h"
+
+namespace cosim::analysis {
+
+struct ParticleFile::Impl {
+  h5::Handle file;
+  h5::Handle snapshots;
+};
+
+ParticleFile::ParticleFile(const std::filesystem::path& path) : path_(path), impl_(std::make_unique<Impl>()) {
+  const std::string name = path.string();
+  if (!std::filesystem::exists(path)) {
+    throw std::runtime_error(name + " does not exist: the run recorded no particles (is the "
+                             "output interval set and did the run reach its first output time?)");
+  }
+  impl_->file = h5::openFile(name, H5F_ACC_RDONLY, "for reading");
+  const std::string format = h5::readStringAttribute(impl_->file, "format", name);
+  if (format != "cosim-particles") {
+    throw std::runtime_error(name + " has format '" + format + "', expected 'cosim-particles'");
+  }
+  std::stringstream fs(h5::readStringAttribute(impl_->file, "fields", name));
+  for (std::string f; std::getline(fs, f, ',');) {
+    if (!f.empty()) fields_.push_back(f);
+  }
+  impl_->snapshots = h5::openGroup(impl_->file, "snapshots", name);
+  for (const auto& g : h5::members(impl_->snapshots, name)) {
+    h5::Handle group = h5::openGroup(impl_->snapshots, g, name);
+    SnapshotInfo s;
+    s.group = g;
+    s.time = h5::readDoubleAttribute(group, "time", name);
+    s.count = static_cast<std::uint64_t>(h5::readDoubleAttribute(group, "count", name));
+    snapshots_.push_back(s);
+  }
+  std::stable_sort(snapshots_.begin(), snapshots_.end(),
+                   [](const SnapshotInfo& a, const SnapshotInfo& b) { return a.time < b.time; });
+}
+
+ParticleFile::~ParticleFile() = default;
+ParticleFile::ParticleFile(ParticleFile&&) noexcept = default;
+ParticleFile& ParticleFile::operator=(ParticleFile&&) noexcept = default;
+
+bool ParticleFile::hasField(const std::string& field) const {
+  return std::find(fields_.begin(), fields_.end(), field) != fields_.end();
+}
+
+std::vector<std::int64_t> ParticleFile::ids(std::size_t snapshot) const {
+  const std::string name = path_.string();
+  h5::Handle g = h5::openGroup(impl_->snapshots, snapshots_.at(snapshot).group, name);
+  return h5::readInt64s(g, "id", name);
+}
+
+std::vector<double> ParticleFile::read(std::size_t snapshot, const std::string& field,
+                                       std::uint64_t* components) const {
+  const std::string name = path_.string();
+  if (!hasField(field)) {
+    std::string have;
+    for (const auto& f : fields_) have += (have.empty() ? "" : ", ") + f;
+    throw std::runtime_error(name + " has no field '" + field + "' (recorded: " + have +
+                             "); record it in the scenario's output fields");
+  }
+  h5::Handle g = h5::openGroup(impl_->snapshots, snapshots_.at(snapshot).group, name);
+  std::uint64_t rows = 0, cols = 0;
+  auto v = h5::readDoubles(g, field, rows, cols, name);
+  if (components != nullptr) *components = cols;
+  return v;
+}
+
+}  // namespace cosim::analysis

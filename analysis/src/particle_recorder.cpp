@@ -1,0 +1,160 @@
+#include "cosim/analysis/particle_recorder.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "cosim/analysis/json.h"
+#include "cosim/link/fields.h"
+#include "hdf5_handle.h"
+
+namespace cosim::analysis {
+
+namespace {
+std::string groupName(std::size_t index) {
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%06zu", index);
+  return buf;
+}
+
+std::string joined(const std::vector<std::string>& xs) {
+  std::string s;
+  for (const auto& x : xs) s += (s.empty() ? "" : ",") + x;
+  return s;
+}
+}  // namespace
+
+ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
+                                   std::vector<std::string> fields, Mode mode)
+    : h5_(run_dir / kParticlesFile), xmf_(run_dir / kParticlesXdmf), fields_(std::move(fields)) {
+  for (const auto& f : fields_) {
+    if (f.empty() || f == "id" || f.find_first_of(",/") != std::string::npos) {
+      throw std::runtime_error("ParticleRecorder: field name '" + f +
+                               "' is not allowed (empty, 'id', or containing ',' or '/')");
+    }
+    shapes_.push_back({f, cosim::field::components(f)});
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(run_dir, ec);
+  if (ec) throw std::runtime_error("ParticleRecorder: cannot create run folder " + run_dir.string() + ": " + ec.message());
+
+  const std::string file = h5_.string();
+  if (mode == Mode::append && std::filesystem::exists(h5_)) {
+    h5::Handle f = h5::openFile(file, H5F_ACC_RDONLY, "to continue recording");
+    const std::string had = h5::readStringAttribute(f, "fields", file);
+    if (had != joined(fields_)) {
+      throw std::runtime_error(file + " records fields '" + had + "' but this run records '" +
+                               joined(fields_) + "': use a new run folder or the same fields");
+    }
+    h5::Handle snaps = h5::openGroup(f, "snapshots", file);
+    for (const auto& name : h5::members(snaps, file)) {
+      h5::Handle g = h5::openGroup(snaps, name, file);
+      const double t = h5::readDoubleAttribute(g, "time", file);
+      const auto n = static_cast<std::uint64_t>(h5::readDoubleAttribute(g, "count", file));
+      entries_.push_back({name, t, n});
+      if (n > 0) {
+        for (auto& s : shapes_) {
+          std::uint64_t rows = 0, cols = 0;
+          h5::readDoubles(g, s.name, rows, cols, file);
+          s.components = cols;
+        }
+      }
+    }
+    return;
+  }
+  h5::Handle f = h5::createFile(file);
+  h5::writeAttribute(f, "format", std::string("cosim-particles"), file);
+  h5::writeAttribute(f, "version", std::int64_t{1}, file);
+  h5::writeAttribute(f, "fields", joined(fields_), file);
+  h5::createGroup(f, "snapshots", file);
+  H5Fflush(f, H5F_SCOPE_GLOBAL);
+  writeXdmf();
+}
+
+void ParticleRecorder::write(double time, const cosim::link::ParticleData& particles) {
+  const std::string file = h5_.string();
+  if (!std::isfinite(time)) throw std::runtime_error(file + ": snapshot time is not finite");
+  if (!entries_.empty() && !(time > entries_.back().time)) {
+    throw std::runtime_error(file + ": snapshot time " + std::to_string(time) +
+                             " s does not follow the previous one (" +
+                             std::to_string(entries_.back().time) + " s); times must increase");
+  }
+  const std::uint64_t n = particles.size();
+  for (auto& s : shapes_) {
+    if (!particles.has(s.name)) {
+      throw std::runtime_error("ParticleRecorder: the particle state at t = " + std::to_string(time) +
+                               " s has no field '" + s.name +
+                               "'; the particles participant must send it (scenario output fields)");
+    }
+    const auto len = static_cast<std::uint64_t>(particles.get(s.name).size());
+    if (s.components == 0 && n > 0) s.components = len / n;  // field unknown to cosim::field
+    const std::uint64_t comps = s.components == 0 ? 1 : s.components;
+    if (len != n * comps) {
+      throw std::runtime_error("ParticleRecorder: field '" + s.name + "' at t = " + std::to_string(time) +
+                               " s has " + std::to_string(len) + " values for " + std::to_string(n) +
+                               " particles x " + std::to_string(comps) + " components");
+    }
+  }
+
+  const std::string name = groupName(entries_.size());
+  {
+    h5::Handle f = h5::openFile(file, H5F_ACC_RDWR, "to add a snapshot");
+    h5::Handle snaps = h5::openGroup(f, "snapshots", file);
+    if (h5::exists(snaps, name)) {
+      throw std::runtime_error(file + ": snapshot " + name + " already exists (two recorders on one file?)");
+    }
+    h5::Handle g = h5::createGroup(snaps, name, file);
+    h5::writeAttribute(g, "time", time, file);
+    h5::writeAttribute(g, "count", static_cast<std::int64_t>(n), file);
+    h5::writeInt64s(g, "id", particles.ids.data(), n, file);
+    for (const auto& s : shapes_) {
+      h5::writeDoubles(g, s.name, particles.get(s.name).data(), n, s.components == 0 ? 1 : s.components, file);
+    }
+    if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(file + ": flush failed (disk full?)");
+  }  // closed here: what is on disk is complete
+  entries_.push_back({name, time, n});
+  writeXdmf();
+}
+
+void ParticleRecorder::writeXdmf() const {
+  bool hasPosition = false;
+  for (const auto& s : shapes_) hasPosition = hasPosition || s.name == cosim::field::position;
+  if (!hasPosition) return;  // nothing to place in space; particles.h5 alone holds the data
+
+  const std::string h5name = h5_.filename().string();
+  std::ostringstream x;
+  x.precision(17);
+  x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+    << "<Xdmf Version=\"2.0\">\n <Domain>\n"
+    << "  <Grid Name=\"particles\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+  for (const auto& e : entries_) {
+    if (e.count == 0) continue;  // an empty grid confuses readers; the time is still in the .h5
+    const std::string path = h5name + ":/snapshots/" + e.group + "/";
+    x << "   <Grid Name=\"t" << e.group << "\" GridType=\"Uniform\">\n"
+      << "    <Time Value=\"" << e.time << "\"/>\n"
+      << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << e.count
+      << "\" NodesPerElement=\"1\"/>\n"
+      << "    <Geometry GeometryType=\"XYZ\">\n"
+      << "     <DataItem Dimensions=\"" << e.count << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
+      << path << "position</DataItem>\n    </Geometry>\n"
+      << "    <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n"
+      << "     <DataItem Dimensions=\"" << e.count << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">"
+      << path << "id</DataItem>\n    </Attribute>\n";
+    for (const auto& s : shapes_) {
+      if (s.name == cosim::field::position) continue;
+      const std::uint64_t c = s.components == 0 ? 1 : s.components;
+      const char* type = c == 1 ? "Scalar" : c == 3 ? "Vector" : "Matrix";
+      x << "    <Attribute Name=\"" << s.name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n"
+        << "     <DataItem Dimensions=\"" << e.count;
+      if (c != 1) x << " " << c;
+      x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << path << s.name
+        << "</DataItem>\n    </Attribute>\n";
+    }
+    x << "   </Grid>\n";
+  }
+  x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+  writeFileAtomically(xmf_, x.str());
+}
+
+}  // namespace cosim::analysis
