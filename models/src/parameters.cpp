@@ -1,6 +1,7 @@
 #include "cosim/models/parameters.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <sstream>
 
@@ -82,6 +83,30 @@ const std::vector<Parameters>& Parameters::children(const std::string& k) const 
   auto it = children_.find(k);
   if (it == children_.end()) throw ModelError(owner_ + ": missing parameter '" + k + "'");
   return it->second;
+}
+
+bool Parameters::flag(const std::string& k, bool fallback) const {
+  if (!has(k)) return fallback;
+  if (auto it = numbers_.find(k); it != numbers_.end()) {
+    if (it->second == 1.0) return true;
+    if (it->second == 0.0) return false;
+  } else if (auto t = texts_.find(k); t != texts_.end()) {
+    std::string v = t->second;
+    std::transform(v.begin(), v.end(), v.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (v == "true" || v == "yes" || v == "on" || v == "1") return true;
+    if (v == "false" || v == "no" || v == "off" || v == "0") return false;
+  }
+  throw ModelError(owner_ + ": parameter '" + k + "' must be true or false");
+}
+
+Parameters Parameters::without(const std::string& k, std::string new_owner) const {
+  Parameters copy = *this;
+  copy.owner_ = std::move(new_owner);
+  copy.numbers_.erase(k);
+  copy.texts_.erase(k);
+  copy.lists_.erase(k);
+  copy.children_.erase(k);
+  return copy;
 }
 
 std::vector<std::string> Parameters::keys() const {

@@ -15,13 +15,6 @@ Registry& Registry::instance() {
 
 Registry::Registry() { registerBuiltins(*this); }
 
-void Registry::addDrag(const std::string& n, Factory<DragLaw> f) { drag_[n] = std::move(f); }
-void Registry::addForce(const std::string& n, Factory<ForceModel> f) { force_[n] = std::move(f); }
-void Registry::addMassTransfer(const std::string& n, Factory<MassTransferLaw> f) {
-  mass_[n] = std::move(f);
-}
-void Registry::addZone(const std::string& n, Factory<CoatingZone> f) { zone_[n] = std::move(f); }
-
 namespace {
 template <class M>
 std::vector<std::string> namesOf(const M& m) {

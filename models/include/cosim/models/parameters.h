@@ -35,6 +35,11 @@ class Parameters {
   std::string text(const std::string& key, const std::string& fallback) const;
   std::vector<double> list(const std::string& key, std::size_t expected_size) const;
   const std::vector<Parameters>& children(const std::string& key) const;
+  // Optional on/off switch: text true/false/yes/no/on/off or number 1/0; anything else is an
+  // error naming the model and the key.
+  bool flag(const std::string& key, bool fallback) const;
+  // A copy without `key` (e.g. the `shape` selector of a union part) and with a new owner name.
+  Parameters without(const std::string& key, std::string new_owner) const;
 
   const std::string& owner() const { return owner_; }
   std::vector<std::string> keys() const;

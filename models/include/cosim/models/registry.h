@@ -19,10 +19,15 @@ class Registry {
 
   static Registry& instance();
 
-  void addDrag(const std::string& name, Factory<DragLaw> f);
-  void addForce(const std::string& name, Factory<ForceModel> f);
-  void addMassTransfer(const std::string& name, Factory<MassTransferLaw> f);
-  void addZone(const std::string& name, Factory<CoatingZone> f);
+  // Register a factory under a name (a later registration of the same name replaces the
+  // earlier one, so a plugin may override a built-in). Inline so that plugins need no symbol
+  // from the host executable to register.
+  void addDrag(const std::string& name, Factory<DragLaw> f) { drag_[name] = std::move(f); }
+  void addForce(const std::string& name, Factory<ForceModel> f) { force_[name] = std::move(f); }
+  void addMassTransfer(const std::string& name, Factory<MassTransferLaw> f) {
+    mass_[name] = std::move(f);
+  }
+  void addZone(const std::string& name, Factory<CoatingZone> f) { zone_[name] = std::move(f); }
 
   // Throw ModelError("unknown drag law 'x'; known: a, b, c") for unknown names.
   std::unique_ptr<DragLaw> makeDrag(const std::string& name, const Parameters& p) const;
