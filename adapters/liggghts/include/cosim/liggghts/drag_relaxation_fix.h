@@ -1,0 +1,36 @@
+// LIGGGHTS fix "cosim/drag": applies the fluid forcing of the orchestrator at EVERY DEM step,
+//   F = K (u_f - v) + F_explicit,
+// with the particle's current velocity, integrated exactly (exponential relaxation, see
+// exponential_drag.h) so that relaxation times m/K far shorter than the coupling interval or the
+// DEM step stay stable. K, u_f and F_explicit are per-atom properties (fix property/atom) that
+// migrate with the atoms between MPI ranks; particles without terms have K = 0, F_explicit = 0
+// and feel no fluid force.
+//
+// The fix must be the last post_force fix so that it sees every other force (pair contacts,
+// walls, gravity); Coupling::install() appends it after the user's script has run.
+#pragma once
+
+#include "fix.h"
+
+namespace cosim::liggghts {
+
+// Names of the per-atom properties the fix reads (fix property/atom variable names).
+inline constexpr const char* kDragCoefficientProperty = "cosimDragK";      // scalar [kg/s]
+inline constexpr const char* kFluidVelocityProperty = "cosimFluidVel";     // vector [m/s]
+inline constexpr const char* kExplicitForceProperty = "cosimExplicitF";    // vector [N]
+
+class DragRelaxationFix : public LAMMPS_NS::Fix {
+ public:
+  DragRelaxationFix(LAMMPS_NS::LAMMPS* instance, int narg, char** arg);
+  int setmask() override;
+  void init() override;
+  void setup(int vflag) override;
+  void post_force(int vflag) override;
+
+ private:
+  LAMMPS_NS::Fix* drag_coefficient_ = nullptr;
+  LAMMPS_NS::Fix* fluid_velocity_ = nullptr;
+  LAMMPS_NS::Fix* explicit_force_ = nullptr;
+};
+
+}  // namespace cosim::liggghts

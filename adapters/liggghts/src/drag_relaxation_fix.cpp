@@ -1,0 +1,54 @@
+#include "cosim/liggghts/drag_relaxation_fix.h"
+
+#include "atom.h"
+#include "error.h"
+#include "modify.h"
+#include "update.h"
+
+#include "cosim/liggghts/exponential_drag.h"
+
+namespace cosim::liggghts {
+
+using namespace LAMMPS_NS;
+
+DragRelaxationFix::DragRelaxationFix(LAMMPS* instance, int narg, char** arg)
+    : Fix(instance, narg, arg) {}
+
+int DragRelaxationFix::setmask() { return FixConst::POST_FORCE; }
+
+void DragRelaxationFix::init() {
+  drag_coefficient_ =
+      modify->find_fix_property(kDragCoefficientProperty, "property/atom", "scalar", 0, 0, style);
+  fluid_velocity_ =
+      modify->find_fix_property(kFluidVelocityProperty, "property/atom", "vector", 0, 0, style);
+  explicit_force_ =
+      modify->find_fix_property(kExplicitForceProperty, "property/atom", "vector", 0, 0, style);
+  if (!atom->rmass_flag || !atom->radius_flag)
+    error->all(FLERR, "cosim/drag needs spheres with per-atom mass (atom_style sphere or granular)");
+}
+
+void DragRelaxationFix::setup(int vflag) { post_force(vflag); }
+
+void DragRelaxationFix::post_force(int) {
+  const double dt = update->dt;
+  const double* K = drag_coefficient_->vector_atom;
+  double** uf = fluid_velocity_->array_atom;
+  double** fex = explicit_force_->array_atom;
+  double** v = atom->v;
+  double** f = atom->f;
+  const double* mass = atom->rmass;
+  const int* amask = atom->mask;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; ++i) {
+    if (!(amask[i] & groupbit)) continue;
+    if (K[i] <= 0.0) {
+      // no drag: the explicit force (if any) is simply added
+      for (int d = 0; d < 3; ++d) f[i][d] += fex[i][d];
+      continue;
+    }
+    for (int d = 0; d < 3; ++d)
+      f[i][d] = exponentialDragForce(K[i], mass[i], dt, uf[i][d], v[i][d], f[i][d] + fex[i][d]);
+  }
+}
+
+}  // namespace cosim::liggghts

@@ -1,0 +1,367 @@
+#include "cosim/liggghts/engine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "atom.h"
+#include "fix.h"
+#include "fix_property_atom.h"
+#include "fix_property_global.h"
+#include "input.h"
+#include "lammps.h"
+#include "memory.h"
+#include "modify.h"
+#include "update.h"
+
+#include "cosim/liggghts/drag_relaxation_fix.h"
+#include "cosim/liggghts/hertz_contact_time.h"
+#include "cosim/liggghts/liggghts_error.h"
+#include "cosim/liggghts/rayleigh_time.h"
+
+namespace cosim::liggghts {
+
+using LAMMPS_NS::Fix;
+
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+
+// Line number (1-based) of the first line of `script` whose text is `command`; 0 if not found.
+int lineOf(const std::filesystem::path& script, const std::string& command) {
+  std::ifstream in(script);
+  std::string line;
+  const std::string wanted = trim(command);
+  if (wanted.empty()) return 0;
+  for (int n = 1; std::getline(in, line); ++n) {
+    auto hash = line.find('#');
+    if (trim(hash == std::string::npos ? line : line.substr(0, hash)) == wanted) return n;
+  }
+  return 0;
+}
+
+// Input::line (the command being executed) is protected; a derived class may name it.
+struct InputLine : LAMMPS_NS::Input {
+  static const char* of(LAMMPS_NS::Input* in) { return in->*(&InputLine::line); }
+};
+
+Fix* findProperty(LAMMPS_NS::Modify* modify, const char* name, const char* style,
+                  const char* shape) {
+  return modify->find_fix_property(name, style, shape, 0, 0, "cosim", false);
+}
+
+}  // namespace
+
+Engine::Engine(MPI_Comm comm, const std::filesystem::path& workdir) : comm_(comm), workdir_(workdir) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+  const std::string screen = (workdir_ / "liggghts.screen").string();
+  const std::string log = (workdir_ / "liggghts.log").string();
+  // -screen none crashes LIGGGHTS 3.8 in region code: the screen always goes to a file.
+  std::vector<std::string> args = {"liggghts", "-screen", screen, "-log", log, "-echo", "both"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  guarded("starting LIGGGHTS", [&] {
+    lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm_);
+  });
+}
+
+Engine::~Engine() {
+  // After a LIGGGHTS error its screen/log files are closed and its output object deleted:
+  // destroying the instance would free them twice, so a broken instance is left to the OS.
+  if (!broken_ && lmp_) {
+    LiggghtsCall call;
+    try {
+      delete lmp_;
+    } catch (const LiggghtsStop&) {
+    }
+  }
+}
+
+template <class F>
+void Engine::guarded(const std::string& what, F&& f) {
+  if (broken_) throw std::runtime_error("LIGGGHTS already stopped on an earlier error; cannot " + what);
+  try {
+    LiggghtsCall call;
+    f();
+  } catch (const LiggghtsStop& stop) {
+    broken_ = true;
+    failWithLiggghtsMessage(what, stop.aborted);
+  }
+}
+
+void Engine::failWithLiggghtsMessage(const std::string& what, bool aborted) {
+  std::string message;
+  std::string last_command;
+  if (rank_ == 0) {
+    if (aborted && lmp_ && lmp_->screen) std::fflush(lmp_->screen);  // error->one leaves it open
+    message = lastErrorLine(screenFile().string());
+    if (lmp_ && lmp_->input && InputLine::of(lmp_->input))
+      last_command = trim(InputLine::of(lmp_->input));
+  }
+  std::ostringstream out;
+  out << "LIGGGHTS stopped with an error while " << what;
+  if (!script_.empty()) {
+    out << " (script " << script_.string();
+    if (int n = lineOf(script_, last_command); n > 0) out << ", line " << n;
+    out << ")";
+  }
+  out << ": " << (message.empty() ? std::string("(no ERROR line in the screen file)") : message);
+  if (!last_command.empty()) out << "\n  last command: " << last_command;
+  out << "\n  full LIGGGHTS output: " << screenFile().string();
+  if (aborted && size_ > 1)
+    out << " (the error was raised on one MPI rank; if it was not rank 0 its text is only in the"
+           " job's standard error)";
+  throw LiggghtsError(out.str(), aborted);
+}
+
+void Engine::runScript(const std::filesystem::path& script) {
+  if (!std::filesystem::exists(script))
+    throw std::runtime_error("LIGGGHTS script '" + script.string() +
+                             "' does not exist (option `script` of the particles participant; "
+                             "the path is relative to the participant's folder)");
+  script_ = script;
+  const std::string path = script.string();
+  guarded("running " + path, [&] { lmp_->input->file(path.c_str()); });
+  need_setup_ = true;
+}
+
+void Engine::command(const std::string& line) {
+  guarded("executing '" + line + "'", [&] { lmp_->input->one(line.c_str()); });
+}
+
+void Engine::installCoupling() {
+  if (coupled_) return;
+  if (!lmp_->atom->rmass_flag || !lmp_->atom->radius_flag)
+    throw std::runtime_error("LIGGGHTS script " + script_.string() +
+                             ": the coupling needs spherical particles with per-particle mass and "
+                             "radius; use `atom_style granular` (or sphere)");
+  if (!findProperty(lmp_->modify, kCoatingMassProperty, "property/atom", "scalar"))
+    command(std::string("fix ") + kCoatingMassProperty + " all property/atom " +
+            kCoatingMassProperty + " scalar yes no no 0");
+  command(std::string("fix cosim_drag_k all property/atom ") + kDragCoefficientProperty +
+          " scalar no no no 0");
+  command(std::string("fix cosim_fluid_vel all property/atom ") + kFluidVelocityProperty +
+          " vector no no no 0 0 0");
+  command(std::string("fix cosim_explicit_f all property/atom ") + kExplicitForceProperty +
+          " vector no no no 0 0 0");
+
+  // The drag fix is not a registered LIGGGHTS style: append it to the fix list ourselves, as
+  // Modify::add_fix would, so that it is the last post_force fix.
+  guarded("adding the cosim/drag fix", [&] {
+    std::string id = "cosim_drag", group = "all", style = "cosim/drag";
+    char* args[] = {id.data(), group.data(), style.data()};
+    auto* fix = new DragRelaxationFix(lmp_, 3, args);
+    LAMMPS_NS::Modify* modify = lmp_->modify;
+    if (modify->nfix == modify->maxfix) {
+      modify->maxfix += 4;
+      modify->fix = static_cast<Fix**>(lmp_->memory->srealloc(
+          modify->fix, static_cast<LAMMPS_NS::bigint>(modify->maxfix * sizeof(Fix*)), "modify:fix"));
+      modify->fmask = static_cast<int*>(lmp_->memory->srealloc(
+          modify->fmask, static_cast<LAMMPS_NS::bigint>(modify->maxfix * sizeof(int)), "modify:fmask"));
+    }
+    modify->fix[modify->nfix] = fix;
+    modify->fmask[modify->nfix] = fix->setmask();
+    modify->nfix++;
+    fix->post_create_pre_restart();
+    fix->post_create();
+  });
+  coupled_ = true;
+  need_setup_ = true;
+}
+
+double Engine::timestep() const { return lmp_->update->dt; }
+
+std::int64_t Engine::particleCount() const {
+  long long local = lmp_->atom->nlocal, total = 0;
+  MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, comm_);
+  return total;
+}
+
+TimestepReport Engine::timestepReport(double impact_speed) const {
+  TimestepReport report;
+  report.dt = timestep();
+  report.impact_speed = impact_speed;
+  auto* E = dynamic_cast<LAMMPS_NS::FixPropertyGlobal*>(
+      findProperty(lmp_->modify, "youngsModulus", "property/global", "peratomtype"));
+  auto* nu = dynamic_cast<LAMMPS_NS::FixPropertyGlobal*>(
+      findProperty(lmp_->modify, "poissonsRatio", "property/global", "peratomtype"));
+  if (!E || !nu)
+    throw std::runtime_error(
+        "LIGGGHTS script " + script_.string() +
+        " defines no `fix ... property/global youngsModulus peratomtype ...` and "
+        "`poissonsRatio`; the adapter needs them to check the DEM time step (or set the option "
+        "dt_check: off)");
+  const int ntypes = lmp_->atom->ntypes;
+  const LAMMPS_NS::Atom* atom = lmp_->atom;
+  double local[3] = {std::numeric_limits<double>::max(), std::numeric_limits<double>::max(),
+                     std::numeric_limits<double>::max()};
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const int t = atom->type[i];
+    if (t < 1 || t > ntypes) continue;
+    const double r = atom->radius[i];
+    const double density = atom->rmass[i] / (4.0 / 3.0 * std::numbers::pi * r * r * r);
+    const double e = E->compute_vector(t - 1), p = nu->compute_vector(t - 1);
+    local[0] = std::min(local[0], r);
+    local[1] = std::min(local[1], rayleighTime(r, density, e, p));
+    local[2] = std::min(local[2], hertzContactTimeRigidWall(r, density, e, p, impact_speed));
+  }
+  double global[3];
+  MPI_Allreduce(local, global, 3, MPI_DOUBLE, MPI_MIN, comm_);
+  report.has_particles = global[0] < std::numeric_limits<double>::max();
+  if (report.has_particles) {
+    report.min_radius = global[0];
+    report.rayleigh_time = global[1];
+    report.hertz_time = global[2];
+  }
+  return report;
+}
+
+void Engine::applyTerms(const Terms& terms) {
+  const std::size_t n = terms.ids.size();
+  auto check_size = [&](const std::vector<double>& v, std::size_t per, const char* name) {
+    if (!v.empty() && v.size() != n * per)
+      throw std::runtime_error(std::string("forcing field ") + name + " has " +
+                               std::to_string(v.size()) + " values for " + std::to_string(n) +
+                               " particles (expected " + std::to_string(n * per) + ")");
+  };
+  check_size(terms.drag_coefficient, 1, "drag_coefficient");
+  check_size(terms.fluid_velocity, 3, "fluid_velocity");
+  check_size(terms.explicit_force, 3, "explicit_force");
+  check_size(terms.coating_increment, 1, "coating_increment");
+
+  std::unordered_map<std::int64_t, std::size_t> index;
+  index.reserve(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!index.emplace(terms.ids[k], k).second)
+      throw std::runtime_error("forcing lists particle id " + std::to_string(terms.ids[k]) +
+                               " twice");
+    auto bad = [&](const std::vector<double>& v, std::size_t per) {
+      for (std::size_t c = 0; c < per && !v.empty(); ++c)
+        if (!std::isfinite(v[k * per + c])) return true;
+      return false;
+    };
+    if (bad(terms.drag_coefficient, 1) || bad(terms.fluid_velocity, 3) ||
+        bad(terms.explicit_force, 3) || bad(terms.coating_increment, 1))
+      throw std::runtime_error("forcing for particle id " + std::to_string(terms.ids[k]) +
+                               " contains a NaN or infinite value");
+    if (!terms.drag_coefficient.empty() && terms.drag_coefficient[k] < 0)
+      throw std::runtime_error("drag_coefficient of particle id " + std::to_string(terms.ids[k]) +
+                               " is negative (" + std::to_string(terms.drag_coefficient[k]) +
+                               " kg/s); K must be >= 0");
+  }
+
+  LAMMPS_NS::Modify* modify = lmp_->modify;
+  double* K = findProperty(modify, kDragCoefficientProperty, "property/atom", "scalar")->vector_atom;
+  double** uf = findProperty(modify, kFluidVelocityProperty, "property/atom", "vector")->array_atom;
+  double** fex = findProperty(modify, kExplicitForceProperty, "property/atom", "vector")->array_atom;
+  double* coating = findProperty(modify, kCoatingMassProperty, "property/atom", "scalar")->vector_atom;
+
+  std::vector<int> found(n, 0);
+  const LAMMPS_NS::Atom* atom = lmp_->atom;
+  for (int i = 0; i < atom->nlocal; ++i) {
+    K[i] = 0;
+    for (int d = 0; d < 3; ++d) uf[i][d] = fex[i][d] = 0;
+    auto it = index.find(atom->tag[i]);
+    if (it == index.end()) continue;
+    const std::size_t k = it->second;
+    found[k] = 1;
+    if (!terms.drag_coefficient.empty()) K[i] = terms.drag_coefficient[k];
+    for (int d = 0; d < 3; ++d) {
+      if (!terms.fluid_velocity.empty()) uf[i][d] = terms.fluid_velocity[3 * k + d];
+      if (!terms.explicit_force.empty()) fex[i][d] = terms.explicit_force[3 * k + d];
+    }
+    if (!terms.coating_increment.empty()) coating[i] += terms.coating_increment[k];
+  }
+  std::vector<int> found_anywhere(n, 0);
+  MPI_Allreduce(found.data(), found_anywhere.data(), static_cast<int>(n), MPI_INT, MPI_MAX, comm_);
+  std::string missing;
+  int count = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!found_anywhere[k] && count++ < 10) missing += " " + std::to_string(terms.ids[k]);
+  if (count > 0)
+    throw std::runtime_error("forcing names " + std::to_string(count) +
+                             " particle id(s) that LIGGGHTS does not have:" + missing +
+                             (count > 10 ? " ..." : ""));
+}
+
+void Engine::advance(int steps) {
+  if (steps <= 0) return;
+  const std::string cmd =
+      "run " + std::to_string(steps) + (need_setup_ ? " pre yes post no" : " pre no post no");
+  guarded("running " + std::to_string(steps) + " DEM steps", [&] { lmp_->input->one(cmd.c_str()); });
+  need_setup_ = false;
+}
+
+State Engine::state() const {
+  constexpr int kPer = 11;  // id, x[3], v[3], radius, mass, coating, type
+  const LAMMPS_NS::Atom* atom = lmp_->atom;
+  const int nlocal = atom->nlocal;
+  const double* coating = coupled_ ? findProperty(lmp_->modify, kCoatingMassProperty,
+                                                  "property/atom", "scalar")->vector_atom
+                                   : nullptr;
+  std::vector<double> local(static_cast<std::size_t>(nlocal) * kPer);
+  for (int i = 0; i < nlocal; ++i) {
+    double* p = &local[static_cast<std::size_t>(i) * kPer];
+    p[0] = atom->tag[i];
+    for (int d = 0; d < 3; ++d) {
+      p[1 + d] = atom->x[i][d];
+      p[4 + d] = atom->v[i][d];
+    }
+    p[7] = atom->radius[i];
+    p[8] = atom->rmass[i];
+    p[9] = coating ? coating[i] : 0.0;
+    p[10] = atom->type[i];
+  }
+  int count = static_cast<int>(local.size());
+  std::vector<int> counts(rank_ == 0 ? size_ : 0), offsets(rank_ == 0 ? size_ : 0);
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+  std::vector<double> all;
+  if (rank_ == 0) {
+    std::exclusive_scan(counts.begin(), counts.end(), offsets.begin(), 0);
+    all.resize(static_cast<std::size_t>(offsets.back() + counts.back()));
+  }
+  MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+              MPI_DOUBLE, 0, comm_);
+  State s;
+  if (rank_ != 0) return s;
+  const std::size_t n = all.size() / kPer;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return all[a * kPer] < all[b * kPer]; });
+  s.ids.reserve(n);
+  for (std::size_t j : order) {
+    const double* p = &all[j * kPer];
+    s.ids.push_back(static_cast<std::int64_t>(p[0]));
+    s.position.insert(s.position.end(), p + 1, p + 4);
+    s.velocity.insert(s.velocity.end(), p + 4, p + 7);
+    s.radius.push_back(p[7]);
+    s.mass.push_back(p[8]);
+    s.coating_mass.push_back(p[9]);
+    s.type.push_back(p[10]);
+  }
+  return s;
+}
+
+std::filesystem::path Engine::writeRestart(const std::filesystem::path& file) {
+  if (file.has_parent_path()) {
+    std::error_code ec;
+    std::filesystem::create_directories(file.parent_path(), ec);
+  }
+  command("write_restart " + file.string());
+  return file;
+}
+
+}  // namespace cosim::liggghts

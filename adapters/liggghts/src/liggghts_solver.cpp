@@ -1,0 +1,263 @@
+#include "cosim/liggghts/liggghts_solver.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "cosim/link/fields.h"
+#include "cosim/liggghts/liggghts_error.h"
+
+namespace cosim::liggghts {
+
+namespace field = cosim::field;
+using cosim::link::ParticleData;
+
+LiggghtsSolver::LiggghtsSolver(MPI_Comm comm) : comm_(comm) { MPI_Comm_rank(comm_, &rank_); }
+
+LiggghtsSolver::~LiggghtsSolver() {
+  // A broken engine must not be destroyed (see Engine::~Engine); it handles that itself.
+}
+
+cosim::link::Capabilities LiggghtsSolver::capabilities() const {
+  cosim::link::Capabilities caps;
+  caps.role = cosim::wire::PARTICLES;
+  caps.adapter = "liggghts";
+  caps.provides = {field::position, field::velocity, field::radius, field::coating_mass, field::type};
+  caps.accepts = {field::drag_coefficient, field::fluid_velocity, field::explicit_force,
+                  field::coating_increment};
+  return caps;
+}
+
+void LiggghtsSolver::broadcast(Op op, const std::string& payload) {
+  int header[2] = {op, static_cast<int>(payload.size())};
+  MPI_Bcast(header, 2, MPI_INT, 0, comm_);
+  if (header[1] > 0)
+    MPI_Bcast(const_cast<char*>(payload.data()), header[1], MPI_CHAR, 0, comm_);
+  if (op == kFinish || op == kQuit) ranks_released_ = true;
+}
+
+// Runs f on this rank as part of a collective command. Errors are the same on every rank
+// (LIGGGHTS error->all, or checks on identical data), except LIGGGHTS error->one.
+template <class F>
+void LiggghtsSolver::collective(F&& f) {
+  try {
+    f();
+  } catch (const LiggghtsError& e) {
+    if (e.collectiveBroken()) must_abort_ = true;
+    ranks_released_ = true;
+    throw;
+  } catch (...) {
+    ranks_released_ = true;  // every rank failed the same way and stops serving
+    throw;
+  }
+}
+
+void LiggghtsSolver::configure(const cosim::wire::Welcome& welcome) {
+  broadcast(kConfigure, welcome.SerializeAsString());
+  collective([&] { doConfigure(welcome); });
+}
+
+void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData&,
+                             cosim::wire::Advanced& out, ParticleData& state) {
+  broadcast(kAdvance, cmd.SerializeAsString());
+  collective([&] { doAdvance(cmd); });
+
+  // rank 0: the reply
+  const State& s = last_state_;
+  state.ids = s.ids;
+  for (const auto& name : send_) {
+    auto& v = state.field(name);
+    if (name == field::position) v = s.position;
+    else if (name == field::velocity) v = s.velocity;
+    else if (name == field::radius) v = s.radius;
+    else if (name == field::coating_mass) v = s.coating_mass;
+    else if (name == field::type) v = s.type;
+  }
+  std::map<std::int64_t, double> now;
+  for (std::size_t k = 0; k < s.ids.size(); ++k) now.emplace(s.ids[k], s.coating_mass[k]);
+  double deleted_coating = 0;
+  if (reported_once_) {
+    for (const auto& [id, c] : now)
+      if (!last_coating_.count(id)) out.add_inserted_ids(id);
+    for (const auto& [id, c] : last_coating_)
+      if (!now.count(id)) {
+        out.add_deleted_ids(id);
+        deleted_coating += c;
+      }
+  }
+  // coating increments of this command arrived on particles that may have left since
+  for (int k = 0; k < cmd.terms().ids_size(); ++k) (void)k;
+  last_coating_ = std::move(now);
+  reported_once_ = true;
+
+  auto& sc = *out.mutable_scalars();
+  sc["particle_count"] = static_cast<double>(s.ids.size());
+  sc["deleted_coating_mass"] = deleted_coating;
+  if (dt_report_ && dt_report_->has_particles) {
+    sc["dt_over_rayleigh_time"] = dt_report_->dtOverRayleigh();
+    sc["dt_over_hertz_time"] = dt_report_->dtOverHertz();
+  }
+}
+
+std::vector<std::string> LiggghtsSolver::checkpoint(const std::string& path) {
+  broadcast(kCheckpoint, path);
+  std::vector<std::string> files;
+  collective([&] { files = doCheckpoint(path); });
+  return files;
+}
+
+void LiggghtsSolver::finish() {
+  broadcast(kFinish, "");
+  collective([&] { doFinish(); });
+}
+
+void LiggghtsSolver::releaseOtherRanks() {
+  if (!ranks_released_ && !must_abort_) broadcast(kQuit, "");
+}
+
+int LiggghtsSolver::serve() {
+  while (true) {
+    int header[2] = {0, 0};
+    MPI_Bcast(header, 2, MPI_INT, 0, comm_);
+    std::string payload(static_cast<std::size_t>(header[1]), '\0');
+    if (header[1] > 0) MPI_Bcast(payload.data(), header[1], MPI_CHAR, 0, comm_);
+    try {
+      switch (header[0]) {
+        case kConfigure: {
+          cosim::wire::Welcome w;
+          w.ParseFromString(payload);
+          doConfigure(w);
+          break;
+        }
+        case kAdvance: {
+          cosim::wire::Advance a;
+          a.ParseFromString(payload);
+          doAdvance(a);
+          break;
+        }
+        case kCheckpoint:
+          doCheckpoint(payload);
+          break;
+        case kFinish:
+          doFinish();
+          return 0;
+        case kQuit:
+          return 1;
+        default:
+          throw std::runtime_error("unknown command from rank 0");
+      }
+    } catch (const LiggghtsError& e) {
+      if (e.collectiveBroken()) {
+        must_abort_ = true;
+        std::fprintf(stderr, "[cosim-liggghts rank %d] %s\n", rank_, e.what());
+      }
+      return 1;
+    } catch (const std::exception&) {
+      return 1;  // rank 0 hit the same error and reports it
+    }
+  }
+}
+
+void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
+  options_ = AdapterOptions::parse(welcome.config_yaml());
+  send_.assign(welcome.send().begin(), welcome.send().end());
+  if (!welcome.workdir().empty()) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(welcome.workdir(), ec) &&
+        std::filesystem::current_path() != std::filesystem::path(welcome.workdir()))
+      std::filesystem::current_path(welcome.workdir());
+  }
+  engine_ = std::make_unique<Engine>(comm_, std::filesystem::current_path());
+  engine_->runScript(options_.script);
+  engine_->installCoupling();
+
+  const double dt = engine_->timestep();
+  if (welcome.cfd_dt() > 0 && welcome.dem_steps() > 0) {
+    const double wanted = welcome.cfd_dt() / welcome.dem_steps();
+    if (std::abs(dt - wanted) > 1e-9 * wanted) {
+      const double steps = welcome.cfd_dt() / dt;
+      std::string hint;
+      if (std::abs(steps - std::round(steps)) < 1e-6 && steps >= 1)
+        hint = fmt::format(" or set coupling.dem_steps: {:.0f} in the scenario", std::round(steps));
+      throw std::runtime_error(fmt::format(
+          "LIGGGHTS script {}: `timestep {:.6g}` does not match the coupling: coupling.dt {:.6g} s / "
+          "coupling.dem_steps {} = {:.6g} s per DEM step. Write `timestep {:.6g}` in the script{}",
+          options_.script, dt, welcome.cfd_dt(), welcome.dem_steps(), wanted, wanted, hint));
+    }
+  }
+  checkTimestep();
+}
+
+void LiggghtsSolver::checkTimestep() {
+  if (options_.dt_check == DtCheckPolicy::off) return;
+  const TimestepReport report = engine_->timestepReport(options_.impact_speed);
+  if (!report.has_particles) return;
+  if (dt_reported_ && report.min_radius >= checked_radius_) return;
+  checked_radius_ = report.min_radius;
+  dt_report_ = report;
+  dt_reported_ = true;
+  const TimestepVerdict v = judgeTimestep(report);
+  if (v.verdict == Verdict::unstable && options_.dt_check == DtCheckPolicy::refuse)
+    throw std::runtime_error(fmt::format(
+        "LIGGGHTS script {}: the DEM time step is too large for these particles: {}. Contacts "
+        "would be unstable (limits: 0.3 x Rayleigh time, 1/3 x Hertz time). Use `timestep {:.3g}` "
+        "(0.2 x Rayleigh time or 1/5 x Hertz time, whichever is smaller) and adjust "
+        "coupling.dem_steps, or set options.dt_check: warn to run anyway",
+        options_.script, v.summary, v.suggested_dt));
+  if (rank_ == 0) {
+    if (v.verdict == Verdict::ok) spdlog::info("[liggghts] {}", v.summary);
+    else
+      spdlog::warn("[liggghts] {} -- {}; a safe value is {:.3g} s", v.summary,
+                   v.verdict == Verdict::unstable ? "UNSTABLE" : "doubtful", v.suggested_dt);
+  }
+}
+
+void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
+  if (!engine_) throw std::runtime_error("Advance before configure");
+  const ParticleData terms = ParticleData::fromWire(cmd.terms());
+  Terms t;
+  t.ids = terms.ids;
+  if (terms.has(field::drag_coefficient)) t.drag_coefficient = terms.get(field::drag_coefficient);
+  if (terms.has(field::fluid_velocity)) t.fluid_velocity = terms.get(field::fluid_velocity);
+  if (terms.has(field::explicit_force)) t.explicit_force = terms.get(field::explicit_force);
+  if (terms.has(field::coating_increment)) t.coating_increment = terms.get(field::coating_increment);
+  if (!t.drag_coefficient.empty() && t.fluid_velocity.empty())
+    throw std::runtime_error("Advance carries drag_coefficient without fluid_velocity");
+
+  int steps = 0;
+  if (cmd.dt() > 0) {
+    if (cmd.substeps() == 0)
+      throw std::runtime_error(fmt::format("Advance dt {:.6g} s with substeps = 0", cmd.dt()));
+    const double per_step = cmd.dt() / cmd.substeps();
+    const double dt = engine_->timestep();
+    if (std::abs(per_step - dt) > 1e-9 * dt)
+      throw std::runtime_error(fmt::format(
+          "Advance asks for {} DEM steps in {:.6g} s = {:.6g} s per step, but the LIGGGHTS "
+          "script {} uses `timestep {:.6g}`; make coupling.dt / coupling.dem_steps equal the "
+          "script's timestep",
+          cmd.substeps(), cmd.dt(), per_step, options_.script, dt));
+    steps = static_cast<int>(cmd.substeps());
+  } else if (cmd.dt() < 0) {
+    throw std::runtime_error(fmt::format("Advance with negative dt {:.6g}", cmd.dt()));
+  }
+  engine_->applyTerms(t);
+  engine_->advance(steps);
+  checkTimestep();
+  last_state_ = engine_->state();
+}
+
+std::vector<std::string> LiggghtsSolver::doCheckpoint(const std::string& path) {
+  if (!engine_) throw std::runtime_error("Checkpoint before configure");
+  std::filesystem::path dir(path.empty() ? "." : path);
+  const auto file = engine_->writeRestart(dir / "liggghts.restart");
+  return {file.string()};
+}
+
+void LiggghtsSolver::doFinish() { engine_.reset(); }
+
+}  // namespace cosim::liggghts

@@ -1,0 +1,40 @@
+// cosim-liggghts: the LIGGGHTS particles participant.
+//   [mpirun -np N] cosim-liggghts --endpoint <addr> --name <participant> --run-id <id>
+// Rank 0 talks to the orchestrator; the other ranks execute what rank 0 broadcasts.
+#include <mpi.h>
+
+#include <cstdio>
+#include <exception>
+#include <vector>
+
+#include "cosim/link/session.h"
+#include "cosim/liggghts/liggghts_solver.h"
+
+int main(int argc, char** argv) {
+  MPI_Init(&argc, &argv);
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  cosim::liggghts::LiggghtsSolver solver(MPI_COMM_WORLD);
+  int rc = 0;
+  if (rank == 0) {
+    try {
+      std::vector<std::string> rest;
+      const auto options = cosim::link::ParticipantOptions::parse(argc, argv, &rest);
+      if (!rest.empty())
+        throw std::runtime_error("unknown argument '" + rest.front() +
+                                 "'; usage: cosim-liggghts --endpoint <addr> --name <participant> "
+                                 "--run-id <id>");
+      rc = cosim::link::runParticipant(solver, options);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "cosim-liggghts: %s\n", e.what());
+      rc = 2;
+    }
+    if (solver.mustAbort()) MPI_Abort(MPI_COMM_WORLD, rc == 0 ? 1 : rc);
+    solver.releaseOtherRanks();
+  } else {
+    rc = solver.serve();
+    if (solver.mustAbort()) MPI_Abort(MPI_COMM_WORLD, 1);
+  }
+  MPI_Finalize();
+  return rc;
+}
