@@ -63,8 +63,9 @@ void BeetstraDrag::coefficients(const ParcelBatch& p, const SceneConstants& c, d
   }
   const double cg3 = c.cg * c.cg * c.cg;
   const double factor = parcel_factor_ ? std::exp(k_ * (1.0 - c.cg)) : 1.0;
-  // Terminal velocity once per distinct (d, rho, mu): remember the last one.
-  double last_d = -1.0, last_rho = -1.0, last_mu = -1.0, L_c = 0.0;
+  // Terminal velocity once per distinct (d, rho, mu): remember the last one; when the fluid
+  // state changes (compressible gas), start Newton from the last Re_t (2-3 iterations).
+  double last_d = -1.0, last_rho = -1.0, last_mu = -1.0, L_c = 0.0, last_Re_t = 0.0;
   for (std::size_t i = 0; i < p.n; ++i) {
     const ParcelState s = parcelState(p, c, i);
     if (s.d != last_d || s.rho != last_rho || s.mu != last_mu) {
@@ -74,7 +75,9 @@ void BeetstraDrag::coefficients(const ParcelBatch& p, const SceneConstants& c, d
                          " kg/m3 of parcel " + std::to_string(i) +
                          ": the settling velocity of the filtered correction is undefined");
       }
-      const double u_t = beetstraTerminalVelocity(s.d, particle_density_, s.rho, s.mu, g);
+      const double u_t =
+          beetstraTerminalVelocity(s.d, particle_density_, s.rho, s.mu, g, last_Re_t);
+      last_Re_t = s.rho * s.d * u_t / s.mu;
       L_c = radlSundaresanLength(u_t, g, s.d);
       last_d = s.d;
       last_rho = s.rho;

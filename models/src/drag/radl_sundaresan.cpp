@@ -59,13 +59,19 @@ SingleSphere singleSphere(double Re) {
 }  // namespace
 
 double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, double g) {
+  return beetstraTerminalVelocity(d, rho_p, rho, mu, g, 0.0);
+}
+
+double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, double g,
+                                double guess) {
   // Force balance (rho_p - rho) g pi d^3/6 = 3 pi mu d u_t F(1, Re_t), times rho d / mu^2:
   //   Ar / 18 = Re_t F(1, Re_t). Newton on x = ln Re (slope 1 + Re F'/F in [1, 2]), kept inside
   //   the bracket [T / F(1, T), T] (F >= 1 and F increasing), bisection when Newton leaves it.
   const double T = rho * (rho_p - rho) * g * d * d * d / (18.0 * mu * mu);
   double hi = std::log(T);
   double lo = std::log(T / singleSphere(T).F);
-  double x = lo;
+  // Start from the guess (e.g. the neighbour parcel's Re_t) when it lies in the bracket.
+  double x = (guess > 0.0 && std::log(guess) > lo && std::log(guess) < hi) ? std::log(guess) : lo;
   for (int it = 0; it < 200; ++it) {
     const SingleSphere ss = singleSphere(std::exp(x));
     const double h = std::log(ss.G) - std::log(T);
@@ -79,8 +85,7 @@ double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, d
     }
     x = next;
   }
-  const double Re_t = std::exp(x);
-  return Re_t * mu / (rho * d);
+  return std::exp(x) * mu / (rho * d);
 }
 
 double radlSundaresanLength(double u_t, double g, double d) {

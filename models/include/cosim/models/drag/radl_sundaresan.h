@@ -13,6 +13,10 @@ double radlSundaresanH(double phi);
 // Terminal velocity [m/s] of a sphere of diameter d and density rho_p in a fluid (rho, mu),
 // gravity magnitude g, drag F(1, Re) of Beetstra. Requires rho_p > rho, g > 0.
 double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, double g);
+// Same, Newton started from `guess_Re` (a Reynolds number near the answer, e.g. the previous
+// parcel's Re_t = rho d u_t / mu); any guess gives the same converged answer.
+double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, double g,
+                                double guess_Re);
 // L_c [m] from u_t, g, d.
 double radlSundaresanLength(double u_t, double g, double d);
 double radlSundaresanCorrection(double phi, double L_c, double Delta);
