@@ -16,24 +16,38 @@ DragRelaxationFix::DragRelaxationFix(LAMMPS* instance, int narg, char** arg)
 
 int DragRelaxationFix::setmask() { return FixConst::POST_FORCE; }
 
-void DragRelaxationFix::init() {
+void DragRelaxationFix::lookup() {
   drag_coefficient_ =
       modify->find_fix_property(kDragCoefficientProperty, "property/atom", "scalar", 0, 0, style);
   fluid_velocity_ =
       modify->find_fix_property(kFluidVelocityProperty, "property/atom", "vector", 0, 0, style);
   explicit_force_ =
       modify->find_fix_property(kExplicitForceProperty, "property/atom", "vector", 0, 0, style);
+  other_force_ =
+      modify->find_fix_property(kOtherForceProperty, "property/atom", "vector", 0, 0, style);
+}
+
+void DragRelaxationFix::init() {
+  lookup();
   if (!atom->rmass_flag || !atom->radius_flag)
     error->all(FLERR, "cosim/drag needs spheres with per-atom mass (atom_style sphere or granular)");
 }
 
-void DragRelaxationFix::setup(int vflag) { post_force(vflag); }
+void DragRelaxationFix::setup(int) { apply(true); }
 
-void DragRelaxationFix::post_force(int) {
+void DragRelaxationFix::post_force(int) { apply(true); }
+
+void DragRelaxationFix::refreshForces() {
+  lookup();
+  apply(false);
+}
+
+void DragRelaxationFix::apply(bool store_other_force) {
   const double dt = update->dt;
   const double* K = drag_coefficient_->vector_atom;
   double** uf = fluid_velocity_->array_atom;
   double** fex = explicit_force_->array_atom;
+  double** other = other_force_->array_atom;
   double** v = atom->v;
   double** f = atom->f;
   const double* mass = atom->rmass;
@@ -41,13 +55,15 @@ void DragRelaxationFix::post_force(int) {
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; ++i) {
     if (!(amask[i] & groupbit)) continue;
+    if (store_other_force)
+      for (int d = 0; d < 3; ++d) other[i][d] = f[i][d];
     if (K[i] <= 0.0) {
       // no drag: the explicit force (if any) is simply added
-      for (int d = 0; d < 3; ++d) f[i][d] += fex[i][d];
+      for (int d = 0; d < 3; ++d) f[i][d] = other[i][d] + fex[i][d];
       continue;
     }
     for (int d = 0; d < 3; ++d)
-      f[i][d] = exponentialDragForce(K[i], mass[i], dt, uf[i][d], v[i][d], f[i][d] + fex[i][d]);
+      f[i][d] = exponentialDragForce(K[i], mass[i], dt, uf[i][d], v[i][d], other[i][d] + fex[i][d]);
   }
 }
 

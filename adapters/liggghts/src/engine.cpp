@@ -139,6 +139,7 @@ void Engine::runScript(const std::filesystem::path& script) {
 
 void Engine::command(const std::string& line) {
   guarded("executing '" + line + "'", [&] { lmp_->input->one(line.c_str()); });
+  need_setup_ = true;  // the command may have changed fixes or atoms: next run re-initialises
 }
 
 void Engine::installCoupling() {
@@ -156,6 +157,8 @@ void Engine::installCoupling() {
           " vector no no no 0 0 0");
   command(std::string("fix cosim_explicit_f all property/atom ") + kExplicitForceProperty +
           " vector no no no 0 0 0");
+  command(std::string("fix cosim_other_f all property/atom ") + kOtherForceProperty +
+          " vector no no no 0 0 0");
 
   // The drag fix is not a registered LIGGGHTS style: append it to the fix list ourselves, as
   // Modify::add_fix would, so that it is the last post_force fix.
@@ -163,6 +166,7 @@ void Engine::installCoupling() {
     std::string id = "cosim_drag", group = "all", style = "cosim/drag";
     char* args[] = {id.data(), group.data(), style.data()};
     auto* fix = new DragRelaxationFix(lmp_, 3, args);
+    drag_fix_ = fix;
     LAMMPS_NS::Modify* modify = lmp_->modify;
     if (modify->nfix == modify->maxfix) {
       modify->maxfix += 4;
@@ -178,7 +182,10 @@ void Engine::installCoupling() {
     fix->post_create();
   });
   coupled_ = true;
-  need_setup_ = true;
+  // LIGGGHTS sets a new fix property/atom to its default values at the first setup after its
+  // creation: do that setup now, before any forcing or coating is written into them.
+  guarded("setting up the coupling (run 0)", [&] { lmp_->input->one("run 0 post no"); });
+  need_setup_ = false;
 }
 
 double Engine::timestep() const { return lmp_->update->dt; }
@@ -284,6 +291,7 @@ void Engine::applyTerms(const Terms& terms) {
     }
     if (!terms.coating_increment.empty()) coating[i] += terms.coating_increment[k];
   }
+  guarded("applying the forcing", [&] { drag_fix_->refreshForces(); });
   std::vector<int> found_anywhere(n, 0);
   MPI_Allreduce(found.data(), found_anywhere.data(), static_cast<int>(n), MPI_INT, MPI_MAX, comm_);
   std::string missing;

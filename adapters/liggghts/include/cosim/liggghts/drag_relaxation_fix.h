@@ -18,6 +18,8 @@ namespace cosim::liggghts {
 inline constexpr const char* kDragCoefficientProperty = "cosimDragK";      // scalar [kg/s]
 inline constexpr const char* kFluidVelocityProperty = "cosimFluidVel";     // vector [m/s]
 inline constexpr const char* kExplicitForceProperty = "cosimExplicitF";    // vector [N]
+// Written by the fix: every force on the atom except the fluid forcing, at the last step [N].
+inline constexpr const char* kOtherForceProperty = "cosimOtherF";          // vector [N]
 
 class DragRelaxationFix : public LAMMPS_NS::Fix {
  public:
@@ -26,11 +28,18 @@ class DragRelaxationFix : public LAMMPS_NS::Fix {
   void init() override;
   void setup(int vflag) override;
   void post_force(int vflag) override;
+  // Recomputes the total force of the local atoms with the current forcing properties. Called
+  // when new terms arrive between two runs: LIGGGHTS starts a `run ... pre no` with the forces
+  // of the previous step, which still hold the previous interval's forcing.
+  void refreshForces();
 
  private:
   LAMMPS_NS::Fix* drag_coefficient_ = nullptr;
   LAMMPS_NS::Fix* fluid_velocity_ = nullptr;
   LAMMPS_NS::Fix* explicit_force_ = nullptr;
+  LAMMPS_NS::Fix* other_force_ = nullptr;
+  void lookup();
+  void apply(bool store_other_force);
 };
 
 }  // namespace cosim::liggghts

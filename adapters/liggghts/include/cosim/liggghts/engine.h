@@ -96,6 +96,7 @@ class Engine {
   std::filesystem::path workdir_;
   std::filesystem::path script_;
   LAMMPS_NS::LAMMPS* lmp_ = nullptr;
+  class DragRelaxationFix* drag_fix_ = nullptr;  // owned by LIGGGHTS' fix list
   bool coupled_ = false;
   bool need_setup_ = true;  // next run must do a full setup (new fixes since the last run)
   bool broken_ = false;
