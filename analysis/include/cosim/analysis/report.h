@@ -1,0 +1,90 @@
+// The report (`cosim report RUN [RUN...]`): reads each run folder's particles.h5 and
+// timeseries.csv, computes the coating analytics (statistics, histograms, Eqs. 9-10 fit,
+// mixing verdict, extrapolation, prediction check, mass balance), writes report.json and CSV
+// tables, draws the PNGs with scripts/plot_report.py (python3 + matplotlib) and writes
+// report.html. Several runs (e.g. a sweep over fluidization flow) also get one comparison
+// report. Layouts and formulas: docs/analysis.md.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cosim/analysis/coating_statistics.h"
+#include "cosim/analysis/extrapolation.h"
+#include "cosim/analysis/growth_fit.h"
+#include "cosim/analysis/histogram.h"
+#include "cosim/analysis/json.h"
+#include "cosim/analysis/mass_balance.h"
+#include "cosim/analysis/mixing_verdict.h"
+
+namespace cosim::analysis {
+
+struct ReportOptions {
+  std::vector<std::filesystem::path> runs;  // run folders (each holds particles.h5)
+  // Output folder. Empty: <run>/report for one run, <parent of the first run>/report-comparison
+  // for several (each run's report then goes to a subfolder named after the run folder).
+  std::filesystem::path output;
+  // Fit window [fit_start, fit_end] in simulated seconds; NaN = first / last snapshot.
+  double fit_start = std::numeric_limits<double>::quiet_NaN();
+  double fit_end = std::numeric_limits<double>::quiet_NaN();
+  double coating_start = 0;         // [s] time at which coating starts (origin of Eqs. 9-10)
+  std::vector<double> histogram_times;  // [s]; empty = 1/4, 1/2, 3/4 and all of the run
+  std::vector<double> predict_times = {300.0, 1200.0};  // [s] reconstructed distributions (Fig. 12)
+  double predict_until = 3600.0;    // [s] CV prediction horizon (Fig. 11)
+  double band = 0.2;                // relative band on a2 (Fig. 11)
+  double uncoated_relative = 1e-6;  // never-coated threshold as a fraction of the mean
+  MixingCriteria criteria;
+  bool plots = true;                // false: numbers and HTML only
+  std::ostream* log = nullptr;      // progress and messages; nullptr = std::cout
+};
+
+struct HistogramAt {
+  double requested = 0;  // [s]
+  CoatingStatistics stats;
+  Histogram histogram;
+};
+
+struct RunAnalysis {
+  std::filesystem::path run;
+  std::string label;
+  std::vector<CoatingStatistics> snapshots;
+  std::vector<HistogramAt> histograms;
+  GrowthFit fit;
+  MixingVerdict verdict;
+  CvPrediction cv_prediction;
+  std::vector<PredictedDistribution> distributions;
+  PredictionCheck prediction_check;
+  std::optional<MassBalance> mass_balance;
+  std::string mass_balance_problem;      // why there is no mass balance
+  double wall_seconds = std::numeric_limits<double>::quiet_NaN();  // sum of the wall_seconds column
+  std::size_t steps = 0;                 // rows of the time series
+};
+
+// The numbers of one run (no files written). Throws std::runtime_error with the file at fault.
+RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& options);
+
+Json toJson(const RunAnalysis& a, const ReportOptions& options);
+
+// Writes report.json, the CSV tables, the PNGs (if possible) and report.html into folder.
+// Returns the names of the PNGs drawn; `plot_message` receives why plots are missing, if so.
+std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOptions& options,
+                                        const std::filesystem::path& folder, std::string& plot_message);
+
+// Runs the whole report. Returns 0 on success (also when only the plots could not be drawn:
+// the message says what to install), 1 on an error (printed to std::cerr with what to do).
+int runReport(const ReportOptions& options);
+
+// Plotting helpers (report_plots.cpp).
+// The plot script: $COSIM_SCRIPTS/plot_report.py, else next to the executable
+// (<exe>/../share/cosim/scripts, <exe>/../../scripts), else the source tree's scripts/.
+std::optional<std::filesystem::path> findPlotScript();
+// A python3 that imports matplotlib: $COSIM_PYTHON, else python3 on PATH, else /usr/bin/python3.
+std::optional<std::string> findPython(std::string& why_not);
+// Runs the script on a report folder; returns true on success, else message says why.
+bool drawPlots(const std::filesystem::path& folder, std::string& message);
+
+}  // namespace cosim::analysis

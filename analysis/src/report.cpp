@@ -1,0 +1,147 @@
+// runReport: the `cosim report RUN [RUN...]` command.
+#include "cosim/analysis/report.h"
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <set>
+#include <stdexcept>
+
+#include "report_internal.h"
+
+namespace cosim::analysis {
+
+namespace {
+void removePngs(const std::filesystem::path& dir) {
+  for (const auto& p : pngsIn(dir)) std::filesystem::remove(dir / p);
+}
+
+void prepare(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    throw std::runtime_error("cannot create the report folder " + dir.string() + ": " + ec.message() +
+                             " (choose another with --output)");
+  }
+  removePngs(dir);  // a figure left from an earlier report must not pass for a new one
+}
+}  // namespace
+
+std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOptions& o,
+                                        const std::filesystem::path& dir, std::string& plot_message) {
+  prepare(dir);
+  writeFileAtomically(dir / "report.json", toJson(a, o).dump(1) + "\n");
+  writeRunTables(a, dir);
+  plot_message.clear();
+  if (o.plots) drawPlots(dir, plot_message);
+  else plot_message = "plots switched off (--no-plots)";
+  const auto pngs = pngsIn(dir);
+  writeRunHtml(a, o, dir, pngs, plot_message);
+  return pngs;
+}
+
+Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders) {
+  Json j = Json::object();
+  j["format"] = "cosim-comparison";
+  j["version"] = 1;
+  Json& rs = j["runs"] = Json::array();
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const auto& a = runs[i];
+    const auto& l = a.snapshots.back();
+    Json r = Json::object();
+    r["label"] = a.label;
+    r["run"] = a.run.string();
+    r["report"] = folders[i] + "/report.json";
+    r["end_time"] = l.time;
+    r["total"] = l.total;
+    r["mean"] = l.mean;
+    r["cv"] = l.cv;
+    r["uncoated_share"] = l.uncoated_share;
+    r["fit_ok"] = a.fit.ok;
+    r["a1"] = a.fit.a1;
+    r["a1_se"] = a.fit.a1_se;
+    r["a2"] = a.fit.a2;
+    r["a2_se"] = a.fit.a2_se;
+    r["well_mixed"] = a.verdict.well_mixed;
+    r["verdict"] = a.verdict.summary();
+    r["mass_balance_error_percent"] = a.mass_balance ? a.mass_balance->error_percent : std::nan("");
+    r["wall_seconds"] = a.wall_seconds;
+    rs.push(r);
+  }
+  return j;
+}
+
+void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::filesystem::path& dir) {
+  std::string csv =
+      "run,end_time_s,total_kg,mean_kg,cv,uncoated_share,a1_kg_per_s,a1_se,a2_kg_per_sqrt_s,a2_se,well_mixed,"
+      "mass_balance_error_percent,wall_seconds\n";
+  for (const auto& a : runs) {
+    const auto& l = a.snapshots.back();
+    char buf[512];
+    std::snprintf(buf, sizeof buf, "\"%s\",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%.10g,%.10g\n",
+                  a.label.c_str(), l.time, l.total, l.mean, l.cv, l.uncoated_share, a.fit.a1, a.fit.a1_se, a.fit.a2,
+                  a.fit.a2_se, a.verdict.well_mixed ? 1 : 0,
+                  a.mass_balance ? a.mass_balance->error_percent : std::nan(""), a.wall_seconds);
+    csv += buf;
+  }
+  writeFileAtomically(dir / "comparison.csv", csv);
+}
+
+int runReport(const ReportOptions& o) {
+  std::ostream& log = o.log != nullptr ? *o.log : std::cout;
+  try {
+    if (o.runs.empty()) throw std::runtime_error("no run folder given: `cosim report RUN [RUN...]`");
+    std::vector<RunAnalysis> analyses;
+    for (const auto& run : o.runs) {
+      log << "cosim report: analysing " << run.string() << "\n";
+      analyses.push_back(analyseRun(run, o));
+    }
+    const bool several = o.runs.size() > 1;
+    std::filesystem::path out = o.output;
+    if (out.empty()) {
+      out = several ? o.runs.front().lexically_normal().parent_path() / "report-comparison" : o.runs.front() / "report";
+    }
+    std::vector<std::string> folders;
+    std::set<std::string> used;
+    std::string anyPlotProblem;
+    for (const auto& a : analyses) {
+      std::string folder = a.label.empty() ? "run" : a.label;
+      for (int k = 2; used.count(folder) != 0; ++k) folder = a.label + "-" + std::to_string(k);
+      used.insert(folder);
+      folders.push_back(folder);
+      const auto dir = several ? out / folder : out;
+      std::string plotMessage;
+      const auto pngs = writeRunReport(a, o, dir, plotMessage);
+      log << "cosim report: " << a.label << ": " << a.verdict.summary() << "\n";
+      if (a.mass_balance) {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, "cosim report: %s: mass balance error %.3g kg (%.3g %%)\n", a.label.c_str(),
+                      a.mass_balance->error, a.mass_balance->error_percent);
+        log << buf;
+      }
+      log << "cosim report: wrote " << (dir / "report.html").string() << " (" << pngs.size() << " figures)\n";
+      if (!plotMessage.empty()) anyPlotProblem = plotMessage;
+    }
+    if (several) {
+      prepare(out);
+      writeFileAtomically(out / "comparison.json", comparisonJson(analyses, folders).dump(1) + "\n");
+      writeComparisonTables(analyses, out);
+      std::string plotMessage;
+      if (o.plots) drawPlots(out, plotMessage);
+      else plotMessage = "plots switched off (--no-plots)";
+      const auto pngs = pngsIn(out);
+      writeComparisonHtml(analyses, folders, out, pngs, plotMessage);
+      log << "cosim report: wrote " << (out / "comparison.html").string() << " (" << pngs.size() << " figures)\n";
+      if (!plotMessage.empty()) anyPlotProblem = plotMessage;
+    }
+    if (!anyPlotProblem.empty() && o.plots) {
+      log << "cosim report: numbers and HTML tables written, but no plots: " << anyPlotProblem << "\n";
+    }
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "cosim report: error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace cosim::analysis

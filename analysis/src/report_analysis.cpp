@@ -1,0 +1,115 @@
+// analyseRun: every number of one run's report, computed from its recorded files.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cosim/analysis/particle_file.h"
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/analysis/report.h"
+#include "cosim/analysis/time_series.h"
+#include "cosim/link/fields.h"
+
+namespace cosim::analysis {
+
+namespace {
+std::string runLabel(const std::filesystem::path& run) {
+  auto p = run.lexically_normal();
+  if (p.has_filename()) return p.filename().string();
+  return p.parent_path().filename().string();
+}
+}  // namespace
+
+RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o) {
+  RunAnalysis a;
+  a.run = run;
+  a.label = runLabel(run);
+  if (!std::filesystem::is_directory(run)) {
+    throw std::runtime_error("run folder " + run.string() + " does not exist (give the folder a `cosim run` wrote, "
+                             "e.g. runs/plasma-coating-bed)");
+  }
+  ParticleFile file(run / kParticlesFile);
+  if (!file.hasField(cosim::field::coating_mass)) {
+    throw std::runtime_error(file.path().string() + " has no coating_mass field: this scene has no coating "
+                             "(no mass_transfer model), so there is nothing to report on coating");
+  }
+  const auto& snaps = file.snapshots();
+  if (snaps.empty()) throw std::runtime_error(file.path().string() + " holds no snapshot yet");
+
+  // Histogram snapshot choice: nearest snapshot to each requested time.
+  const double last = snaps.back().time;
+  std::vector<double> wanted = o.histogram_times;
+  if (wanted.empty()) {
+    const double first = snaps.front().time;
+    for (double f : {0.25, 0.5, 0.75, 1.0}) wanted.push_back(first + f * (last - first));
+  }
+  std::vector<std::size_t> histIndex;
+  for (double t : wanted) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < snaps.size(); ++i) {
+      if (std::abs(snaps[i].time - t) < std::abs(snaps[best].time - t)) best = i;
+    }
+    histIndex.push_back(best);
+  }
+
+  std::vector<double> lastValues;
+  a.histograms.resize(wanted.size());
+  for (std::size_t i = 0; i < snaps.size(); ++i) {
+    std::vector<double> m = file.read(i, cosim::field::coating_mass);
+    a.snapshots.push_back(coatingStatistics(snaps[i].time, m, o.uncoated_relative));
+    for (std::size_t h = 0; h < wanted.size(); ++h) {
+      if (histIndex[h] == i) {
+        a.histograms[h].requested = wanted[h];
+        a.histograms[h].stats = a.snapshots.back();
+        a.histograms[h].histogram = histogram(m);
+      }
+    }
+    if (i + 1 == snaps.size()) lastValues = std::move(m);
+  }
+
+  const double t0 = std::isnan(o.fit_start) ? snaps.front().time : o.fit_start;
+  const double t1 = std::isnan(o.fit_end) ? last : o.fit_end;
+  if (t1 <= t0) {
+    throw std::runtime_error("fit window [" + std::to_string(t0) + ", " + std::to_string(t1) +
+                             "] s is empty: give --fit-start below --fit-end");
+  }
+  a.fit = fitGrowth(a.snapshots, t0, t1, o.coating_start);
+  // The verdict looks at the last snapshot of the fit window (what the fit saw).
+  std::size_t lastInWindow = snaps.size() - 1;
+  for (std::size_t i = snaps.size(); i-- > 0;) {
+    if (snaps[i].time <= t1) {
+      lastInWindow = i;
+      break;
+    }
+  }
+  if (lastInWindow != snaps.size() - 1) lastValues = file.read(lastInWindow, cosim::field::coating_mass);
+  a.verdict = judgeMixing(a.fit, a.snapshots[lastInWindow], lastValues, o.criteria);
+  if (a.fit.ok) {
+    // The extrapolation is computed whenever a fit exists (the check against later simulated
+    // times is what tells a user how far to trust it); the report shows it only as a prediction
+    // when the verdict allows it.
+    a.cv_prediction = predictCv(a.fit, o.predict_until, 200, o.band);
+    for (double t : o.predict_times) a.distributions.push_back(predictDistribution(a.fit, t, o.band));
+    a.prediction_check = checkPrediction(a.fit, a.snapshots);
+  }
+
+  const auto tsPath = run / kTimeSeriesFile;
+  if (!std::filesystem::exists(tsPath)) {
+    a.mass_balance_problem = tsPath.string() + " is missing: no mass balance";
+  } else {
+    TimeSeries ts = readTimeSeries(tsPath);
+    a.steps = ts.rows();
+    if (ts.has(column::wall_seconds)) {
+      double w = 0;
+      for (double x : ts.at(column::wall_seconds)) w += x;
+      a.wall_seconds = w;
+    }
+    try {
+      a.mass_balance = massBalance(ts);
+    } catch (const std::exception& e) {
+      a.mass_balance_problem = std::string("no mass balance: ") + e.what();
+    }
+  }
+  return a;
+}
+
+}  // namespace cosim::analysis

@@ -1,0 +1,26 @@
+// Pieces of the report shared between its source files. Private to cosim_analysis.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cosim/analysis/report.h"
+
+namespace cosim::analysis {
+
+void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir);
+void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::filesystem::path& dir,
+                  const std::vector<std::string>& pngs, const std::string& plot_message);
+
+Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders);
+void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::filesystem::path& dir);
+void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders,
+                         const std::filesystem::path& dir, const std::vector<std::string>& pngs,
+                         const std::string& plot_message);
+
+// PNG files (names) present in dir, sorted.
+std::vector<std::string> pngsIn(const std::filesystem::path& dir);
+std::string htmlEscape(const std::string& s);
+
+}  // namespace cosim::analysis

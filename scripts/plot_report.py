@@ -1,0 +1,326 @@
+#!/usr/bin/env python3
+"""Draw the PNG figures of a cosim coating report.
+
+Usage: plot_report.py FOLDER
+
+FOLDER holds either report.json (one run, written by `cosim report`) or comparison.json (several
+runs). Every number is computed in C++ (cosim_analysis) and read from those files; this script
+only draws. Matplotlib with the Agg backend (no display needed). See docs/analysis.md.
+"""
+import json
+import math
+import os
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+def num(values):
+    """JSON list (null for non-finite) -> float array with NaN."""
+    return np.array([math.nan if v is None else float(v) for v in values], dtype=float)
+
+
+def save(fig, folder, name):
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, name), dpi=110)
+    plt.close(fig)
+    print("wrote", name)
+
+
+def normal_pdf(x, mean, sigma):
+    return np.exp(-0.5 * ((x - mean) / sigma) ** 2) / (sigma * math.sqrt(2 * math.pi))
+
+
+def scale_for(values_kg):
+    """Unit for a coating-mass axis so the largest value reads between 1 and 1000: (factor, label)."""
+    values = np.asarray(values_kg, dtype=float)
+    m = np.nanmax(np.abs(values)) if values.size and np.isfinite(values).any() else 0.0
+    for factor, unit in ((1.0, "kg"), (1e3, "g"), (1e6, "mg"), (1e9, "µg"), (1e12, "ng"), (1e15, "pg")):
+        if m * factor >= 1.0:
+            return factor, unit
+    return 1e15, "pg"
+
+
+def plot_histograms(r, folder):
+    hs = r["histograms"]
+    if not hs:
+        return
+    fig, axes = plt.subplots(1, len(hs), figsize=(3.6 * len(hs), 3.2), squeeze=False)
+    allmax = [h["max"] for h in hs if h.get("max") is not None]
+    f, unit = scale_for(num(allmax)) if allmax else (1e9, "µg")
+    for ax, h in zip(axes[0], hs):
+        edges = num(h["edges"]) * f
+        counts = np.array(h["counts"], dtype=float)
+        n = counts.sum()
+        widths = np.diff(edges)
+        density = counts / (n * widths) if n > 0 else counts
+        ax.bar(edges[:-1], density, width=widths, align="edge", color="#7fa7d9", edgecolor="#2c5d9b", lw=0.5)
+        mean, std = h.get("mean"), h.get("std")
+        if mean is not None and std is not None and std > 0:
+            x = np.linspace(edges[0], edges[-1], 200)
+            ax.plot(x, normal_pdf(x, mean * f, std * f), "r-", lw=1.2, label="normal, same mean/σ")
+        cv = h.get("cv")
+        ax.set_title("t = %.3g s, CV = %s" % (h["time"], "–" if cv is None else "%.3f" % cv), fontsize=9)
+        ax.set_xlabel("coating mass per parcel [%s]" % unit)
+        ax.set_ylabel("probability density [1/%s]" % unit)
+        ax.text(0.98, 0.95, "never coated: %.1f %%" % (100 * (h.get("uncoated_share") or 0)),
+                transform=ax.transAxes, ha="right", va="top", fontsize=8)
+    axes[0][0].legend(fontsize=7, loc="upper left")
+    save(fig, folder, "histograms.png")
+
+
+def plot_statistics_time(r, folder):
+    s = r["snapshots"]
+    t = num(s["time"])
+    mean = num(s["mean"])
+    f, unit = scale_for(mean)
+    fig, axes = plt.subplots(1, 3, figsize=(12, 3.3))
+    axes[0].plot(t, mean * f, "b.-", ms=3, label="mean")
+    axes[0].fill_between(t, (mean - num(s["std"])) * f, (mean + num(s["std"])) * f, color="b", alpha=0.15,
+                         label="± σ")
+    axes[0].set_ylabel("coating mass per parcel [%s]" % unit)
+    axes[0].legend(fontsize=8)
+    axes[1].plot(t, num(s["cv"]), "k.-", ms=3)
+    axes[1].set_ylabel("CV [-]")
+    axes[2].plot(t, 100 * num(s["uncoated_share"]), "r.-", ms=3)
+    axes[2].set_ylabel("never-coated parcels [%]")
+    for ax in axes:
+        ax.set_xlabel("time [s]")
+        ax.grid(alpha=0.3)
+    save(fig, folder, "statistics_time.png")
+
+
+def plot_cv_mean(r, folder):
+    s = r["snapshots"]
+    mean = num(s["mean"])
+    f, unit = scale_for(mean)
+    fig, ax = plt.subplots(figsize=(5, 3.6))
+    ax.plot(mean * f, num(s["cv"]), "k.-", ms=3)
+    ax.set_xlabel("mean coating mass per parcel [%s]" % unit)
+    ax.set_ylabel("CV [-]")
+    ax.set_title("CV against mean coated mass (paper Fig. 8)", fontsize=9)
+    ax.grid(alpha=0.3)
+    save(fig, folder, "cv_mean.png")
+
+
+def plot_fit(r, folder):
+    fit = r["fit"]
+    s = r["snapshots"]
+    t = num(s["time"])
+    t0c = fit["coating_start"] or 0.0
+    mean = num(s["mean"])
+    var = num(s["variance"])
+    f, unit = scale_for(mean)
+    fig, axes = plt.subplots(1, 3, figsize=(13, 3.5))
+    axes[0].plot(t, mean * f, "b.", ms=4, label="simulated")
+    axes[1].plot(t, var * f * f, "g.", ms=4, label="simulated")
+    if fit["ok"]:
+        tt = np.linspace(max(t0c, 0.0), max(t.max(), fit["t1"]), 200)
+        tau = tt - t0c
+        a1, a2 = fit["a1"], fit["a2"]
+        axes[0].plot(tt, a1 * tau * f, "r-", label="a1 t, a1 = %.3g ± %.2g kg/s" % (a1, fit["a1_se"]))
+        axes[1].plot(tt, a2 * a2 * tau * f * f, "r-",
+                     label="a2² t, a2 = %.3g ± %.2g kg/s^0.5" % (a2, fit["a2_se"]))
+        tf = num(fit["time"])
+        rm = num(fit["mean_residual"]) / np.maximum(num(fit["mean"]), 1e-300)
+        rv = num(fit["variance_residual"]) / np.maximum(num(fit["variance"]), 1e-300)
+        axes[2].plot(tf, 100 * rm, "b.-", ms=4, label="mean")
+        axes[2].plot(tf, 100 * rv, "g.-", ms=4, label="variance")
+        axes[2].axhline(0, color="k", lw=0.8)
+    else:
+        axes[2].text(0.5, 0.5, "no fit:\n" + fit["problem"], ha="center", va="center", wrap=True,
+                     transform=axes[2].transAxes, fontsize=8)
+    for ax in axes[:2]:
+        ax.axvspan(fit["t0"], fit["t1"], color="orange", alpha=0.12, label="fit window")
+        ax.set_xlabel("time [s]")
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+    axes[0].set_ylabel("mean coating mass [%s]" % unit)
+    axes[1].set_ylabel("variance [%s²]" % unit)
+    axes[2].set_xlabel("time [s]")
+    axes[2].set_ylabel("residual / data [%]")
+    axes[2].set_title("residuals of the fit (paper Fig. 10E)", fontsize=9)
+    axes[2].legend(fontsize=7)
+    axes[2].grid(alpha=0.3)
+    save(fig, folder, "fit.png")
+
+
+def plot_cv_prediction(r, folder):
+    p = r["cv_prediction"]
+    if not p["tau"]:
+        return
+    tau = num(p["tau"]) / 60.0
+    fig, ax = plt.subplots(figsize=(6, 3.8))
+    ax.fill_between(tau, num(p["cv_low"]), num(p["cv_high"]), color="#7fa7d9", alpha=0.4,
+                    label="a2 ± %.0f %%" % (100 * p["band"]))
+    ax.plot(tau, num(p["cv"]), "b-", label="(a2/a1)/√t")
+    s = r["snapshots"]
+    t = (num(s["time"]) - (r["fit"]["coating_start"] or 0.0)) / 60.0
+    ok = t > 0
+    ax.plot(t[ok], num(s["cv"])[ok], "k.", ms=3, label="simulated")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("coating time [min]")
+    ax.set_ylabel("CV [-]")
+    ax.set_title("CV prediction (paper Fig. 11)", fontsize=9)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    save(fig, folder, "cv_prediction.png")
+
+
+def plot_distributions(r, folder):
+    ds = r["distributions"]
+    if not ds:
+        return
+    f, unit = scale_for(num([d["mean"] + 4 * d["sigma"] for d in ds]))
+    fig, ax = plt.subplots(figsize=(6, 3.8))
+    for d in ds:
+        x = np.linspace(max(0.0, d["mean"] - 4.5 * d["sigma_high"]), d["mean"] + 4.5 * d["sigma_high"], 300)
+        line, = ax.plot(x * f, normal_pdf(x, d["mean"], d["sigma"]) / f,
+                        label="%.3g min: CV = %.3f" % (d["tau"] / 60.0, d["cv"]))
+        ax.fill_between(x * f, normal_pdf(x, d["mean"], d["sigma_low"]) / f,
+                        normal_pdf(x, d["mean"], d["sigma_high"]) / f, color=line.get_color(), alpha=0.15)
+    ax.set_xlabel("coating mass per parcel [%s]" % unit)
+    ax.set_ylabel("probability density [1/%s]" % unit)
+    ax.set_title("reconstructed distributions (paper Fig. 12)", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    save(fig, folder, "distributions.png")
+
+
+def read_csv(path):
+    with open(path) as fh:
+        header = fh.readline().strip().split(",")
+        rows = []
+        for line in fh:
+            cells = line.strip().split(",")
+            if len(cells) != len(header):
+                continue
+            try:
+                rows.append([float(c) for c in cells])
+            except ValueError:
+                continue
+    data = np.array(rows, dtype=float).reshape(-1, len(header))
+    return {h: data[:, i] for i, h in enumerate(header)}
+
+
+def plot_mass_balance(r, folder):
+    ts_path = os.path.join(r["run"], "timeseries.csv")
+    if r.get("mass_balance") is None or not os.path.exists(ts_path):
+        return
+    ts = read_csv(ts_path)
+    need = ("time", "precursor_in", "precursor_out", "precursor_held", "coated_mass")
+    if any(k not in ts for k in need) or len(ts["time"]) == 0:
+        return
+    mb = r["mass_balance"]
+    t = ts["time"]
+    cin = np.cumsum(ts["precursor_in"])
+    cout = np.cumsum(ts["precursor_out"])
+    held = ts["precursor_held"] - mb["held_start"]
+    coated = ts["coated_mass"] - mb["coated_start"]
+    f, unit = scale_for(np.array([cin.max()]))
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.6))
+    axes[0].plot(t, cin * f, label="in")
+    axes[0].plot(t, cout * f, label="out")
+    axes[0].plot(t, held * f, label="held in gas (change)")
+    axes[0].plot(t, (cin - cout - held) * f, "k--", label="expected coating")
+    axes[0].plot(t, coated * f, "r:", lw=2, label="coating on particles")
+    axes[0].set_xlabel("time [s]")
+    axes[0].set_ylabel("cumulative precursor [%s]" % unit)
+    axes[0].legend(fontsize=8)
+    axes[0].grid(alpha=0.3)
+    err = (cin - cout - held) - coated
+    axes[1].plot(t, err * f, "k-")
+    axes[1].set_xlabel("time [s]")
+    axes[1].set_ylabel("expected − obtained [%s]" % unit)
+    axes[1].set_title("mass balance error: %.3g %% at the end" % (mb["error_percent"] or 0.0), fontsize=9)
+    axes[1].grid(alpha=0.3)
+    save(fig, folder, "mass_balance.png")
+
+
+def run_report(folder):
+    with open(os.path.join(folder, "report.json")) as fh:
+        r = json.load(fh)
+    plot_histograms(r, folder)
+    plot_statistics_time(r, folder)
+    plot_cv_mean(r, folder)
+    plot_fit(r, folder)
+    if r["verdict"]["well_mixed"]:  # no extrapolation figures for a poorly mixed run
+        plot_cv_prediction(r, folder)
+        plot_distributions(r, folder)
+    plot_mass_balance(r, folder)
+
+
+def comparison_report(folder):
+    with open(os.path.join(folder, "comparison.json")) as fh:
+        c = json.load(fh)
+    reports = []
+    for run in c["runs"]:
+        with open(os.path.join(folder, run["report"])) as fh:
+            reports.append((run, json.load(fh)))
+    allmean = np.concatenate([num(r["snapshots"]["mean"]) for _, r in reports])
+    f, unit = scale_for(allmean)
+
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for run, r in reports:
+        s = r["snapshots"]
+        style = "-" if run["well_mixed"] else "--"
+        ax.plot(num(s["mean"]) * f, num(s["cv"]), style, marker=".", ms=3,
+                label="%s (%s)" % (run["label"], "well mixed" if run["well_mixed"] else "poorly mixed"))
+    ax.set_xlabel("mean coating mass per parcel [%s]" % unit)
+    ax.set_ylabel("CV [-]")
+    ax.set_title("CV against mean coated mass (paper Fig. 8)", fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    save(fig, folder, "compare_cv_mean.png")
+
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.6))
+    for run, r in reports:
+        s = r["snapshots"]
+        t = num(s["time"])
+        axes[0].plot(t, num(s["mean"]) * f, label=run["label"])
+        axes[1].plot(t, num(s["cv"]), label=run["label"])
+    axes[0].set_ylabel("mean coating mass per parcel [%s]" % unit)
+    axes[1].set_ylabel("CV [-]")
+    for ax in axes:
+        ax.set_xlabel("time [s]")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    save(fig, folder, "compare_statistics_time.png")
+
+    fig, axes = plt.subplots(1, len(reports), figsize=(3.4 * len(reports), 3.2), squeeze=False)
+    for ax, (run, r) in zip(axes[0], reports):
+        if not r["histograms"]:
+            continue
+        h = r["histograms"][-1]
+        edges = num(h["edges"]) * f
+        ax.bar(edges[:-1], h["counts"], width=np.diff(edges), align="edge", color="#7fa7d9", edgecolor="#2c5d9b",
+               lw=0.5)
+        ax.set_title("%s, t = %.3g s\nnever coated %.1f %%" % (run["label"], h["time"], 100 * h["uncoated_share"]),
+                     fontsize=8)
+        ax.set_xlabel("coating mass [%s]" % unit)
+        ax.set_ylabel("parcels")
+    save(fig, folder, "compare_histograms.png")
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(__doc__, file=sys.stderr)
+        return 2
+    folder = argv[1]
+    if os.path.exists(os.path.join(folder, "comparison.json")):
+        comparison_report(folder)
+    elif os.path.exists(os.path.join(folder, "report.json")):
+        run_report(folder)
+    else:
+        print("plot_report.py: %s holds neither report.json nor comparison.json; run `cosim report` first"
+              % folder, file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

@@ -1,0 +1,230 @@
+#include "cosim/analysis/particle_recorder.h"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "cosim/analysis/particle_file.h"
+#include "cosim/link/fields.h"
+
+namespace fs = std::filesystem;
+using namespace cosim::analysis;
+
+namespace {
+fs::path freshDir(const std::string& name) {
+  fs::path d = fs::temp_directory_path() / ("cosim_analysis_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// Particles with ids `ids`; every value derived from the id and the time, so a reader can check
+// it without keeping the writer's arrays.
+cosim::link::ParticleData state(const std::vector<std::int64_t>& ids, double t) {
+  cosim::link::ParticleData p;
+  p.ids = ids;
+  auto& pos = p.field(cosim::field::position);
+  auto& vel = p.field(cosim::field::velocity);
+  auto& rad = p.field(cosim::field::radius);
+  auto& cm = p.field(cosim::field::coating_mass);
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const double id = static_cast<double>(ids[i]);
+    for (int c = 0; c < 3; ++c) {
+      pos[3 * i + c] = id + 0.1 * c + t;
+      vel[3 * i + c] = -id - c;
+    }
+    rad[i] = 7.5e-4;
+    cm[i] = 1e-9 * id * t;
+  }
+  return p;
+}
+
+const std::vector<std::string> kFields = {cosim::field::position, cosim::field::velocity, cosim::field::radius,
+                                          cosim::field::coating_mass};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Minimal XML well-formedness: declaration, balanced and properly nested tags.
+bool wellFormed(const std::string& xml, std::string& why) {
+  std::vector<std::string> stack;
+  std::regex tag(R"re(<(/?)([A-Za-z_][\w:.-]*)([^<>]*?)(/?)>|<\?[^>]*\?>|<!DOCTYPE[^>]*>)re");
+  std::size_t pos = 0;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), tag); it != std::sregex_iterator(); ++it) {
+    const auto& m = *it;
+    pos = static_cast<std::size_t>(m.position() + m.length());
+    if (m[2].length() == 0) continue;  // declaration / doctype
+    if (m[1] == "/") {
+      if (stack.empty() || stack.back() != m[2]) {
+        why = "unexpected </" + m[2].str() + ">";
+        return false;
+      }
+      stack.pop_back();
+    } else if (m[4] != "/") {
+      stack.push_back(m[2]);
+    }
+  }
+  (void)pos;
+  if (!stack.empty()) {
+    why = "unclosed <" + stack.back() + ">";
+    return false;
+  }
+  return true;
+}
+}  // namespace
+
+TEST(ParticleRecorder, RoundTripWithChangingParticleCounts) {
+  const auto dir = freshDir("roundtrip");
+  const std::vector<std::vector<std::int64_t>> ids = {{1, 2, 3, 4, 5}, {1, 2, 3, 4, 5, 6, 7}, {2, 5, 6, 9}};
+  const std::vector<double> times = {0.01, 0.02, 0.03};
+  {
+    ParticleRecorder rec(dir, kFields);
+    for (std::size_t s = 0; s < ids.size(); ++s) rec.write(times[s], state(ids[s], times[s]));
+    EXPECT_EQ(rec.snapshots(), 3u);
+  }
+  ParticleFile f(dir / kParticlesFile);
+  ASSERT_EQ(f.snapshots().size(), 3u);
+  EXPECT_EQ(f.fields(), kFields);
+  for (std::size_t s = 0; s < ids.size(); ++s) {
+    EXPECT_DOUBLE_EQ(f.snapshots()[s].time, times[s]);
+    EXPECT_EQ(f.snapshots()[s].count, ids[s].size());
+    EXPECT_EQ(f.ids(s), ids[s]);
+    std::uint64_t comps = 0;
+    const auto pos = f.read(s, cosim::field::position, &comps);
+    EXPECT_EQ(comps, 3u);
+    const auto cm = f.read(s, cosim::field::coating_mass, &comps);
+    EXPECT_EQ(comps, 1u);
+    for (std::size_t i = 0; i < ids[s].size(); ++i) {
+      const double id = static_cast<double>(ids[s][i]);
+      EXPECT_DOUBLE_EQ(pos[3 * i + 2], id + 0.2 + times[s]);
+      EXPECT_DOUBLE_EQ(cm[i], 1e-9 * id * times[s]);
+    }
+  }
+}
+
+TEST(ParticleRecorder, EmptySnapshotIsRecordedAndSkippedInXdmf) {
+  const auto dir = freshDir("empty");
+  ParticleRecorder rec(dir, kFields);
+  rec.write(0.5, state({}, 0.5));
+  rec.write(1.0, state({3}, 1.0));
+  ParticleFile f(dir / kParticlesFile);
+  ASSERT_EQ(f.snapshots().size(), 2u);
+  EXPECT_EQ(f.snapshots()[0].count, 0u);
+  EXPECT_TRUE(f.read(0, cosim::field::coating_mass).empty());
+  const std::string x = slurp(dir / kParticlesXdmf);
+  EXPECT_EQ(x.find("/snapshots/000000/"), std::string::npos);
+  EXPECT_NE(x.find("/snapshots/000001/position"), std::string::npos);
+}
+
+TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
+  const auto dir = freshDir("xdmf");
+  {
+    ParticleRecorder rec(dir, kFields);
+    rec.write(0.1, state({1, 2}, 0.1));
+    rec.write(0.2, state({1, 2, 3}, 0.2));
+  }
+  const std::string x = slurp(dir / kParticlesXdmf);
+  std::string why;
+  EXPECT_TRUE(wellFormed(x, why)) << why << "\n" << x;
+  EXPECT_NE(x.find("CollectionType=\"Temporal\""), std::string::npos);
+  // One Uniform grid per snapshot, each with its own particle count and time.
+  std::regex grid(R"re(<Time Value="([0-9.e-]+)"/>\s*<Topology TopologyType="Polyvertex" NumberOfElements="(\d+)")re");
+  std::vector<std::pair<double, int>> found;
+  for (auto it = std::sregex_iterator(x.begin(), x.end(), grid); it != std::sregex_iterator(); ++it) {
+    found.emplace_back(std::stod((*it)[1]), std::stoi((*it)[2]));
+  }
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_DOUBLE_EQ(found[0].first, 0.1);
+  EXPECT_EQ(found[0].second, 2);
+  EXPECT_DOUBLE_EQ(found[1].first, 0.2);
+  EXPECT_EQ(found[1].second, 3);
+  // Every HDF5 reference points at a dataset that exists, with the stated first dimension.
+  ParticleFile f(dir / kParticlesFile);
+  std::regex item(R"re(<DataItem Dimensions="(\d+)[^"]*"[^>]*>particles\.h5:/snapshots/(\d+)/(\w+)</DataItem>)re");
+  int refs = 0;
+  for (auto it = std::sregex_iterator(x.begin(), x.end(), item); it != std::sregex_iterator(); ++it, ++refs) {
+    const auto snap = static_cast<std::size_t>(std::stoul((*it)[2]));
+    const std::string field = (*it)[3];
+    const auto rows = std::stoul((*it)[1]);
+    if (field == "id") {
+      EXPECT_EQ(f.ids(snap).size(), rows);
+    } else {
+      std::uint64_t comps = 0;
+      EXPECT_EQ(f.read(snap, field, &comps).size() / comps, rows) << field;
+    }
+  }
+  EXPECT_EQ(refs, 2 * 5);  // position + id + velocity + radius + coating_mass per grid
+  EXPECT_NE(x.find("Name=\"coating_mass\" AttributeType=\"Scalar\""), std::string::npos);
+  EXPECT_NE(x.find("Name=\"velocity\" AttributeType=\"Vector\""), std::string::npos);
+}
+
+TEST(ParticleRecorder, SnapshotsSurviveACrashOfTheWriter) {
+  const auto dir = freshDir("crash");
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    // The child records two snapshots and dies without running any destructor.
+    ParticleRecorder* rec = new ParticleRecorder(dir, kFields);
+    rec->write(0.1, state({1, 2, 3}, 0.1));
+    rec->write(0.2, state({1, 2, 3, 4}, 0.2));
+    ::_exit(3);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 3);
+  ParticleFile f(dir / kParticlesFile);
+  ASSERT_EQ(f.snapshots().size(), 2u);
+  EXPECT_EQ(f.ids(1), (std::vector<std::int64_t>{1, 2, 3, 4}));
+  EXPECT_DOUBLE_EQ(f.read(1, cosim::field::coating_mass)[3], 1e-9 * 4 * 0.2);
+  EXPECT_TRUE(fs::exists(dir / kParticlesXdmf));
+}
+
+TEST(ParticleRecorder, AppendContinuesNumbering) {
+  const auto dir = freshDir("append");
+  { ParticleRecorder(dir, kFields).write(0.1, state({1}, 0.1)); }
+  {
+    ParticleRecorder rec(dir, kFields, ParticleRecorder::Mode::append);
+    EXPECT_EQ(rec.snapshots(), 1u);
+    rec.write(0.2, state({1, 2}, 0.2));
+  }
+  ParticleFile f(dir / kParticlesFile);
+  ASSERT_EQ(f.snapshots().size(), 2u);
+  EXPECT_EQ(f.snapshots()[1].count, 2u);
+}
+
+TEST(ParticleRecorder, ClearErrors) {
+  const auto dir = freshDir("errors");
+  ParticleRecorder rec(dir, kFields);
+  cosim::link::ParticleData p;
+  p.ids = {1};
+  p.field(cosim::field::position);
+  try {
+    rec.write(0.1, p);
+    FAIL() << "a missing field must be refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'velocity'"), std::string::npos) << e.what();
+  }
+  rec.write(0.1, state({1}, 0.1));
+  try {
+    rec.write(0.1, state({1}, 0.1));
+    FAIL() << "a repeated time must be refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("times must increase"), std::string::npos) << e.what();
+  }
+  try {
+    ParticleFile missing(dir / "nothing.h5");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing.h5"), std::string::npos);
+  }
+}

@@ -1,0 +1,151 @@
+#include "cosim/analysis/report.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/analysis/time_series.h"
+#include "cosim/link/fields.h"
+#include "synthetic.h"
+
+namespace fs = std::filesystem;
+using namespace cosim::analysis;
+
+namespace {
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A synthetic run folder as `cosim run` writes it: particles.h5 (+ .xmf) every 0.5 s for 20 s,
+// and a time series per 0.1 s step whose precursor balance closes exactly by construction.
+fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t seed) {
+  const fs::path dir = fs::temp_directory_path() / ("cosim_report_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::mt19937_64 rng(seed);
+  const std::size_t n = 1500;
+  const double a1 = 4e-9, a2 = 1e-9, dt = 0.5;
+  const auto masses = test::trackedCoating(rng, n, a1, a2, dt, 40, uncoated_share);
+  ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass});
+  TimeSeriesRecorder ts(dir / kTimeSeriesFile, {column::precursor_in, column::precursor_out, column::precursor_held,
+                                                column::coated_mass, column::particle_count, column::wall_seconds});
+  ts.write(0.0, {0.0, 0.0, 0.0, 0.0, static_cast<double>(n), 0.0});
+  double held = 0, coatedPrev = 0;
+  for (std::size_t s = 0; s < masses.size(); ++s) {
+    const double t = dt * static_cast<double>(s + 1);
+    cosim::link::ParticleData p;
+    p.ids.resize(n);
+    for (std::size_t i = 0; i < n; ++i) p.ids[i] = static_cast<std::int64_t>(i + 1);
+    auto& pos = p.field(cosim::field::position);
+    for (std::size_t i = 0; i < 3 * n; ++i) pos[i] = 1e-3 * static_cast<double>(i % 97);
+    p.field(cosim::field::coating_mass) = masses[s];
+    rec.write(t, p);
+    double coated = 0;
+    for (double m : masses[s]) coated += m;
+    // in = out + held change + coating gained over the interval, spread over 5 steps.
+    const double gained = coated - coatedPrev;
+    for (int k = 1; k <= 5; ++k) {
+      const double newHeld = 1e-7 * (1.0 - std::exp(-(t - dt + 0.1 * k)));
+      const double in = 2e-6, out = in - (newHeld - held) - gained / 5.0;
+      held = newHeld;
+      ts.write(t - dt + 0.1 * k, {in, out, held, coatedPrev + gained * k / 5.0, static_cast<double>(n), 0.02});
+    }
+    coatedPrev = coated;
+  }
+  return dir;
+}
+
+bool matplotlibAvailable() {
+  std::string why;
+  return findPython(why).has_value() && findPlotScript().has_value();
+}
+}  // namespace
+
+TEST(Report, SingleWellMixedRunEndToEnd) {
+  const fs::path run = makeRun("well-mixed", 0.0, 17);
+  ReportOptions o;
+  o.runs = {run};
+  o.fit_end = 10.0;  // the last 10 s check the prediction
+  std::ostringstream log;
+  o.log = &log;
+  ASSERT_EQ(runReport(o), 0) << log.str();
+  const fs::path out = run / "report";
+  for (const char* f : {"report.json", "report.html", "statistics.csv", "histograms.csv", "fit.csv",
+                        "fit_residuals.csv", "cv_prediction.csv", "distributions.csv", "prediction_check.csv",
+                        "mass_balance.csv"}) {
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  }
+  const std::string json = slurp(out / "report.json");
+  EXPECT_NE(json.find("\"well_mixed\": true"), std::string::npos);
+  const std::string html = slurp(out / "report.html");
+  EXPECT_NE(html.find("Well mixed: extrapolation allowed."), std::string::npos);
+  EXPECT_NE(html.find("Mass balance (paper Table 3)"), std::string::npos);
+  EXPECT_NE(html.find("Prediction checked against the 20 simulated snapshots"), std::string::npos);
+  EXPECT_NE(log.str().find("mass balance error"), std::string::npos) << log.str();
+
+  const auto a = analyseRun(run, o);
+  ASSERT_TRUE(a.mass_balance.has_value());
+  // Closed by construction: only round-off remains.
+  EXPECT_LT(std::abs(a.mass_balance->error_percent), 1e-8);
+  EXPECT_NEAR(a.fit.a1, 4e-9, 0.02 * 4e-9);
+  EXPECT_EQ(a.steps, 201u);
+  EXPECT_NEAR(a.wall_seconds, 200 * 0.02, 1e-9);
+
+  if (!matplotlibAvailable()) GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
+  for (const char* png : {"histograms.png", "statistics_time.png", "cv_mean.png", "fit.png", "cv_prediction.png",
+                          "distributions.png", "mass_balance.png"}) {
+    ASSERT_TRUE(fs::exists(out / png)) << png << "\n" << slurp(out / "plot_report.log");
+    EXPECT_GT(fs::file_size(out / png), 1000u) << png;
+    EXPECT_NE(html.find(std::string("src=\"") + png + "\""), std::string::npos) << png;
+  }
+}
+
+TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
+  const fs::path good = makeRun("flow-100", 0.0, 23);
+  const fs::path poor = makeRun("flow-1", 0.2, 29);
+  const fs::path out = good.parent_path() / "sweep-report";
+  ReportOptions o;
+  o.runs = {poor, good};
+  o.output = out;
+  std::ostringstream log;
+  o.log = &log;
+  ASSERT_EQ(runReport(o), 0) << log.str();
+  EXPECT_TRUE(fs::exists(out / "flow-1" / "report.html"));
+  EXPECT_TRUE(fs::exists(out / "flow-100" / "report.html"));
+  const std::string html = slurp(out / "comparison.html");
+  const auto poorRow = html.find(">flow-1<");
+  const auto goodRow = html.find(">flow-100<");
+  ASSERT_NE(poorRow, std::string::npos);
+  ASSERT_NE(goodRow, std::string::npos);
+  EXPECT_NE(html.find("poorly mixed", poorRow), std::string::npos);
+  EXPECT_NE(html.find("never coated", poorRow), std::string::npos);
+  EXPECT_NE(html.find("well mixed", goodRow), std::string::npos);
+  EXPECT_NE(slurp(out / "flow-1" / "report.html").find("Poorly mixed: extrapolation refused."), std::string::npos);
+  const std::string csv = slurp(out / "comparison.csv");
+  EXPECT_NE(csv.find("\"flow-1\""), std::string::npos);
+  if (!matplotlibAvailable()) GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
+  for (const char* png : {"compare_cv_mean.png", "compare_statistics_time.png", "compare_histograms.png"}) {
+    EXPECT_TRUE(fs::exists(out / png)) << png << "\n" << slurp(out / "plot_report.log");
+  }
+  // A poorly mixed run gets no extrapolation figures.
+  EXPECT_FALSE(fs::exists(out / "flow-1" / "cv_prediction.png"));
+  EXPECT_TRUE(fs::exists(out / "flow-1" / "fit.png"));
+}
+
+TEST(Report, MissingRunIsAClearError) {
+  ReportOptions o;
+  o.runs = {"/nonexistent/run"};
+  std::ostringstream log;
+  o.log = &log;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(runReport(o), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("/nonexistent/run does not exist"), std::string::npos) << err;
+}
