@@ -90,6 +90,7 @@ void checkInputs(const std::string& owner, const std::vector<std::string>& field
     for (std::size_t j = 0; j < m; ++j) {
       const double x = v[j];
       const std::size_t i = j / rule->components;
+      if (p.isLost(i)) continue;
       switch (rule->rule) {
         case Rule::finite:
           if (!std::isfinite(x)) fail(owner, f, i, x, "a finite number");

@@ -171,6 +171,50 @@ TEST(BadInput, EvaluationErrorsNameModelFieldAndParcel) {
   EXPECT_NO_THROW(evaluateAll(ok, constants(5.0)));
 }
 
+// A parcel in no fluid cell arrives with zero samples (contract: lost_ids). With the lost flag set
+// every law gives it 0 and does not reject its zero voidage/viscosity; the others are untouched.
+TEST(BadInput, LostParcelsGetZeroAndAreNotChecked) {
+  Batch b;
+  b.add(0.5, 1.0, kD, 5.0);
+  b.add(0.5, 1.0, kD, 5.0);
+  b.voidage[1] = b.fluid_density[1] = b.fluid_viscosity[1] = 0.0;
+  b.fluid_velocity[3] = b.fluid_velocity[4] = b.fluid_velocity[5] = 0.0;
+  b.pressure_gradient = {0.0, 0.0, -100.0, 0.0, 0.0, 0.0};
+  const std::vector<char> lost = {0, 1};
+  ParcelBatch v = b.view();
+  v.lost = lost.data();
+  Parameters filt("beetstra");
+  filt.setText("filtered", "true");
+  filt.set("particle_density", kRhoP);
+  std::vector<std::unique_ptr<DragLaw>> drag;
+  for (const auto& n : kDragLaws) drag.push_back(Registry::instance().makeDrag(n, Parameters(n)));
+  drag.push_back(Registry::instance().makeDrag("beetstra", filt));
+  for (const auto& law : drag) {
+    std::vector<double> K(2, -1.0), Kref(1, -1.0);
+    ASSERT_NO_THROW(law->coefficients(v, constants(5.0), K.data())) << law->name();
+    Batch one;
+    one.add(0.5, 1.0, kD, 5.0);
+    law->coefficients(one.view(), constants(5.0), Kref.data());
+    EXPECT_EQ(K[0], Kref[0]) << law->name();
+    EXPECT_EQ(K[1], 0.0) << law->name();
+  }
+  for (const auto& n : kMassLaws) {
+    std::vector<double> k(2, -1.0);
+    ASSERT_NO_THROW(Registry::instance().makeMassTransfer(n, Parameters(n))
+                        ->transferCoefficients(v, constants(5.0), k.data()));
+    EXPECT_GT(k[0], 0.0);
+    EXPECT_EQ(k[1], 0.0);
+  }
+  std::vector<double> F(6, 0.0);
+  Registry::instance().makeForce("pressure_gradient", Parameters("pg"))
+      ->addForces(v, constants(5.0), F.data());
+  EXPECT_GT(F[2], 0.0);
+  EXPECT_EQ(F[5], 0.0);
+  // without the flag the same zero samples are an error naming the parcel
+  expectError([&] { drag[1]->coefficients(b.view(), constants(5.0), F.data()); },
+              {"parcel 1", "'voidage'"});
+}
+
 TEST(BadInput, SceneConstantsAreChecked) {
   Batch b;
   b.add(0.5, 1.0, kD, 5.0);

@@ -67,6 +67,10 @@ void BeetstraDrag::coefficients(const ParcelBatch& p, const SceneConstants& c, d
   // state changes (compressible gas), start Newton from the last Re_t (2-3 iterations).
   double last_d = -1.0, last_rho = -1.0, last_mu = -1.0, L_c = 0.0, last_Re_t = 0.0;
   for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.isLost(i)) {
+      K[i] = 0.0;
+      continue;
+    }
     const ParcelState s = parcelState(p, c, i);
     if (s.d != last_d || s.rho != last_rho || s.mu != last_mu) {
       if (!(particle_density_ > s.rho)) {

@@ -14,6 +14,10 @@ void StokesDrag::coefficients(const ParcelBatch& p, const SceneConstants& c, dou
   checkInputs(owner, requiredFields(), p, c);
   const double cg3 = c.cg * c.cg * c.cg;
   for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.isLost(i)) {
+      K[i] = 0.0;
+      continue;
+    }
     K[i] = cg3 * 3.0 * std::numbers::pi * p.fluid_viscosity[i] * realDiameter(p.radius[i], c);
   }
   checkOutputs(owner, "drag coefficient K", K, p.n);

@@ -12,6 +12,7 @@ void PressureGradientForce::addForces(const ParcelBatch& p, const SceneConstants
   validateConstants(owner, c);
   checkInputs(owner, requiredFields(), p, c);
   for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.isLost(i)) continue;  // no fluid, no force
     const double r = p.radius[i];
     const double V = 4.0 / 3.0 * std::numbers::pi * r * r * r;
     for (int j = 0; j < 3; ++j) force[3 * i + j] -= V * p.pressure_gradient[3 * i + j];

@@ -27,6 +27,12 @@ struct ParcelBatch {
   const double* pressure_gradient = nullptr;   // [Pa/m] 3n
   const double* precursor_fraction = nullptr;  // [-] n
   const double* cell_size = nullptr;           // [m] n
+  // Optional, n flags: nonzero = the parcel is in no fluid cell (the fluid reported it in
+  // lost_ids and sent zero samples). Laws give it 0 (no drag, no force, no transfer) and do
+  // not check its fluid samples. Null = no parcel is lost.
+  const char* lost = nullptr;
+
+  bool isLost(std::size_t i) const { return lost != nullptr && lost[i] != 0; }
 };
 
 }  // namespace cosim::models

@@ -28,6 +28,10 @@ void evaluateDrag(const DragLaw& law, const ParcelBatch& p, const SceneConstants
   checkInputs(owner, law.requiredFields(), p, c);
   const double cg3 = c.cg * c.cg * c.cg;
   for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.isLost(i)) {
+      K[i] = 0.0;
+      continue;
+    }
     const ParcelState s = parcelState(p, c, i);
     K[i] = cg3 * 3.0 * std::numbers::pi * s.mu * s.d * f(s.eps, s.Re);
   }

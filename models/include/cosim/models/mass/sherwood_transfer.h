@@ -27,6 +27,10 @@ void evaluateTransfer(const MassTransferLaw& law, const ParcelBatch& p, const Sc
   const double sc = c.schmidt;
   const double sc13 = std::cbrt(sc);
   for (std::size_t i = 0; i < p.n; ++i) {
+    if (p.isLost(i)) {
+      k[i] = 0.0;
+      continue;
+    }
     const ParcelState s = parcelState(p, c, i);
     k[i] = cg3 * std::numbers::pi * s.mu * s.d * sh(s.eps, s.Re, sc13) / sc;
   }
