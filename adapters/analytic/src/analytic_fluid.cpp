@@ -1,0 +1,158 @@
+// cosim-analytic-fluid: a prescribed fluid. Velocity uniform or a parabolic pipe profile; density,
+// viscosity, voidage and precursor mass fraction given; hydrostatic pressure gradient. It does not
+// react to the particles (one-way), which makes analytic reference solutions exact. With coating,
+// it is an infinite precursor reservoir: each particle removes k * Y * dt per step, and the same
+// mass is fed in, so the balance in - out - accumulation - removed closes exactly.
+#include <cmath>
+#include <iostream>
+
+#include "cosim/link/fields.h"
+#include "cosim/link/session.h"
+#include "yaml_options.h"
+
+namespace cosim::analytic {
+
+class AnalyticFluid final : public link::Solver {
+ public:
+  link::Capabilities capabilities() const override {
+    link::Capabilities c;
+    c.role = wire::FLUID;
+    c.adapter = "analytic-fluid";
+    c.provides = {field::fluid_velocity, field::voidage, field::fluid_density,
+                  field::fluid_viscosity, field::pressure_gradient, field::precursor_fraction,
+                  field::cell_size, field::precursor_removed};
+    c.accepts = {field::position, field::radius, field::velocity, field::drag_coefficient,
+                 field::transfer_coefficient};
+    return c;
+  }
+
+  void configure(const wire::Welcome& w) override {
+    Options o(w.config_yaml(), "analytic-fluid options");
+    o.allowOnly({"velocity", "profile", "pipe_radius", "axis_origin", "density", "viscosity",
+                 "voidage", "precursor_fraction", "pressure_gradient", "gravity", "cell_size",
+                 "domain_min", "domain_max"});
+    send_ = {w.send().begin(), w.send().end()};
+    u_ = o.vec("velocity", {0, 0, 0});
+    profile_ = o.text("profile", "uniform");
+    if (profile_ != "uniform" && profile_ != "parabolic") {
+      throw std::runtime_error("analytic-fluid options: profile must be 'uniform' or 'parabolic', got '" + profile_ + "'");
+    }
+    if (profile_ == "parabolic") {
+      R_ = o.positive("pipe_radius", 0);
+      axis_ = o.vec("axis_origin", {0, 0, 0});
+    }
+    rho_ = o.positive("density", 1.2);
+    mu_ = o.positive("viscosity", 1.8e-5);
+    eps_ = o.number("voidage", 1.0);
+    if (!(eps_ > 0 && eps_ <= 1)) throw std::runtime_error("analytic-fluid options: voidage must be in (0, 1]");
+    Y_ = o.number("precursor_fraction", 0.0);
+    if (Y_ < 0 || Y_ > 1) throw std::runtime_error("analytic-fluid options: precursor_fraction must be in [0, 1]");
+    const auto g = o.vec("gravity", {0, 0, -9.81});
+    if (o.has("pressure_gradient") && o.root()["pressure_gradient"].IsSequence()) {
+      gradp_ = o.vec("pressure_gradient", {0, 0, 0});
+    } else {
+      const std::string mode = o.text("pressure_gradient", "hydrostatic");
+      if (mode != "hydrostatic" && mode != "none") {
+        throw std::runtime_error("analytic-fluid options: pressure_gradient must be 'hydrostatic', 'none' or [x, y, z] in Pa/m");
+      }
+      // Still or uniformly moving fluid in gravity: grad p = rho_f g.
+      for (int i = 0; i < 3; ++i) gradp_[static_cast<std::size_t>(i)] = mode == "hydrostatic" ? rho_ * g[static_cast<std::size_t>(i)] : 0.0;
+    }
+    cell_ = o.positive("cell_size", 0.004);
+    if (o.has("domain_min") || o.has("domain_max")) {
+      dmin_ = o.vec("domain_min", {-1e300, -1e300, -1e300});
+      dmax_ = o.vec("domain_max", {1e300, 1e300, 1e300});
+      bounded_ = true;
+    }
+  }
+
+  std::array<double, 3> velocityAt(const double* x) const {
+    if (profile_ == "uniform") return u_;
+    const double dx = x[0] - axis_[0], dy = x[1] - axis_[1];
+    const double r2 = (dx * dx + dy * dy) / (R_ * R_);
+    const double f = r2 < 1.0 ? 2.0 * (1.0 - r2) : 0.0;  // mean velocity = u_
+    return {u_[0] * f, u_[1] * f, u_[2] * f};
+  }
+
+  void sample(const link::ParticleData& p, link::ParticleData& out,
+              std::vector<std::int64_t>& lost) override {
+    const auto& x = p.get(field::position);
+    positions_ = x;
+    ids_ = p.ids;
+    for (const auto& name : send_) {
+      if (name == field::precursor_removed) continue;
+      auto& v = out.field(name);
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        if (name == field::fluid_velocity) {
+          auto u = velocityAt(&x[3 * i]);
+          for (std::size_t c = 0; c < 3; ++c) v[3 * i + c] = u[c];
+        } else if (name == field::pressure_gradient) {
+          for (std::size_t c = 0; c < 3; ++c) v[3 * i + c] = gradp_[c];
+        } else if (name == field::voidage) {
+          v[i] = eps_;
+        } else if (name == field::fluid_density) {
+          v[i] = rho_;
+        } else if (name == field::fluid_viscosity) {
+          v[i] = mu_;
+        } else if (name == field::precursor_fraction) {
+          v[i] = Y_;
+        } else if (name == field::cell_size) {
+          v[i] = cell_;
+        }
+      }
+    }
+    if (bounded_) {
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        for (std::size_t c = 0; c < 3; ++c) {
+          if (x[3 * i + c] < dmin_[c] || x[3 * i + c] > dmax_[c]) {
+            lost.push_back(p.ids[i]);
+            break;
+          }
+        }
+      }
+    }
+  }
+
+  void advance(const wire::Advance& cmd, const link::ParticleData& terms, wire::Advanced& out,
+               link::ParticleData& state) override {
+    if (cmd.dt() == 0.0) return;
+    if (terms.has(field::transfer_coefficient)) {
+      if (terms.ids != ids_) throw std::runtime_error("Advance terms are for other particles than the last Sample");
+      const auto& k = terms.get(field::transfer_coefficient);
+      state.ids = terms.ids;
+      auto& removed = state.field(field::precursor_removed);
+      double total = 0.0;
+      for (std::size_t i = 0; i < k.size(); ++i) {
+        removed[i] = k[i] * Y_ * cmd.dt();  // Y is held constant: exact integral of Eq. 7
+        total += removed[i];
+      }
+      (*out.mutable_scalars())["precursor_in"] = total;
+      (*out.mutable_scalars())["precursor_out"] = 0.0;
+      (*out.mutable_scalars())["precursor_held"] = 0.0;
+      (*out.mutable_scalars())["precursor_removed_total"] = total;
+    }
+    (*out.mutable_scalars())["pressure_drop"] = 0.0;
+  }
+
+ private:
+  std::vector<std::string> send_;
+  std::array<double, 3> u_{}, axis_{}, gradp_{}, dmin_{}, dmax_{};
+  std::string profile_ = "uniform";
+  double R_ = 0, rho_ = 1.2, mu_ = 1.8e-5, eps_ = 1, Y_ = 0, cell_ = 0.004;
+  bool bounded_ = false;
+  std::vector<double> positions_;
+  std::vector<std::int64_t> ids_;
+};
+
+}  // namespace cosim::analytic
+
+int main(int argc, char** argv) {
+  try {
+    auto opts = cosim::link::ParticipantOptions::parse(argc, argv);
+    cosim::analytic::AnalyticFluid fluid;
+    return cosim::link::runParticipant(fluid, opts);
+  } catch (const std::exception& e) {
+    std::cerr << "cosim-analytic-fluid: " << e.what() << "\n";
+    return 2;
+  }
+}

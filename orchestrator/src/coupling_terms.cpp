@@ -1,0 +1,65 @@
+#include "coupling_terms.h"
+
+#include "cosim/link/fields.h"
+
+namespace cosim::orchestrator {
+
+namespace {
+const double* ptr(const link::ParticleData& d, const char* name) {
+  return d.has(name) ? d.get(name).data() : nullptr;
+}
+}  // namespace
+
+CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan,
+                            const models::SceneConstants& c, const link::ParticleData& state,
+                            const link::ParticleData& samples, const std::vector<char>& lost) {
+  CouplingTerms t;
+  const std::size_t n = state.size();
+  t.forcing.ids = state.ids;
+  t.exchange.ids = state.ids;
+
+  models::ParcelBatch b;
+  b.n = n;
+  b.position = ptr(state, field::position);
+  b.velocity = ptr(state, field::velocity);
+  b.radius = ptr(state, field::radius);
+  b.fluid_velocity = ptr(samples, field::fluid_velocity);
+  b.voidage = ptr(samples, field::voidage);
+  b.fluid_density = ptr(samples, field::fluid_density);
+  b.fluid_viscosity = ptr(samples, field::fluid_viscosity);
+  b.pressure_gradient = ptr(samples, field::pressure_gradient);
+  b.precursor_fraction = ptr(samples, field::precursor_fraction);
+  b.cell_size = ptr(samples, field::cell_size);
+
+  if (m.drag) {
+    auto& K = t.forcing.field(field::drag_coefficient);
+    m.drag->coefficients(b, c, K.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      if (lost[i]) K[i] = 0.0;
+    }
+    t.forcing.field(field::fluid_velocity) = samples.get(field::fluid_velocity);
+    t.exchange.field(field::drag_coefficient) = K;
+  }
+  if (!m.forces.empty()) {
+    auto& F = t.forcing.field(field::explicit_force);
+    for (const auto& f : m.forces) f->addForces(b, c, F.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      if (lost[i]) F[3 * i] = F[3 * i + 1] = F[3 * i + 2] = 0.0;
+    }
+  }
+  if (plan.coating) {
+    auto& k = t.exchange.field(field::transfer_coefficient);
+    m.mass_transfer->transferCoefficients(b, c, k.data());
+    if (m.zone) {
+      std::vector<double> inside(n);
+      m.zone->mask(b, inside.data());
+      for (std::size_t i = 0; i < n; ++i) k[i] *= inside[i];
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      if (lost[i]) k[i] = 0.0;
+    }
+  }
+  return t;
+}
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,25 @@
+// Step 3 of the coupling step: the models evaluated over all particles. From the particle state
+// and the fluid samples (same ids, same order) it makes the forcing for the particles and the
+// exchange terms for the fluid.
+#pragma once
+
+#include <cstdint>
+#include <map>
+
+#include "cosim/link/particle_data.h"
+#include "plan.h"
+
+namespace cosim::orchestrator {
+
+struct CouplingTerms {
+  link::ParticleData forcing;   // -> particles: drag_coefficient, fluid_velocity, explicit_force
+  link::ParticleData exchange;  // -> fluid: drag_coefficient, transfer_coefficient
+};
+
+// `lost` marks particles the fluid found in no cell: they get no fluid force and no coating.
+CouplingTerms evaluateTerms(const SceneModels& models, const Plan& plan,
+                            const models::SceneConstants& constants,
+                            const link::ParticleData& state, const link::ParticleData& samples,
+                            const std::vector<char>& lost);
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,133 @@
+// cosim: the orchestrator's command line.
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <iostream>
+
+#include "coupler.h"
+#include "cosim/models/registry.h"
+#include "plan.h"
+#include "scenario.h"
+
+#if __has_include("cosim/analysis/report.h")
+#include "cosim/analysis/report.h"
+#define COSIM_HAVE_REPORT 1
+#endif
+
+using namespace cosim::orchestrator;
+
+namespace {
+
+void onSignal(int sig) { g_stop_signal = sig; }
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "(none)" : s;
+}
+
+int validate(const std::string& file, const std::vector<std::string>& sets) {
+  Scenario sc = loadScenario(file, sets);
+  SceneModels m = makeModels(sc);
+  Plan p = makePlan(sc, m);
+  std::cout << "scenario '" << sc.name << "' is valid (" << sc.file.string() << ")\n";
+  std::cout << "  coupling: dt " << sc.dt << " s x " << sc.dem_steps << " DEM steps, t = "
+            << sc.start_time << " .. " << sc.end_time << " s ("
+            << static_cast<long long>(std::llround((sc.end_time - sc.start_time) / sc.dt)) << " steps)\n";
+  std::cout << "  particles: " << sc.participants.at("particles").adapter << "; sends " << join(p.particles_send)
+            << "; receives " << join(p.particles_receive) << "\n";
+  if (p.fluid) {
+    std::cout << "  fluid: " << sc.participants.at("fluid").adapter << "; sends " << join(p.fluid_send)
+              << "; receives " << join(p.fluid_receive) << "\n";
+  }
+  std::cout << "  models: drag " << (sc.drag ? sc.drag->law : "none") << ", forces "
+            << sc.forces.size() << ", mass transfer " << (sc.mass_transfer ? sc.mass_transfer->law : "none")
+            << ", coating zone " << (sc.coating_zone ? sc.coating_zone->law : "none") << "\n";
+  for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
+  std::cout << "  output: " << sc.output_folder.string() << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "cosim: CFD-DEM co-simulation orchestrator.\n"
+      "Runs OpenFOAM and LIGGGHTS (or the analytic adapters) as separate processes coupled over\n"
+      "ZeroMQ, with drag, mass-transfer and coating-zone models chosen in a scenario file.\n\n"
+      "Examples:\n"
+      "  cosim validate scenarios/settling-sphere\n"
+      "  cosim run scenarios/settling-sphere --set coupling.end_time=0.2\n"
+      "  cosim run scenarios/plasma-coating-bed --set flow_lpm=50\n"
+      "  cosim report runs/plasma-coating-bed\n"};
+  app.require_subcommand(1);
+  std::vector<std::string> sets;
+  std::string scenario;
+
+  auto* run = app.add_subcommand("run", "Run a scenario (a scenario.yaml, or a folder holding one)");
+  run->add_option("scenario", scenario, "scenario file or folder")->required();
+  run->add_option("--set", sets,
+                  "override a value: key.path=value (e.g. coupling.end_time=0.5); a bare name sets a "
+                  "scenario parameter (e.g. flow_lpm=50)")->take_all();
+  RunOptions ropt;
+  std::string output;
+  run->add_option("-o,--output", output, "run folder (default: the scenario's output.folder, never overwritten)");
+  run->add_flag("--overwrite", ropt.overwrite, "reuse the run folder even if it exists");
+  run->add_flag("-q,--quiet", ropt.quiet, "no progress line");
+
+  auto* val = app.add_subcommand("validate", "Check a scenario and show what it would start and send, without running");
+  val->add_option("scenario", scenario, "scenario file or folder")->required();
+  val->add_option("--set", sets, "override a value (as for run)")->take_all();
+
+  auto* models = app.add_subcommand("models", "List the coupling models this build knows");
+
+#ifdef COSIM_HAVE_REPORT
+  cosim::analysis::ReportOptions rep_opt;
+  auto* rep = app.add_subcommand("report", "Analyse run folders: coating statistics, fits, extrapolation, plots, HTML");
+  rep->add_option("runs", rep_opt.runs, "run folders (several: one comparison report, e.g. a flow sweep)")
+      ->required();
+  rep->add_option("-o,--output", rep_opt.output, "report folder (default: RUN/report)");
+  rep->add_option("--fit-start", rep_opt.fit_start, "start of the fit window [s] (default: first snapshot)");
+  rep->add_option("--fit-end", rep_opt.fit_end, "end of the fit window [s] (default: last snapshot)");
+  rep->add_option("--coating-start", rep_opt.coating_start, "time coating starts [s], origin of mu = a1 t");
+  rep->add_option("--histograms", rep_opt.histogram_times, "times of the histograms [s]")->delimiter(',');
+  rep->add_option("--predict", rep_opt.predict_times, "times of the extrapolated distributions [s]")->delimiter(',');
+#endif
+
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    if (*val) return validate(scenario, sets);
+    if (*models) {
+      auto& r = cosim::models::Registry::instance();
+      std::cout << "drag laws: " << join(r.dragNames()) << "\nforce models: " << join(r.forceNames())
+                << "\nmass transfer laws: " << join(r.massTransferNames())
+                << "\ncoating zone shapes: " << join(r.zoneNames()) << "\n";
+      return 0;
+    }
+#ifdef COSIM_HAVE_REPORT
+    if (*rep) return cosim::analysis::runReport(rep_opt);
+#endif
+    if (*run) {
+      Scenario sc = loadScenario(scenario, sets);
+      if (!output.empty()) ropt.output = output;
+      std::signal(SIGINT, onSignal);
+      std::signal(SIGTERM, onSignal);
+      std::signal(SIGPIPE, SIG_IGN);
+      Coupler c(std::move(sc), ropt);
+      RunResult r = c.run();
+      if (r.exit_code != 0) {
+        std::cerr << "\ncosim: run stopped\n" << r.message << "\n";
+        return r.exit_code;
+      }
+      std::cout << "cosim: results in " << r.folder.string() << "\n";
+      return 0;
+    }
+  } catch (const ScenarioError& e) {
+    std::cerr << "cosim: invalid scenario\n  " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "cosim: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

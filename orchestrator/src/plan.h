@@ -1,0 +1,38 @@
+// What a scene needs: which participants to start and which fields each packet carries,
+// derived from the configured models. A scene without coating sends no precursor fields; a scene
+// without fluid forces starts no fluid participant.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cosim/models/model.h"
+#include "scenario.h"
+
+namespace cosim::orchestrator {
+
+struct Plan {
+  bool fluid = false;    // start the fluid participant
+  bool coating = false;  // mass transfer: species in the fluid, coating on particles
+  // particles participant
+  std::vector<std::string> particles_send;     // state it reports
+  std::vector<std::string> particles_receive;  // forcing it takes
+  // fluid participant
+  std::vector<std::string> fluid_send;     // samples at particles + results
+  std::vector<std::string> fluid_receive;  // particle data and exchange terms
+  std::vector<std::string> notes;          // what was left out and why (shown to the user)
+};
+
+// The instantiated models of a scene.
+struct SceneModels {
+  std::unique_ptr<models::DragLaw> drag;
+  std::vector<std::unique_ptr<models::ForceModel>> forces;
+  std::unique_ptr<models::MassTransferLaw> mass_transfer;
+  std::unique_ptr<models::CoatingZone> zone;
+};
+
+SceneModels makeModels(const Scenario& sc);
+Plan makePlan(const Scenario& sc, const SceneModels& m);
+
+}  // namespace cosim::orchestrator

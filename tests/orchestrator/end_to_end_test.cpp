@@ -1,0 +1,188 @@
+// End to end, as separate processes: this test process is the orchestrator, the analytic fluid
+// and the free-particle adapters run as child processes talking ZeroMQ.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "coupler.h"
+#include "cosim/link/fields.h"
+#include "scenario.h"
+
+using namespace cosim;
+using namespace cosim::orchestrator;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kScenario = fs::path(COSIM_SOURCE_DIR) / "scenarios" / "settling-sphere";
+
+fs::path freshFolder(const std::string& tag) {
+  fs::path p = fs::temp_directory_path() / ("cosim-e2e-" + tag + "-" + std::to_string(getpid()));
+  fs::remove_all(p);
+  return p;
+}
+
+// Children of this process whose command name starts with `prefix`.
+std::vector<pid_t> childrenNamed(const std::string& prefix) {
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(e.path() / "stat");
+    std::string line;
+    if (!std::getline(stat, line)) continue;
+    // pid (comm) state ppid ...
+    auto close = line.rfind(')');
+    auto open = line.find('(');
+    if (close == std::string::npos || open == std::string::npos) continue;
+    const std::string comm = line.substr(open + 1, close - open - 1);
+    std::istringstream rest(line.substr(close + 2));
+    char state;
+    pid_t ppid;
+    rest >> state >> ppid;
+    if (ppid == getpid() && state != 'Z' && comm.rfind(prefix, 0) == 0) out.push_back(std::stoi(name));
+  }
+  return out;
+}
+
+struct History {
+  std::vector<double> t, vz;
+};
+
+History runSphere(const std::vector<std::string>& sets, const std::string& tag) {
+  Scenario sc = loadScenario(kScenario, sets);
+  RunOptions o;
+  o.quiet = true;
+  o.output = freshFolder(tag);
+  Coupler c(std::move(sc), o);
+  History h;
+  c.on_step = [&](double t, const link::ParticleData& s) {
+    h.t.push_back(t);
+    h.vz.push_back(s.get(field::velocity)[2]);
+  };
+  RunResult r = c.run();
+  EXPECT_EQ(r.exit_code, 0) << r.message;
+  EXPECT_TRUE(fs::exists(r.folder / "particles.h5"));
+  EXPECT_TRUE(fs::exists(r.folder / "summary.json"));
+  return h;
+}
+
+// Independent reference: Stokes drag + buoyancy, particle released at rest.
+struct Reference {
+  double d = 50e-6, rho_p = 2500, rho_f = 1000, mu = 1e-3, g = 9.81;
+  double tau() const { return rho_p * d * d / (18 * mu); }
+  double vt() const { return (rho_p - rho_f) * g * d * d / (18 * mu); }
+  double vz(double t, double u_up) const { return (u_up - vt()) * (1 - std::exp(-t / tau())); }
+};
+
+}  // namespace
+
+TEST(EndToEnd, SphereSettlingInStillFluidFollowsStokesSolution) {
+  const auto h = runSphere({}, "still");
+  Reference ref;
+  ASSERT_EQ(h.t.size(), 50u);
+  // History: every coupling step against the analytic curve.
+  for (std::size_t i = 0; i < h.t.size(); ++i) {
+    EXPECT_NEAR(h.vz[i], ref.vz(h.t[i], 0.0), 1e-9 * ref.vt()) << "t = " << h.t[i];
+  }
+  // Terminal velocity within 0.1 % (5 ms = 14 tau).
+  EXPECT_NEAR(-h.vz.back(), ref.vt(), 1e-3 * ref.vt());
+  EXPECT_NEAR(ref.vt(), 2.0437e-3, 1e-6);  // hand value: 1500 * 9.81 * 2.5e-9 / 0.018
+}
+
+TEST(EndToEnd, SphereInUpwardFlowReachesFlowMinusTerminalVelocity) {
+  const double u_up = 1.0e-3;
+  const auto h = runSphere({"u_up=0.001"}, "upflow");
+  Reference ref;
+  for (std::size_t i = 0; i < h.t.size(); ++i) {
+    EXPECT_NEAR(h.vz[i], ref.vz(h.t[i], u_up), 1e-9 * ref.vt()) << "t = " << h.t[i];
+  }
+  EXPECT_NEAR(h.vz.back(), u_up - ref.vt(), 1e-3 * ref.vt());
+}
+
+TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehind) {
+  Scenario sc = loadScenario(kScenario, {"coupling.end_time=1000", "coupling.dt=1e-4"});
+  RunOptions o;
+  o.quiet = true;
+  o.output = freshFolder("kill");
+  Coupler c(std::move(sc), o);
+  std::chrono::steady_clock::time_point killed_at;
+  bool killed = false;
+  c.on_step = [&](double t, const link::ParticleData&) {
+    if (!killed && t > 0.01) {
+      auto pids = childrenNamed("cosim-free-part");
+      ASSERT_EQ(pids.size(), 1u);
+      killed_at = std::chrono::steady_clock::now();
+      ::kill(pids[0], SIGKILL);
+      killed = true;
+    }
+  };
+  RunResult r = c.run();
+  const double detect = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
+  ASSERT_TRUE(killed);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_LT(detect, 5.0);
+  EXPECT_NE(r.message.find("particles"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("killed by signal 9"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("last lines of"), std::string::npos) << r.message;
+  EXPECT_TRUE(childrenNamed("cosim-").empty()) << "participant processes left behind";
+  // What was recorded is kept.
+  EXPECT_TRUE(fs::exists(r.folder / "particles.h5"));
+  EXPECT_TRUE(fs::exists(r.folder / "timeseries.csv"));
+  std::ifstream summary(r.folder / "summary.json");
+  std::stringstream ss;
+  ss << summary.rdbuf();
+  EXPECT_NE(ss.str().find("failed"), std::string::npos);
+}
+
+TEST(EndToEnd, UnusedFluidIsNotStarted) {
+  // Without models, the scene needs no fluid: only the particle process runs (free fall).
+  const fs::path dir = freshFolder("nofluid-scn");
+  fs::create_directories(dir);
+  std::ofstream(dir / "scenario.yaml") << R"(
+name: free-fall
+participants:
+  fluid: { adapter: analytic-fluid }
+  particles:
+    adapter: free-particles
+    options: { particles: [ { id: 1, position: [0, 0, 0], radius: 1.0e-3 } ] }
+coupling: { dt: 1.0e-3, dem_steps: 1, end_time: 0.1 }
+)";
+  Scenario sc = loadScenario(dir);
+  RunOptions o;
+  o.quiet = true;
+  o.output = freshFolder("nofluid");
+  Coupler c(std::move(sc), o);
+  std::size_t fluid_seen = 0;
+  c.on_step = [&](double, const link::ParticleData&) { fluid_seen += childrenNamed("cosim-analytic").size(); };
+  RunResult r = c.run();
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  EXPECT_EQ(fluid_seen, 0u);
+  EXPECT_FALSE(fs::exists(r.folder / "fluid.log"));
+  // Free fall: z = -g t^2 / 2 exactly.
+  EXPECT_NEAR(r.final_state.get(field::position)[2], -0.5 * 9.81 * 0.01, 1e-12);
+}
+
+TEST(EndToEnd, MissingExecutableIsAClearError) {
+  const fs::path dir = freshFolder("noexe-scn");
+  fs::create_directories(dir);
+  std::ofstream(dir / "scenario.yaml") << R"(
+name: noexe
+participants:
+  particles: { adapter: my-dem, command: cosim-no-such-adapter }
+coupling: { dt: 1.0e-3, end_time: 0.1 }
+)";
+  RunOptions o;
+  o.quiet = true;
+  o.output = freshFolder("noexe");
+  Coupler c(loadScenario(dir), o);
+  RunResult r = c.run();
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.message.find("cannot find the executable 'cosim-no-such-adapter'"), std::string::npos) << r.message;
+}

@@ -1,0 +1,204 @@
+// Scenario files: templating, overrides, and one specific error per kind of mistake.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "expression.h"
+#include "plan.h"
+#include "scenario.h"
+
+using namespace cosim::orchestrator;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* kGood = R"(
+name: good
+parameters:
+  d: 1.0e-4
+  flow_lpm: 50
+  u: ${flow_lpm / 60000 / 0.01}
+participants:
+  fluid: { adapter: analytic-fluid, options: { velocity: [0, 0, "${u}"] } }
+  particles: { adapter: free-particles, options: { density: 2500 } }
+coupling: { dt: 1.0e-4, dem_steps: 10, end_time: 0.01 }
+models:
+  drag: { law: stokes }
+)";
+
+Scenario parse(const std::string& text, const std::vector<std::string>& sets = {}) {
+  return parseScenario(text, fs::temp_directory_path() / "bad.yaml", sets);
+}
+
+// Replaces the first occurrence of `from` in the good scenario.
+std::string mutate(const std::string& from, const std::string& to) {
+  std::string s = kGood;
+  auto p = s.find(from);
+  EXPECT_NE(p, std::string::npos) << from;
+  s.replace(p, from.size(), to);
+  return s;
+}
+
+void expectError(const std::string& text, const std::vector<std::string>& fragments,
+                 const std::vector<std::string>& sets = {}) {
+  try {
+    parse(text, sets);
+    ADD_FAILURE() << "accepted:\n" << text;
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("bad.yaml"), std::string::npos) << "message does not name the file: " << msg;
+    for (const auto& f : fragments) {
+      EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' missing in: " << msg;
+    }
+  }
+}
+
+}  // namespace
+
+TEST(Scenario, GoodScenarioParsesWithParametersAndExpressions) {
+  Scenario sc = parse(kGood);
+  EXPECT_EQ(sc.name, "good");
+  EXPECT_DOUBLE_EQ(sc.dt, 1e-4);
+  EXPECT_EQ(sc.dem_steps, 10u);
+  EXPECT_NEAR(sc.parameters.at("u"), 50.0 / 60000.0 / 0.01, 1e-15);
+  EXPECT_NEAR(sc.participants.at("fluid").options["velocity"][2].as<double>(), 50.0 / 60000.0 / 0.01, 1e-12);
+}
+
+TEST(Scenario, SetOverridesParametersAndKeys) {
+  Scenario sc = parse(kGood, {"flow_lpm=100", "coupling.end_time=0.02"});
+  EXPECT_NEAR(sc.parameters.at("u"), 100.0 / 60000.0 / 0.01, 1e-15);
+  EXPECT_DOUBLE_EQ(sc.end_time, 0.02);
+}
+
+TEST(Scenario, PlanLeavesOutWhatTheSceneDoesNotNeed) {
+  // No mass transfer: no precursor fields anywhere.
+  Scenario sc = parse(kGood);
+  auto m = makeModels(sc);
+  Plan p = makePlan(sc, m);
+  EXPECT_TRUE(p.fluid);
+  EXPECT_FALSE(p.coating);
+  for (const auto* list : {&p.fluid_send, &p.fluid_receive, &p.particles_send, &p.particles_receive}) {
+    for (const auto& f : *list) {
+      EXPECT_EQ(f.find("precursor"), std::string::npos) << f;
+      EXPECT_EQ(f.find("coating"), std::string::npos) << f;
+      EXPECT_NE(f, "transfer_coefficient");
+    }
+  }
+  // No models at all: the fluid participant is not started.
+  std::string nomodels = kGood;
+  nomodels = nomodels.substr(0, nomodels.find("models:"));
+  Scenario sc2 = parse(nomodels);
+  auto m2 = makeModels(sc2);
+  Plan p2 = makePlan(sc2, m2);
+  EXPECT_FALSE(p2.fluid);
+  ASSERT_FALSE(p2.notes.empty());
+  EXPECT_NE(p2.notes.front().find("not started"), std::string::npos);
+}
+
+// ---- malformed scenarios: one specific message each ----------------------------------------------
+
+TEST(ScenarioErrors, NotYaml) { expectError("name: [unclosed\n", {"not valid YAML"}); }
+
+TEST(ScenarioErrors, UnknownTopLevelKeyIsATypo) {
+  expectError(std::string(kGood) + "modles: {}\n", {"modles", "unknown key", "models"});
+}
+
+TEST(ScenarioErrors, MissingCouplingSection) {
+  expectError(mutate("coupling: { dt: 1.0e-4, dem_steps: 10, end_time: 0.01 }", ""), {"coupling", "missing section"});
+}
+
+TEST(ScenarioErrors, NegativeTimeStep) {
+  expectError(mutate("dt: 1.0e-4", "dt: -1.0e-4"), {"coupling.dt", "must be > 0", "bad.yaml:10:"});
+}
+
+TEST(ScenarioErrors, TimeStepNotANumber) {
+  expectError(mutate("dt: 1.0e-4", "dt: fast"), {"coupling.dt", "expected a number", "'fast'"});
+}
+
+TEST(ScenarioErrors, FractionalDemSteps) {
+  expectError(mutate("dem_steps: 10", "dem_steps: 2.5"), {"coupling.dem_steps", "whole number"});
+}
+
+TEST(ScenarioErrors, UnknownAdapter) {
+  expectError(mutate("adapter: analytic-fluid", "adapter: ansys"), {"participants.fluid.adapter", "unknown adapter 'ansys'", "openfoam"});
+}
+
+TEST(ScenarioErrors, AdapterInTheWrongRole) {
+  expectError(mutate("adapter: free-particles", "adapter: openfoam"), {"participants.particles.adapter", "cannot be the 'particles' participant"});
+}
+
+TEST(ScenarioErrors, UnknownDragLaw) {
+  expectError(mutate("law: stokes", "law: stoke"), {"models.drag", "unknown drag law 'stoke'", "stokes"});
+}
+
+TEST(ScenarioErrors, CoarseGrainingBelowOne) {
+  expectError(std::string(kGood) + "constants: { cg: 0.5 }\n", {"constants.cg", ">= 1"});
+}
+
+TEST(ScenarioErrors, VoidageBoundOutsideUnitInterval) {
+  expectError(std::string(kGood) + "constants: { min_voidage: 1.5 }\n", {"constants.min_voidage", "(0, 1)"});
+}
+
+TEST(ScenarioErrors, UnknownParameterInExpression) {
+  expectError(mutate("${flow_lpm / 60000 / 0.01}", "${flow / 60000}"), {"parameters.u", "unknown parameter 'flow'", "flow_lpm"});
+}
+
+TEST(ScenarioErrors, DragWithoutFluidParticipant) {
+  expectError(mutate("  fluid: { adapter: analytic-fluid, options: { velocity: [0, 0, \"${u}\"] } }\n", ""),
+              {"participants.fluid", "missing", "drag"});
+}
+
+TEST(ScenarioErrors, MissingFilesFolder) {
+  expectError(mutate("adapter: free-particles,", "adapter: free-particles, files: no-such-folder,"),
+              {"participants.particles.files", "does not exist"});
+}
+
+TEST(ScenarioErrors, SetOfUnknownParameter) {
+  expectError(kGood, {"--set flowlpm=3", "no parameter 'flowlpm'"}, {"flowlpm=3"});
+}
+
+TEST(ScenarioErrors, EndTimeBeforeStart) {
+  expectError(mutate("end_time: 0.01", "end_time: 0.01, start_time: 0.02"), {"coupling.end_time", "later than start_time"});
+}
+
+TEST(ScenarioErrors, CoatingZoneWithoutMassTransfer) {
+  expectError(std::string(kGood) + "  coating_zone: { shape: sphere, centre: [0, 0, 0], radius: 0.01 }\n",
+              {"models.coating_zone", "mass_transfer"});
+}
+
+TEST(ScenarioErrors, BadMpiRankCount) {
+  expectError(mutate("adapter: free-particles,", "adapter: free-particles, mpi: 0,"), {"participants.particles.mpi", ">= 1"});
+}
+
+TEST(ScenarioErrors, MissingFileIsNamed) {
+  try {
+    loadScenario("/nonexistent/scenario.yaml");
+    FAIL();
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/scenario.yaml"), std::string::npos);
+  }
+}
+
+// ---- expressions ----------------------------------------------------------------------------------
+
+TEST(Expression, ArithmeticAndFunctions) {
+  Variables v{{"a", 2.0}, {"flow_lpm", 50.0}};
+  EXPECT_DOUBLE_EQ(evaluate("1 + 2 * 3", v), 7.0);
+  EXPECT_DOUBLE_EQ(evaluate("(1 + 2) * 3", v), 9.0);
+  EXPECT_DOUBLE_EQ(evaluate("2 ^ 3 ^ 2", v), 512.0);
+  EXPECT_DOUBLE_EQ(evaluate("-a^2", v), -4.0);
+  EXPECT_DOUBLE_EQ(evaluate("sqrt(16) + max(a, 3)", v), 7.0);
+  EXPECT_NEAR(evaluate("flow_lpm / 60000 / (pi * 0.05^2)", v), 50.0 / 60000.0 / (M_PI * 0.0025), 1e-15);
+  EXPECT_THROW(evaluate("1 / 0", v), ExpressionError);
+  EXPECT_THROW(evaluate("2 +", v), ExpressionError);
+}
+
+TEST(Expression, SubstituteKeepsTextAndFormatsExactly) {
+  Variables v{{"u", 0.1}, {"n", 3}};
+  EXPECT_EQ(substitute("internalField uniform (0 0 ${u});", v), "internalField uniform (0 0 0.1);");
+  EXPECT_EQ(substitute("run ${n*1000}", v), "run 3000");
+  const double x = 1.0 / 3.0;
+  EXPECT_EQ(std::stod(formatNumber(x)), x);
+  EXPECT_THROW(substitute("${u", v), ExpressionError);
+}
