@@ -1,0 +1,628 @@
+/*---------------------------------------------------------------------------*\
+    cosimFoam: the OpenFOAM side. Owns the case (time, mesh, fields), places
+    the parcels, samples the gas at them and advances the gas one CFD step
+    (PIMPLE) with the parcels' momentum exchange and precursor sink.
+    The equations are in createFields.H, UEqn.H, pEqn.H, rhoEqn.H, YEqn.H.
+\*---------------------------------------------------------------------------*/
+
+#include "GasDomain.h"
+
+#include "fvCFD.H"
+#include "pimpleControl.H"
+#include "constrainHbyA.H"
+#include "constrainPressure.H"
+#include "gravityMeshObject.H"
+#include "interpolationCellPoint.H"
+#include "zeroGradientFvPatchFields.H"
+#include "physicoChemicalConstants.H"
+#include "ParcelDeposition.H"
+
+#include <chrono>
+#include <stdexcept>
+
+namespace cosim::foam
+{
+
+namespace
+{
+
+// OpenFOAM errors become std::runtime_error carrying OpenFOAM's own message
+template<class F>
+auto guarded(const char* what, F&& f) -> decltype(f())
+{
+    try
+    {
+        return f();
+    }
+    catch (const Foam::error& e)
+    {
+        throw std::runtime_error
+        (
+            std::string("OpenFOAM error while ") + what + ": " + e.message()
+        );
+    }
+}
+
+// Sum a list over processors (every rank ends with the total)
+template<class T>
+void sumOverRanks(Foam::List<T>& list)
+{
+    if (Foam::Pstream::parRun())
+    {
+        Foam::Pstream::listCombineGather(list, Foam::plusEqOp<T>());
+        Foam::Pstream::listCombineScatter(list);
+    }
+}
+
+bool hasPatch(const Foam::fvMesh& mesh, const std::vector<std::string>& names,
+              const Foam::word& patchName)
+{
+    for (const auto& n : names)
+    {
+        if (Foam::word(n) == patchName)
+        {
+            return true;
+        }
+    }
+    return false;
+}
+
+} // namespace
+
+
+using namespace Foam;
+
+class FoamGasDomain : public GasDomain
+{
+    GasSettings settings_;
+
+    autoPtr<argList> args_;
+    autoPtr<Time> runTime_;
+    autoPtr<fvMesh> mesh_;
+    autoPtr<pimpleControl> pimple_;
+
+    autoPtr<dimensionedScalar> psi_;
+    autoPtr<dimensionedScalar> mu_;
+    autoPtr<volScalarField> p_;
+    autoPtr<volVectorField> U_;
+    autoPtr<volScalarField> rho_;
+    autoPtr<volScalarField> eps_;
+    autoPtr<scalarField> epsPlaced_;
+    autoPtr<volScalarField> epsRho_;
+    autoPtr<surfaceScalarField> phi_;
+    autoPtr<volScalarField> Kexchange_;
+    autoPtr<volVectorField> KUp_;
+    autoPtr<volScalarField> Y_;
+    autoPtr<volScalarField> epsRhoY_;
+    autoPtr<volScalarField> sinkCoeff_;
+
+    autoPtr<Foam::cosim::ParcelDeposition> parcels_;
+    List<vector> particleVelocity_;
+    bool advanced_ = false;
+
+public:
+
+    FoamGasDomain(int argc, char** argv, const GasSettings& settings)
+    :
+        settings_(settings)
+    {
+        FatalError.throwExceptions();
+        FatalIOError.throwExceptions();
+
+        guarded("reading the case", [&]
+        {
+            args_.reset(new argList(argc, argv));
+            if (!args_->checkRootCase())
+            {
+                FatalError.exit();
+            }
+            runTime_.reset(new Time(Time::controlDictName, args_()));
+            Time& runTime = runTime_();
+
+            mesh_.reset(new fvMesh
+            (
+                IOobject(fvMesh::defaultRegion, runTime.timeName(), runTime, IOobject::MUST_READ)
+            ));
+            fvMesh& mesh = mesh_();
+            pimple_.reset(new pimpleControl(mesh));
+
+            checkSchemes(mesh);
+
+            #include "createFields.H"
+
+            parcels_.reset(new Foam::cosim::ParcelDeposition(mesh, settings_.voidage_divisions));
+            return 0;
+        });
+    }
+
+    // Euler time stepping is what makes the reported precursor balance exact
+    void checkSchemes(const fvMesh& mesh) const
+    {
+        ITstream& is = mesh.ddtScheme("default");
+        const word scheme(is);
+        if (scheme != "Euler")
+        {
+            FatalErrorInFunction
+                << "system/fvSchemes: ddtSchemes default must be Euler for cosimFoam "
+                << "(the coupling exchanges one implicit step per coupling interval), got "
+                << scheme << exit(FatalError);
+        }
+    }
+
+    std::vector<std::size_t> place(const ParticleSet& particles) override
+    {
+        return guarded("placing particles", [&]
+        {
+            const fvMesh& mesh = mesh_();
+            const label n = label(particles.size());
+            Foam::cosim::ParcelDeposition& parcels = parcels_();
+            lastPositions_.setSize(n);
+            for (label i = 0; i < n; ++i)
+            {
+                lastPositions_[i] = point
+                (
+                    particles.position[3*i],
+                    particles.position[3*i + 1],
+                    particles.position[3*i + 2]
+                );
+            }
+            parcels.place(particles.ids, particles.position, particles.radius);
+
+            // Parcel volume per cell -> voidage, bounded below
+            List<scalar> volume(n);
+            for (label i = 0; i < n; ++i)
+            {
+                volume[i] = 4.0/3.0*constant::mathematical::pi*pow3(particles.radius[i]);
+            }
+            scalarField solid(mesh.nCells(), 0.0);
+            parcels.deposit(volume, solid);
+            scalarField& epsPlaced = epsPlaced_();
+            epsPlaced = max(1.0 - solid/mesh.V().field(), settings_.min_voidage);
+
+            particleVelocity_.setSize(n);
+            for (label i = 0; i < n; ++i)
+            {
+                particleVelocity_[i] =
+                    particles.velocity.size() == 3*particles.size()
+                  ? vector
+                    (
+                        particles.velocity[3*i],
+                        particles.velocity[3*i + 1],
+                        particles.velocity[3*i + 2]
+                    )
+                  : vector::zero;
+            }
+
+            // Before the first step the parcels have always been there: no displacement flow
+            if (!advanced_)
+            {
+                volScalarField& eps = eps_();
+                eps.primitiveFieldRef() = epsPlaced;
+                eps.correctBoundaryConditions();
+                eps.oldTime().primitiveFieldRef() = epsPlaced;
+                eps.oldTime().correctBoundaryConditions();
+                resetOldTime(epsRho_(), eps*rho_());
+                if (settings_.species)
+                {
+                    resetOldTime(epsRhoY_(), epsRho_());
+                }
+            }
+
+            std::vector<std::size_t> lost;
+            for (label i = 0; i < n; ++i)
+            {
+                if (parcels.lost()[i])
+                {
+                    lost.push_back(std::size_t(i));
+                }
+            }
+            return lost;
+        });
+    }
+
+    static void resetOldTime(volScalarField& f, const tmp<volScalarField>& value)
+    {
+        const volScalarField v(value);
+        f.primitiveFieldRef() = v.primitiveField();
+        f.boundaryFieldRef() = v.boundaryField();
+        f.oldTime().primitiveFieldRef() = v.primitiveField();
+        f.oldTime().boundaryFieldRef() = v.boundaryField();
+    }
+
+    static void resetOldTime(volScalarField& f, const volScalarField& v)
+    {
+        resetOldTime(f, tmp<volScalarField>(new volScalarField(v)));
+    }
+
+    std::map<std::string, std::vector<double>> sample
+    (
+        const std::vector<std::string>& names
+    ) const override
+    {
+        return guarded("sampling the gas at the particles", [&]
+        {
+            const fvMesh& mesh = mesh_();
+            const Foam::cosim::ParcelDeposition& parcels = parcels_();
+            const label n = parcels.size();
+            const labelList& cell = parcels.centreCell();
+
+            std::map<std::string, std::vector<double>> out;
+            for (const std::string& name : names)
+            {
+                List<scalar> values;
+                if (name == "fluid_velocity" || name == "pressure_gradient")
+                {
+                    autoPtr<interpolationCellPoint<vector>> interp;
+                    autoPtr<volVectorField> gradp;
+                    if (name == "fluid_velocity")
+                    {
+                        interp.reset(new interpolationCellPoint<vector>(U_()));
+                    }
+                    else
+                    {
+                        gradp.reset(new volVectorField("gradp", fvc::grad(p_())));
+                        interp.reset(new interpolationCellPoint<vector>(gradp()));
+                    }
+                    values.setSize(3*n, 0.0);
+                    for (label i = 0; i < n; ++i)
+                    {
+                        if (cell[i] >= 0)
+                        {
+                            const point x(centre(i));
+                            const vector v = interp->interpolate(x, cell[i]);
+                            for (direction d = 0; d < 3; ++d)
+                            {
+                                values[3*i + d] = v[d];
+                            }
+                        }
+                    }
+                }
+                else if (name == "voidage")
+                {
+                    // Average over the cells the parcel's volume went to
+                    parcels.gatherAverage(epsPlaced_(), values);
+                }
+                else if (name == "fluid_density" || name == "precursor_fraction"
+                      || name == "fluid_viscosity" || name == "cell_size")
+                {
+                    values.setSize(n, 0.0);
+                    for (label i = 0; i < n; ++i)
+                    {
+                        const label c = cell[i];
+                        if (c < 0)
+                        {
+                            continue;
+                        }
+                        if (name == "fluid_density")
+                        {
+                            values[i] = rho_()[c];
+                        }
+                        else if (name == "fluid_viscosity")
+                        {
+                            values[i] = mu_().value();
+                        }
+                        else if (name == "cell_size")
+                        {
+                            values[i] = Foam::cbrt(mesh.V()[c]);
+                        }
+                        else if (settings_.species)
+                        {
+                            values[i] = Y_()[c];
+                        }
+                        else
+                        {
+                            throw std::runtime_error
+                            (
+                                "precursor_fraction was requested but the scene has no "
+                                "mass transfer (Welcome.species is false)"
+                            );
+                        }
+                    }
+                }
+                else
+                {
+                    throw std::runtime_error
+                    (
+                        "cosimFoam cannot sample field '" + name + "' (it provides "
+                        "fluid_velocity, voidage, fluid_density, fluid_viscosity, "
+                        "pressure_gradient, precursor_fraction, cell_size)"
+                    );
+                }
+                sumOverRanks(values);
+                out[name].assign(values.begin(), values.end());
+            }
+            return out;
+        });
+    }
+
+    point centre(label i) const
+    {
+        return lastPositions_[i];
+    }
+
+    List<point> lastPositions_;
+
+    StepResult advance
+    (
+        double dt,
+        const std::vector<double>& K,
+        const std::vector<double>& k
+    ) override
+    {
+        return guarded("advancing the gas", [&]
+        {
+            return step(dt, K, k);
+        });
+    }
+
+    StepResult step(double dt, const std::vector<double>& Kp, const std::vector<double>& kp)
+    {
+        Time& runTime = runTime_();
+        fvMesh& mesh = mesh_();
+        pimpleControl& pimple = pimple_();
+        const Foam::cosim::ParcelDeposition& parcels = parcels_();
+        const label n = parcels.size();
+
+        if (!(dt > 0))
+        {
+            FatalErrorInFunction << "Advance dt must be > 0, got " << dt << exit(FatalError);
+        }
+        if (!Kp.empty() && label(Kp.size()) != n)
+        {
+            FatalErrorInFunction
+                << "drag_coefficient has " << label(Kp.size()) << " values for " << n
+                << " particles placed by the last Sample" << exit(FatalError);
+        }
+        if (!kp.empty() && label(kp.size()) != n)
+        {
+            FatalErrorInFunction
+                << "transfer_coefficient has " << label(kp.size()) << " values for " << n
+                << " particles placed by the last Sample" << exit(FatalError);
+        }
+
+        runTime.setDeltaT(dt);
+        ++runTime;
+
+        volScalarField& p = p_();
+        volVectorField& U = U_();
+        volScalarField& rho = rho_();
+        volScalarField& eps = eps_();
+        volScalarField& epsRho = epsRho_();
+        surfaceScalarField& phi = phi_();
+        volScalarField& Kexchange = Kexchange_();
+        volVectorField& KUp = KUp_();
+        const dimensionedScalar& psi = psi_();
+        const dimensionedScalar& mu = mu_();
+        const meshObjects::gravity& g = meshObjects::gravity::New(runTime);
+
+        // Voidage of this step: the parcels as the last Sample placed them
+        eps.primitiveFieldRef() = epsPlaced_();
+        eps.correctBoundaryConditions();
+
+        // Exchange coefficients per cell volume
+        {
+            const scalarField& V = mesh.V().field();
+            scalarField Ksum(mesh.nCells(), 0.0);
+            vectorField KvSum(mesh.nCells(), Zero);
+            if (!Kp.empty())
+            {
+                List<scalar> K(n);
+                List<vector> Kv(n);
+                for (label i = 0; i < n; ++i)
+                {
+                    K[i] = Kp[i];
+                    Kv[i] = Kp[i]*particleVelocity_[i];
+                }
+                parcels.deposit(K, Ksum);
+                parcels.deposit(Kv, KvSum);
+            }
+            Kexchange.primitiveFieldRef() = Ksum/V;
+            KUp.primitiveFieldRef() = KvSum/V;
+            if (settings_.species)
+            {
+                scalarField kSum(mesh.nCells(), 0.0);
+                if (!kp.empty())
+                {
+                    List<scalar> kList(n);
+                    forAll(kList, i)
+                    {
+                        kList[i] = kp[i];
+                    }
+                    parcels.deposit(kList, kSum);
+                }
+                sinkCoeff_->primitiveFieldRef() = kSum/V;
+            }
+        }
+
+        const auto wall0 = std::chrono::steady_clock::now();
+
+        // --- PIMPLE
+        while (pimple.loop())
+        {
+            if (pimple.firstIter())
+            {
+                rho = psi*p;
+                epsRho = eps*rho;
+            }
+
+            #include "UEqn.H"
+
+            while (pimple.correct())
+            {
+                #include "pEqn.H"
+            }
+        }
+
+        #include "rhoEqn.H"
+
+        StepResult result;
+        auto& s = result.scalars;
+
+        // Gas mass through the boundaries [kg over the step]
+        {
+            scalar in = 0, out = 0;
+            forAll(phi.boundaryField(), patchi)
+            {
+                if (mesh.boundary()[patchi].coupled())
+                {
+                    continue;
+                }
+                for (const scalar f : phi.boundaryField()[patchi])
+                {
+                    (f < 0 ? in : out) += mag(f)*dt;
+                }
+            }
+            s["gas_mass_in"] = returnReduce(in, sumOp<scalar>());
+            s["gas_mass_out"] = returnReduce(out, sumOp<scalar>());
+            s["gas_mass_held"] = gSum(epsRho.primitiveField()*mesh.V().field());
+        }
+
+        if (settings_.species)
+        {
+            volScalarField& Y = Y_();
+            volScalarField& epsRhoY = epsRhoY_();
+            const volScalarField& sinkCoeff = sinkCoeff_();
+            const dimensionedScalar Gamma("Gamma", mu/settings_.schmidt);
+            const scalarField& V = mesh.V().field();
+
+            const scalar heldStart =
+                gSum(epsRhoY.oldTime().primitiveField()*Y.oldTime().primitiveField()*V);
+
+            #include "YEqn.H"
+
+            // Precursor through the boundaries, from the matrix's own face fluxes
+            const tmp<surfaceScalarField> tflux = YEqn.flux();
+            scalar in = 0, out = 0;
+            forAll(tflux().boundaryField(), patchi)
+            {
+                if (mesh.boundary()[patchi].coupled())
+                {
+                    continue;
+                }
+                for (const scalar f : tflux().boundaryField()[patchi])
+                {
+                    (f < 0 ? in : out) += mag(f)*dt;
+                }
+            }
+
+            // What each parcel removed: k_i dt sum_j w_ij Y(cell_j), the sink's own terms
+            List<scalar> Yavg;
+            parcels.gatherAverage(Y.primitiveField(), Yavg);
+            sumOverRanks(Yavg);
+            result.precursor_removed.assign(std::size_t(n), 0.0);
+            scalar removedTotal = 0;
+            if (!kp.empty())
+            {
+                for (label i = 0; i < n; ++i)
+                {
+                    result.precursor_removed[i] = kp[i]*dt*Yavg[i];
+                    removedTotal += result.precursor_removed[i];
+                }
+            }
+
+            s["precursor_in"] = returnReduce(in, sumOp<scalar>());
+            s["precursor_out"] = returnReduce(out, sumOp<scalar>());
+            s["precursor_held"] = gSum(epsRhoY.primitiveField()*Y.primitiveField()*V);
+            s["precursor_held_start"] = heldStart;
+            s["precursor_removed_cells"] =
+                gSum(sinkCoeff.primitiveField()*Y.primitiveField()*V)*dt;
+            s["precursor_removed_total"] = removedTotal;
+            s["precursor_min"] = gMin(Y.primitiveField());
+            s["precursor_max"] = gMax(Y.primitiveField());
+        }
+
+        rho = psi*p;
+
+        s["pressure_drop"] = patchAverage(p, settings_.inlet_patches)
+                           - patchAverage(p, settings_.outlet_patches);
+        {
+            const scalarField sumPhi
+            (
+                fvc::surfaceSum(mag(phi))().primitiveField()
+               /(epsRho.primitiveField()*mesh.V().field())
+            );
+            s["max_courant"] = 0.5*gMax(sumPhi)*dt;
+        }
+        s["voidage_min"] = gMin(eps.primitiveField());
+        s["solve_seconds"] =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+
+        runTime.write();
+        advanced_ = true;
+        return result;
+    }
+
+    // Area-weighted average of p over the named patches (NaN-free: 0 when none found)
+    scalar patchAverage(const volScalarField& p, const std::vector<std::string>& names) const
+    {
+        const fvMesh& mesh = mesh_();
+        scalar sum = 0, area = 0;
+        forAll(mesh.boundary(), patchi)
+        {
+            if (!hasPatch(mesh, names, mesh.boundary()[patchi].name()))
+            {
+                continue;
+            }
+            const scalarField& a = mesh.magSf().boundaryField()[patchi];
+            sum += Foam::sum(a*p.boundaryField()[patchi]);
+            area += Foam::sum(a);
+        }
+        reduce(sum, sumOp<scalar>());
+        reduce(area, sumOp<scalar>());
+        return area > 0 ? sum/area : 0;
+    }
+
+    void writeNow() override
+    {
+        guarded("writing the fields", [&]
+        {
+            runTime_->writeNow();
+            return 0;
+        });
+    }
+
+    std::vector<std::string> checkpoint(const std::string& path) override
+    {
+        return guarded("writing a checkpoint", [&]
+        {
+            // The current time folder holds everything a restart needs; a copy goes to path
+            runTime_->writeNow();
+            const fileName from = runTime_->timePath();
+            fileName to = fileName(path);
+            if (Pstream::parRun())
+            {
+                to = to/("processor" + Foam::name(Pstream::myProcNo()));
+            }
+            mkDir(to);
+            to = to/runTime_->timeName();
+            if (!cp(from, to))
+            {
+                FatalErrorInFunction
+                    << "cannot copy " << from << " to " << to << exit(FatalError);
+            }
+            List<fileName> written(Pstream::nProcs());
+            written[Pstream::myProcNo()] = to;
+            Pstream::gatherList(written);
+            return std::vector<std::string>(written.begin(), written.end());
+        });
+    }
+
+    double time() const override
+    {
+        return runTime_->value();
+    }
+};
+
+
+} // namespace cosim::foam
+
+
+extern "C" ::cosim::foam::GasDomain* cosimFoamCreateGas
+(
+    int argc,
+    char** argv,
+    const ::cosim::foam::GasSettings* settings
+)
+{
+    return new ::cosim::foam::FoamGasDomain(argc, argv, *settings);
+}

@@ -1,0 +1,78 @@
+// The narrow interface between the protocol side of cosimFoam (no OpenFOAM header) and its
+// OpenFOAM side (mesh, fields, equations). Every method is collective: under MPI all ranks call
+// it with the same arguments (RankBridge forwards them from rank 0); results are complete on
+// rank 0. C++17, plain standard types only.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cosim::foam {
+
+// Physical and numerical settings of the gas (from the participant's `options:`).
+struct GasSettings {
+  double temperature = 300.0;     // [K] isothermal perfect gas
+  double molar_mass = 0.0280134;  // [kg/mol] N2
+  double viscosity = 1.8e-5;      // [Pa s] dynamic
+  double schmidt = 1.0;           // [-] precursor diffusivity Gamma = mu / Sc
+  double min_voidage = 0.35;      // [-] lower bound of the voidage
+  int voidage_divisions = 3;      // satellite points per parcel = divisions^3
+  bool species = false;           // solve the precursor equation (scene has mass transfer)
+  std::vector<std::string> inlet_patches{"inlet"};    // for pressure_drop
+  std::vector<std::string> outlet_patches{"outlet"};  // for pressure_drop
+};
+
+// Particles of one coupling step, in the order the orchestrator sent them.
+struct ParticleSet {
+  std::vector<std::int64_t> ids;
+  std::vector<double> position;  // 3n [m]
+  std::vector<double> radius;    // n [m]
+  std::vector<double> velocity;  // 3n [m/s] (zeros when not sent)
+  std::size_t size() const { return ids.size(); }
+};
+
+// Result of one CFD step.
+struct StepResult {
+  std::vector<double> precursor_removed;   // n [kg] per particle (empty without species)
+  std::map<std::string, double> scalars;   // diagnostics sent in Advanced.scalars
+};
+
+class GasDomain {
+ public:
+  virtual ~GasDomain() = default;
+
+  // Builds the OpenFOAM objects for the case in the current directory. argv is what
+  // Foam::argList parses (program name, -parallel, ...).
+  static std::unique_ptr<GasDomain> create(int argc, char** argv, const GasSettings& settings);
+
+  // Locates the particles (seeded by the cell each id had last time), divides their volume
+  // over the cells (voidage) and remembers the division for the exchange terms of advance().
+  // Returns the indices of particles whose centre is in no cell.
+  virtual std::vector<std::size_t> place(const ParticleSet& particles) = 0;
+
+  // Fields at the particles placed last (cosim::field names, components interleaved); lost
+  // particles get zeros.
+  virtual std::map<std::string, std::vector<double>> sample(
+      const std::vector<std::string>& names) const = 0;
+
+  // One CFD step of dt with drag coefficients K [kg/s] of the placed particles (may be empty:
+  // no momentum exchange) and precursor transfer coefficients k [kg/s] (empty: no sink).
+  virtual StepResult advance(double dt, const std::vector<double>& K,
+                             const std::vector<double>& k) = 0;
+
+  // Writes every field now (end of run) into the current time folder.
+  virtual void writeNow() = 0;
+  // Writes the fields into `path`/<time>/ for a restart; returns the folder written.
+  virtual std::vector<std::string> checkpoint(const std::string& path) = 0;
+
+  virtual double time() const = 0;
+};
+
+}  // namespace cosim::foam
+
+// Entry point of the OpenFOAM module (libcosimFoamGas.so), looked up by GasDomain::create.
+extern "C" cosim::foam::GasDomain* cosimFoamCreateGas(int argc, char** argv,
+                                                      const cosim::foam::GasSettings* settings);

@@ -1,0 +1,330 @@
+#include "FoamParticipant.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+#include <unistd.h>
+
+#include "cosim/link/fields.h"
+
+namespace cosim::foam {
+namespace fs = std::filesystem;
+
+const std::vector<std::string>& foamSampleFields() {
+  static const std::vector<std::string> fields{
+      field::fluid_velocity,    field::voidage,        field::fluid_density,
+      field::fluid_viscosity,   field::pressure_gradient, field::precursor_fraction,
+      field::cell_size};
+  return fields;
+}
+
+namespace {
+
+// argv for Foam::argList, alive as long as the strings
+struct Argv {
+  explicit Argv(std::vector<std::string>& args) {
+    for (auto& a : args) ptrs.push_back(a.data());
+    ptrs.push_back(nullptr);
+  }
+  int argc() const { return static_cast<int>(ptrs.size()) - 1; }
+  char** argv() { return ptrs.data(); }
+  std::vector<char*> ptrs;
+};
+
+std::string tail(const fs::path& log, std::size_t lines) {
+  std::ifstream in(log);
+  std::vector<std::string> all;
+  for (std::string l; std::getline(in, l);) all.push_back(l);
+  std::ostringstream out;
+  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) {
+    out << all[i] << "\n";
+  }
+  return out.str();
+}
+
+void runTool(const std::string& tool, const std::string& args) {
+  const std::string log = "log." + tool;
+  const std::string cmd = tool + " " + args + " > " + log + " 2>&1";
+  const int rc = std::system(cmd.c_str());
+  if (rc != 0) {
+    throw std::runtime_error("cosimFoam: `" + tool + " " + args + "` failed in " +
+                             fs::current_path().string() + " (see " + log + "):\n" +
+                             tail(log, 15));
+  }
+}
+
+int subdomainsOf(const fs::path& dict) {
+  std::ifstream in(dict);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::smatch m;
+  const std::string text = ss.str();
+  if (std::regex_search(text, m, std::regex(R"(numberOfSubdomains\s+(\d+)\s*;)"))) {
+    return std::stoi(m[1]);
+  }
+  return -1;
+}
+
+// Mesh (blockMesh) and decomposition (decomposePar) before OpenFOAM reads the case. Rank 0 only.
+void prepareCase(const AdapterSettings& settings, int ranks) {
+  const fs::path here = fs::current_path();
+  if (!fs::exists("system/controlDict")) {
+    throw std::runtime_error(
+        "cosimFoam: no system/controlDict in " + here.string() +
+        ": the fluid participant's `files:` folder must be an OpenFOAM case (system/, "
+        "constant/, 0/; see docs/openfoam.md)");
+  }
+  const bool haveMesh = fs::exists("constant/polyMesh/faces") ||
+                        fs::exists("constant/polyMesh/faces.gz");
+  bool meshed = false;
+  if (settings.mesh == "blockMesh" || (settings.mesh == "auto" && !haveMesh)) {
+    if (!fs::exists("system/blockMeshDict")) {
+      throw std::runtime_error("cosimFoam: " + here.string() +
+                               " has no mesh (constant/polyMesh) and no system/blockMeshDict "
+                               "to make one");
+    }
+    runTool("blockMesh", "");
+    meshed = true;
+  } else if (!haveMesh) {
+    throw std::runtime_error("cosimFoam: options.mesh is 'existing' but " + here.string() +
+                             "/constant/polyMesh has no mesh");
+  }
+  if (ranks > 1) {
+    if (!fs::exists("system/decomposeParDict")) {
+      throw std::runtime_error("cosimFoam: running on " + std::to_string(ranks) +
+                               " MPI ranks needs system/decomposeParDict in " + here.string());
+    }
+    const int n = subdomainsOf("system/decomposeParDict");
+    if (n != ranks) {
+      throw std::runtime_error(
+          "cosimFoam: system/decomposeParDict numberOfSubdomains is " + std::to_string(n) +
+          " but the participant runs on " + std::to_string(ranks) +
+          " MPI ranks (scenario key participants.<fluid>.mpi): make them equal");
+    }
+    bool decomposed = true;
+    for (int r = 0; r < ranks; ++r) {
+      if (!fs::exists("processor" + std::to_string(r) + "/constant/polyMesh")) decomposed = false;
+    }
+    if (fs::exists("processor" + std::to_string(ranks))) decomposed = false;
+    if (meshed || !decomposed) runTool("decomposePar", "-force");
+  }
+}
+
+void moveTo(const std::string& workdir) {
+  if (!workdir.empty() && fs::is_directory(workdir) &&
+      fs::weakly_canonical(workdir) != fs::current_path()) {
+    fs::current_path(workdir);
+  }
+  setenv("PWD", fs::current_path().c_str(), 1);
+}
+
+// The part of configure every rank does.
+std::unique_ptr<GasDomain> makeGas(const RankBridge& bridge, std::vector<std::string> foamArgs,
+                                   std::string& yaml, double& species, std::string& workdir) {
+  bridge.share(yaml);
+  bridge.share(species);
+  bridge.share(workdir);
+  moveTo(workdir);
+  const AdapterSettings settings = parseAdapterSettings(yaml, species != 0);
+  Argv argv(foamArgs);
+  return GasDomain::create(argv.argc(), argv.argv(), settings.gas);
+}
+
+}  // namespace
+
+FoamParticipant::FoamParticipant(const RankBridge& bridge, std::vector<std::string> foamArgs)
+    : bridge_(bridge), foamArgs_(std::move(foamArgs)) {}
+
+cosim::link::Capabilities FoamParticipant::capabilities() const {
+  cosim::link::Capabilities caps;
+  caps.role = wire::FLUID;
+  caps.adapter = "openfoam";
+  caps.provides = foamSampleFields();
+  caps.provides.push_back(field::precursor_removed);
+  caps.accepts = {field::position, field::radius, field::velocity, field::drag_coefficient,
+                  field::transfer_coefficient};
+  return caps;
+}
+
+void FoamParticipant::configure(const wire::Welcome& welcome) {
+  send_.assign(welcome.send().begin(), welcome.send().end());
+  species_ = welcome.species();
+  const auto caps = capabilities();
+  for (const auto& name : send_) {
+    if (std::find(caps.provides.begin(), caps.provides.end(), name) == caps.provides.end()) {
+      throw std::runtime_error("cosimFoam cannot send field '" + name +
+                               "' the scene asks for (Welcome.send)");
+    }
+    if (name == field::precursor_fraction && !species_) {
+      throw std::runtime_error(
+          "the scene asks cosimFoam for precursor_fraction but has no mass transfer "
+          "(Welcome.species is false): no precursor is solved");
+    }
+  }
+  std::string workdir = welcome.workdir();
+  moveTo(workdir);
+  std::string yaml = welcome.config_yaml();
+  const AdapterSettings settings = parseAdapterSettings(yaml, species_);  // errors early
+  prepareCase(settings, bridge_.size());
+  double species = species_ ? 1.0 : 0.0;
+  bridge_.command(RankCommand::configure);
+  gas_ = makeGas(bridge_, foamArgs_, yaml, species, workdir);
+}
+
+void FoamParticipant::sample(const cosim::link::ParticleData& particles,
+                             cosim::link::ParticleData& out, std::vector<std::int64_t>& lost_ids) {
+  if (!particles.has(field::position) || !particles.has(field::radius)) {
+    throw std::runtime_error(
+        "Sample for cosimFoam must carry position and radius of every particle (got: " +
+        [&] {
+          std::string s;
+          for (const auto& n : particles.names()) s += n + " ";
+          return s;
+        }() + ")");
+  }
+  ParticleSet set;
+  set.ids = particles.ids;
+  set.position = particles.get(field::position);
+  set.radius = particles.get(field::radius);
+  if (particles.has(field::velocity)) set.velocity = particles.get(field::velocity);
+  for (std::size_t i = 0; i < set.radius.size(); ++i) {
+    if (!(set.radius[i] > 0)) {
+      throw std::runtime_error("Sample: particle " + std::to_string(set.ids[i]) +
+                               " has radius " + std::to_string(set.radius[i]) +
+                               " (must be > 0)");
+    }
+  }
+  std::vector<std::string> names;
+  for (const auto& n : send_) {
+    if (n != field::precursor_removed) names.push_back(n);
+  }
+
+  bridge_.command(RankCommand::sample);
+  bridge_.share(set.ids);
+  bridge_.share(set.position);
+  bridge_.share(set.radius);
+  bridge_.share(set.velocity);
+  bridge_.share(names);
+  const auto lost = gas_->place(set);
+  const auto values = gas_->sample(names);
+
+  sampledIds_ = set.ids;
+  out.ids = set.ids;
+  for (const auto& [name, v] : values) out.field(name) = v;
+  lost_ids.clear();
+  for (const auto i : lost) lost_ids.push_back(set.ids[i]);
+}
+
+void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::ParticleData& terms,
+                              wire::Advanced& out, cosim::link::ParticleData& state) {
+  double dt = cmd.dt();
+  if (dt == 0) return;  // nothing to report before the first step
+  if (!(dt > 0)) {
+    throw std::runtime_error("Advance for cosimFoam: dt must be > 0, got " + std::to_string(dt));
+  }
+
+  // Terms aligned with the particles of the last Sample (same ids, any order)
+  const std::size_t n = sampledIds_.size();
+  std::vector<double> K, k;
+  if (terms.size() > 0) {
+    std::map<std::int64_t, std::size_t> where;
+    for (std::size_t i = 0; i < n; ++i) where[sampledIds_[i]] = i;
+    std::vector<std::size_t> slot(terms.size());
+    for (std::size_t t = 0; t < terms.size(); ++t) {
+      const auto it = where.find(terms.ids[t]);
+      if (it == where.end()) {
+        throw std::runtime_error("Advance for cosimFoam: particle " +
+                                 std::to_string(terms.ids[t]) +
+                                 " has exchange terms but was not in this step's Sample");
+      }
+      slot[t] = it->second;
+    }
+    auto align = [&](const std::string& name, std::vector<double>& dst) {
+      if (!terms.has(name)) return;
+      const auto& src = terms.get(name);
+      dst.assign(n, 0.0);
+      for (std::size_t t = 0; t < terms.size(); ++t) dst[slot[t]] = src[t];
+    };
+    align(field::drag_coefficient, K);
+    if (species_) align(field::transfer_coefficient, k);
+  }
+
+  bridge_.command(RankCommand::advance);
+  bridge_.share(dt);
+  bridge_.share(K);
+  bridge_.share(k);
+  const StepResult r = gas_->advance(dt, K, k);
+
+  for (const auto& [name, v] : r.scalars) (*out.mutable_scalars())[name] = v;
+  if (std::find(send_.begin(), send_.end(), field::precursor_removed) != send_.end()) {
+    state.ids = sampledIds_;
+    auto& removed = state.field(field::precursor_removed);
+    if (r.precursor_removed.size() == n) removed = r.precursor_removed;
+  }
+}
+
+std::vector<std::string> FoamParticipant::checkpoint(const std::string& path) {
+  std::string p = path;
+  bridge_.command(RankCommand::checkpoint);
+  bridge_.share(p);
+  return gas_->checkpoint(p);
+}
+
+void FoamParticipant::finish() {
+  if (!gas_) return;
+  bridge_.command(RankCommand::finish);
+  gas_->writeNow();
+}
+
+int serveRanks(const RankBridge& bridge, std::vector<std::string> foamArgs) {
+  std::unique_ptr<GasDomain> gas;
+  ParticleSet set;
+  while (true) {
+    switch (bridge.command()) {
+      case RankCommand::configure: {
+        std::string yaml, workdir;
+        double species = 0;
+        gas = makeGas(bridge, foamArgs, yaml, species, workdir);
+        break;
+      }
+      case RankCommand::place:
+      case RankCommand::sample: {
+        std::vector<std::string> names;
+        bridge.share(set.ids);
+        bridge.share(set.position);
+        bridge.share(set.radius);
+        bridge.share(set.velocity);
+        bridge.share(names);
+        gas->place(set);
+        gas->sample(names);
+        break;
+      }
+      case RankCommand::advance: {
+        double dt = 0;
+        std::vector<double> K, k;
+        bridge.share(dt);
+        bridge.share(K);
+        bridge.share(k);
+        gas->advance(dt, K, k);
+        break;
+      }
+      case RankCommand::checkpoint: {
+        std::string path;
+        bridge.share(path);
+        gas->checkpoint(path);
+        break;
+      }
+      case RankCommand::finish:
+        gas->writeNow();
+        break;
+      case RankCommand::quit:
+        return 0;
+    }
+  }
+}
+
+}  // namespace cosim::foam

@@ -1,0 +1,80 @@
+// cosimFoam: the OpenFOAM participant of a cosim scene.
+//   [mpirun -np N] cosimFoam --endpoint ENDPOINT --name NAME [--run-id ID] [-parallel]
+// Run in the case folder (the orchestrator makes it the working directory). OpenFOAM's own
+// options (-parallel, -case DIR, ...) pass through to Foam::argList.
+#include <mpi.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "FoamParticipant.h"
+#include "RankBridge.h"
+#include "cosim/link/session.h"
+
+namespace {
+
+// Debian's openfoam package keeps its runtime data here; users and tests need to set nothing.
+void setFoamEnvironment() {
+  setenv("WM_PROJECT_DIR", "/usr/share/openfoam", 0);
+  const std::string etc = std::string(std::getenv("WM_PROJECT_DIR")) + "/etc";
+  setenv("FOAM_ETC", etc.c_str(), 0);
+  setenv("WM_PROJECT", "OpenFOAM", 0);
+  setenv("WM_PROJECT_VERSION", "v1912", 0);
+  // No signal-handler magic that would hide the session's own error reporting
+  setenv("FOAM_SIGFPE", "false", 0);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  setFoamEnvironment();
+
+  std::vector<std::string> rest;
+  cosim::link::ParticipantOptions options;
+  try {
+    options = cosim::link::ParticipantOptions::parse(argc, argv, &rest);
+  } catch (const std::exception& e) {
+    std::cerr << "cosimFoam: " << e.what() << "\n"
+              << "  OpenFOAM options (-parallel, -case DIR) may follow.\n";
+    return 2;
+  }
+
+  bool parallel = false;
+  for (const auto& a : rest) parallel = parallel || a == "-parallel";
+  if (parallel) {
+    int provided = 0;
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  }
+
+  std::vector<std::string> foamArgs{argv[0]};
+  foamArgs.insert(foamArgs.end(), rest.begin(), rest.end());
+
+  int rc = 0;
+  {
+    cosim::foam::RankBridge bridge(parallel);
+    if (parallel && bridge.size() < 2) {
+      std::cerr << "cosimFoam: -parallel needs mpirun -np 2 or more\n";
+      MPI_Finalize();
+      return 2;
+    }
+    if (bridge.root()) {
+      cosim::foam::FoamParticipant solver(bridge, foamArgs);
+      rc = cosim::link::runParticipant(solver, options);
+      if (parallel) {
+        if (rc != 0) bridge.abortAll(rc);  // the other ranks may be waiting mid-step
+        bridge.command(cosim::foam::RankCommand::quit);
+      }
+    } else {
+      try {
+        rc = cosim::foam::serveRanks(bridge, foamArgs);
+      } catch (const std::exception& e) {
+        std::cerr << "cosimFoam rank " << bridge.rank() << ": " << e.what() << std::endl;
+        bridge.abortAll(1);
+      }
+    }
+  }
+  if (parallel) MPI_Finalize();
+  return rc;
+}
