@@ -190,6 +190,41 @@ int FoamRun::shutdown() {
   return -1;
 }
 
+std::vector<double> readLatestCellField(const std::string& caseDir, const std::string& field) {
+  double newest = -1;
+  fs::path folder;
+  for (const auto& e : fs::directory_iterator(caseDir)) {
+    if (!e.is_directory()) continue;
+    try {
+      std::size_t used = 0;
+      const std::string name = e.path().filename().string();
+      const double t = std::stod(name, &used);
+      if (used == name.size() && t > newest && fs::exists(e.path() / field)) {
+        newest = t;
+        folder = e.path();
+      }
+    } catch (const std::exception&) {
+    }
+  }
+  if (newest < 0) throw std::runtime_error("no time folder with " + field + " in " + caseDir);
+  std::ifstream in(folder / field);
+  std::string word;
+  while (in >> word && word != "internalField") {
+  }
+  in >> word;
+  if (word == "uniform") {
+    throw std::runtime_error(field + " is uniform in " + folder.string());
+  }
+  in >> word;  // List<scalar>
+  std::size_t n = 0;
+  char paren = 0;
+  in >> n >> paren;
+  std::vector<double> values(n);
+  for (auto& v : values) in >> v;
+  if (!in) throw std::runtime_error("cannot read " + (folder / field).string());
+  return values;
+}
+
 cosim::link::ParticleData makeParticles(const std::vector<double>& xyz, double radius) {
   cosim::link::ParticleData p;
   const std::size_t n = xyz.size() / 3;

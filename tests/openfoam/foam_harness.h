@@ -61,6 +61,9 @@ class FoamRun {
   double time_ = 0;
 };
 
+// Values of a volScalarField's internalField in the newest time folder of a (serial) case.
+std::vector<double> readLatestCellField(const std::string& caseDir, const std::string& field);
+
 // A particle set with position, radius and velocity filled.
 cosim::link::ParticleData makeParticles(const std::vector<double>& xyz, double radius);
 
