@@ -217,8 +217,9 @@ def plot_mass_balance(r, folder):
         return
     mb = r["mass_balance"]
     t = ts["time"]
-    cin = np.cumsum(ts["precursor_in"])
-    cout = np.cumsum(ts["precursor_out"])
+    initial = ts["precursor_in"][0] == 0.0 and ts["precursor_out"][0] == 0.0
+    cin = ts["precursor_in"] - (ts["precursor_in"][0] if initial else 0.0)  # cumulative columns
+    cout = ts["precursor_out"] - (ts["precursor_out"][0] if initial else 0.0)
     held = ts["precursor_held"] - mb["held_start"]
     coated = ts["coated_mass"] - mb["coated_start"]
     f, unit = scale_for(np.array([cin.max()]))

@@ -4,16 +4,29 @@ namespace cosim::analysis::h5 {
 
 void quiet() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
+namespace {
+// File access without HDF5's file locks: a user looking at particles.h5 (ParaView, h5py, a
+// report) while the run goes must not make the next snapshot fail. The recorder writes each
+// snapshot in one short open-write-close, so readers at worst see the previous snapshot set.
+Handle accessWithoutLocks() {
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "HDF5: cannot create a file access property list");
+  H5Pset_file_locking(fapl, false, true);
+  return fapl;
+}
+}  // namespace
+
 Handle openFile(const std::string& path, unsigned flags, const std::string& purpose) {
   quiet();
-  return Handle(H5Fopen(path.c_str(), flags, H5P_DEFAULT), H5Fclose,
+  Handle fapl = accessWithoutLocks();
+  return Handle(H5Fopen(path.c_str(), flags, fapl), H5Fclose,
                 "cannot open HDF5 file " + path + " " + purpose +
-                    ": the file is missing, not HDF5, or damaged");
+                    ": the file is missing, not HDF5, damaged, or open for writing elsewhere in this process");
 }
 
 Handle createFile(const std::string& path) {
   quiet();
-  return Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
+  Handle fapl = accessWithoutLocks();
+  return Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
                 "cannot create HDF5 file " + path + ": check that the run folder exists and is writable");
 }
 

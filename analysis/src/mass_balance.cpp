@@ -29,22 +29,17 @@ MassBalance massBalance(const TimeSeries& s) {
   const auto& held = s.at(column::precursor_held);
   const auto& coated = s.at(column::coated_mass);
   if (s.rows() == 0) throw std::runtime_error(s.source + " has no rows: no coupling step was recorded");
-  // Sum with Kahan compensation: long runs add 1e5+ small per-step masses.
-  auto sum = [](const std::vector<double>& v) {
-    double total = 0, comp = 0;
-    for (double x : v) {
-      const double y = x - comp;
-      const double t = total + y;
-      comp = (t - total) - y;
-      total = t;
-    }
-    return total;
-  };
   const bool initialRow = in.front() == 0.0 && out.front() == 0.0;
-  MassBalance b = massBalance(sum(in), sum(out), initialRow ? held.front() : 0.0, held.back(),
+  MassBalance b = massBalance(in.back(), out.back(), initialRow ? held.front() : 0.0, held.back(),
                               initialRow ? coated.front() : 0.0, coated.back());
   b.initial_state = initialRow ? "first row (t = " + std::to_string(s.at(column::time).front()) + " s)"
-                               : "assumed: no precursor in the gas and uncoated particles at the start";
+                               : "assumed: no precursor in the gas and no coating at the start";
+  if (s.has(column::precursor_removed)) {
+    const auto& removed = s.at(column::precursor_removed);
+    b.has_removed = true;
+    b.removed = removed.back() - (initialRow ? removed.front() : 0.0);
+    b.pending = b.removed - b.obtained_coating;
+  }
   return b;
 }
 

@@ -37,8 +37,17 @@ ParticleFile::ParticleFile(const std::filesystem::path& path) : path_(path), imp
     s.count = static_cast<std::uint64_t>(h5::readDoubleAttribute(group, "count", name));
     snapshots_.push_back(s);
   }
-  std::stable_sort(snapshots_.begin(), snapshots_.end(),
-                   [](const SnapshotInfo& a, const SnapshotInfo& b) { return a.time < b.time; });
+  // Group names are zero-padded creation indices: sorting by (time, name) and keeping the last
+  // of equal times keeps the replacement of a snapshot (see ParticleRecorder::write).
+  std::sort(snapshots_.begin(), snapshots_.end(), [](const SnapshotInfo& a, const SnapshotInfo& b) {
+    return a.time != b.time ? a.time < b.time : a.group < b.group;
+  });
+  std::vector<SnapshotInfo> unique;
+  for (const auto& s : snapshots_) {
+    if (!unique.empty() && unique.back().time == s.time) unique.back() = s;
+    else unique.push_back(s);
+  }
+  snapshots_ = std::move(unique);
 }
 
 ParticleFile::~ParticleFile() = default;

@@ -1,5 +1,6 @@
 #include "cosim/analysis/particle_recorder.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -53,6 +54,7 @@ ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
       const double t = h5::readDoubleAttribute(g, "time", file);
       const auto n = static_cast<std::uint64_t>(h5::readDoubleAttribute(g, "count", file));
       entries_.push_back({name, t, n});
+      next_index_ = std::max<std::size_t>(next_index_, std::stoul(name) + 1);
       if (n > 0) {
         for (auto& s : shapes_) {
           std::uint64_t rows = 0, cols = 0;
@@ -75,7 +77,8 @@ ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
 void ParticleRecorder::write(double time, const cosim::link::ParticleData& particles) {
   const std::string file = h5_.string();
   if (!std::isfinite(time)) throw std::runtime_error(file + ": snapshot time is not finite");
-  if (!entries_.empty() && !(time > entries_.back().time)) {
+  const bool replace = !entries_.empty() && time == entries_.back().time;
+  if (!entries_.empty() && !replace && !(time > entries_.back().time)) {
     throw std::runtime_error(file + ": snapshot time " + std::to_string(time) +
                              " s does not follow the previous one (" +
                              std::to_string(entries_.back().time) + " s); times must increase");
@@ -97,7 +100,10 @@ void ParticleRecorder::write(double time, const cosim::link::ParticleData& parti
     }
   }
 
-  const std::string name = groupName(entries_.size());
+  // Group names count every snapshot ever written, so a replacement gets a fresh name and the
+  // old group is unlinked only after the new one is complete (a reader keeps the later of two
+  // groups with equal times, should a crash fall in between).
+  const std::string name = groupName(next_index_);
   {
     h5::Handle f = h5::openFile(file, H5F_ACC_RDWR, "to add a snapshot");
     h5::Handle snaps = h5::openGroup(f, "snapshots", file);
@@ -112,8 +118,16 @@ void ParticleRecorder::write(double time, const cosim::link::ParticleData& parti
       h5::writeDoubles(g, s.name, particles.get(s.name).data(), n, s.components == 0 ? 1 : s.components, file);
     }
     if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(file + ": flush failed (disk full?)");
+    if (replace) {
+      if (H5Ldelete(snaps, entries_.back().group.c_str(), H5P_DEFAULT) < 0) {
+        throw std::runtime_error(file + ": cannot replace snapshot " + entries_.back().group);
+      }
+      H5Fflush(f, H5F_SCOPE_GLOBAL);
+    }
   }  // closed here: what is on disk is complete
+  if (replace) entries_.pop_back();
   entries_.push_back({name, time, n});
+  ++next_index_;
   writeXdmf();
 }
 

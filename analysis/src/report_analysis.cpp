@@ -98,11 +98,7 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   } else {
     TimeSeries ts = readTimeSeries(tsPath);
     a.steps = ts.rows();
-    if (ts.has(column::wall_seconds)) {
-      double w = 0;
-      for (double x : ts.at(column::wall_seconds)) w += x;
-      a.wall_seconds = w;
-    }
+    if (ts.has(column::wall_seconds) && ts.rows() > 0) a.wall_seconds = ts.at(column::wall_seconds).back();
     try {
       a.mass_balance = massBalance(ts);
     } catch (const std::exception& e) {

@@ -132,9 +132,9 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
   if (a.fit.ok) {
     h << "<h2>Extrapolation</h2>\n";
     if (!a.verdict.well_mixed) {
-      h << "<p class=bad>Not extrapolated: the run is poorly mixed (see the verdict). The fitted trend "
-           "below is only what the short run shows.</p>\n";
-    }
+      h << "<p class=bad>Not extrapolated: the run is poorly mixed (see the verdict), so Eqs. 9-10 do not "
+           "describe it and a long-time CV from them would be wrong.</p>\n";
+    } else {
     h << "<table><tr><th>t [min]</th><th>mean [kg]</th><th>&sigma; [kg]</th><th>CV</th><th>CV with a2 &minus;"
       << g(100 * o.band, "%.0f") << " %</th><th>CV with a2 +" << g(100 * o.band, "%.0f") << " %</th></tr>";
     std::vector<double> times = o.predict_times;
@@ -145,6 +145,7 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
         << g(d.cv) << "</td><td>" << g((1 - o.band) * d.cv) << "</td><td>" << g((1 + o.band) * d.cv) << "</td></tr>";
     }
     h << "</table>\n";
+    }
     if (!a.prediction_check.points.empty()) {
       const auto& pc = a.prediction_check;
       h << "<p>Prediction checked against the " << pc.points.size() << " simulated snapshots after the fit window "
@@ -165,10 +166,16 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
       << "<tr><td class=l>precursor out</td><td>" << g(b.precursor_out, "%.6g") << "</td></tr>"
       << "<tr><td class=l>held in the gas (change)</td><td>" << g(b.held_change, "%.6g") << "</td></tr>"
       << "<tr><td class=l>expected coating (in &minus; out &minus; held change)</td><td>" << g(b.expected_coating, "%.6g") << "</td></tr>"
+      << (b.has_removed ? "<tr><td class=l>removed from the gas by the coating sink</td><td>" + g(b.removed, "%.6g") + "</td></tr>" : std::string())
       << "<tr><td class=l>coating on particles</td><td>" << g(b.obtained_coating, "%.6g") << "</td></tr>"
       << "<tr><td class=l>error (expected &minus; obtained)</td><td>" << g(b.error, "%.3g") << "</td></tr>"
       << "<tr><td class=l>error %</td><td>" << g(b.error_percent, "%.3g") << "</td></tr></table>\n"
       << "<p>Initial state: " << htmlEscape(b.initial_state) << ".</p>\n";
+    if (b.has_removed && b.pending != 0.0) {
+      h << "<p class=note>" << g(b.pending, "%.3g") << " kg removed from the gas had not been credited to the particles "
+        << "at the last row of timeseries.csv (the last step's coating is credited after it; the orchestrator should "
+        << "write a final row after its final credit).</p>\n";
+    }
   } else {
     h << "<p>" << htmlEscape(a.mass_balance_problem) << "</p>\n";
   }

@@ -231,6 +231,8 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
     mb["error"] = b.error;
     mb["error_percent"] = b.error_percent;
     mb["initial_state"] = b.initial_state;
+    mb["removed"] = b.has_removed ? Json(b.removed) : Json();
+    mb["pending"] = b.has_removed ? Json(b.pending) : Json();
   } else {
     j["mass_balance"] = nullptr;
     j["mass_balance_problem"] = a.mass_balance_problem;
@@ -313,6 +315,7 @@ void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
     row("precursor out", b.precursor_out, "kg");
     row("held in gas (change)", b.held_change, "kg");
     row("expected coating", b.expected_coating, "kg");
+    if (b.has_removed) row("removed from the gas by the coating sink", b.removed, "kg");
     row("coating on particles", b.obtained_coating, "kg");
     row("error", b.error, "kg");
     row("error %", b.error_percent, "%");

@@ -189,6 +189,67 @@ TEST(ParticleRecorder, SnapshotsSurviveACrashOfTheWriter) {
   EXPECT_TRUE(fs::exists(dir / kParticlesXdmf));
 }
 
+TEST(ParticleRecorder, SnapshotAtTheSameTimeReplacesThePreviousOne) {
+  // The orchestrator records the last step, credits the last coating, and records again.
+  const auto dir = freshDir("replace");
+  {
+    ParticleRecorder rec(dir, kFields);
+    rec.write(0.1, state({1, 2}, 0.1));
+    rec.write(0.2, state({1, 2}, 0.2));
+    auto final = state({1, 2, 3}, 0.2);
+    final.field(cosim::field::coating_mass)[0] = 42.0;
+    rec.write(0.2, final);
+    EXPECT_EQ(rec.snapshots(), 2u);
+  }
+  {
+    ParticleFile f(dir / kParticlesFile);
+    ASSERT_EQ(f.snapshots().size(), 2u);
+    EXPECT_EQ(f.snapshots()[1].count, 3u);
+    EXPECT_EQ(f.read(1, cosim::field::coating_mass)[0], 42.0);
+  }
+  const std::string x = slurp(dir / kParticlesXdmf);
+  EXPECT_EQ(x.find("/snapshots/000001/"), std::string::npos);  // the replaced group is gone
+  EXPECT_NE(x.find("/snapshots/000002/coating_mass"), std::string::npos);
+  {
+    ParticleRecorder rec(dir, kFields, ParticleRecorder::Mode::append);
+    rec.write(0.3, state({1}, 0.3));
+  }
+  ParticleFile g(dir / kParticlesFile);
+  ASSERT_EQ(g.snapshots().size(), 3u);
+  EXPECT_EQ(g.snapshots()[2].group, "000003");
+}
+
+TEST(ParticleRecorder, AReaderInAnotherProcessDoesNotBlockTheWriter) {
+  const auto dir = freshDir("reader");
+  ParticleRecorder rec(dir, kFields);
+  rec.write(0.1, state({1, 2}, 0.1));
+  int toChild[2], toParent[2];
+  ASSERT_EQ(::pipe(toChild), 0);
+  ASSERT_EQ(::pipe(toParent), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    // Holds the file open read-only (as ParaView would) until the parent has written.
+    int code = 0;
+    {
+      ParticleFile f(dir / kParticlesFile);
+      char c = 'r';
+      if (::write(toParent[1], &c, 1) != 1) code = 1;
+      if (::read(toChild[0], &c, 1) != 1) code = 1;
+    }
+    ::_exit(code);
+  }
+  char c = 0;
+  ASSERT_EQ(::read(toParent[0], &c, 1), 1);
+  EXPECT_NO_THROW(rec.write(0.2, state({1, 2, 3}, 0.2)));
+  ASSERT_EQ(::write(toChild[1], &c, 1), 1);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  ParticleFile f(dir / kParticlesFile);
+  EXPECT_EQ(f.snapshots().size(), 2u);
+}
+
 TEST(ParticleRecorder, AppendContinuesNumbering) {
   const auto dir = freshDir("append");
   { ParticleRecorder(dir, kFields).write(0.1, state({1}, 0.1)); }
@@ -216,8 +277,8 @@ TEST(ParticleRecorder, ClearErrors) {
   }
   rec.write(0.1, state({1}, 0.1));
   try {
-    rec.write(0.1, state({1}, 0.1));
-    FAIL() << "a repeated time must be refused";
+    rec.write(0.05, state({1}, 0.05));
+    FAIL() << "a time going back must be refused";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("times must increase"), std::string::npos) << e.what();
   }

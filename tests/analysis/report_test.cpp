@@ -24,7 +24,9 @@ std::string slurp(const fs::path& p) {
 }
 
 // A synthetic run folder as `cosim run` writes it: particles.h5 (+ .xmf) every 0.5 s for 20 s,
-// and a time series per 0.1 s step whose precursor balance closes exactly by construction.
+// and a time series with one row per 0.1 s coupling step in the orchestrator's convention
+// (cumulative amounts, the coating removed in a step credited one step later, a final row after
+// the final credit), whose precursor balance closes exactly by construction.
 fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t seed) {
   const fs::path dir = fs::temp_directory_path() / ("cosim_report_" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
@@ -34,10 +36,10 @@ fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t s
   const double a1 = 4e-9, a2 = 1e-9, dt = 0.5;
   const auto masses = test::trackedCoating(rng, n, a1, a2, dt, 40, uncoated_share);
   ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass});
-  TimeSeriesRecorder ts(dir / kTimeSeriesFile, {column::precursor_in, column::precursor_out, column::precursor_held,
-                                                column::coated_mass, column::particle_count, column::wall_seconds});
-  ts.write(0.0, {0.0, 0.0, 0.0, 0.0, static_cast<double>(n), 0.0});
-  double held = 0, coatedPrev = 0;
+  TimeSeriesRecorder ts(dir / kTimeSeriesFile,
+                        {column::particle_count, column::wall_seconds, column::precursor_in, column::precursor_out,
+                         column::precursor_held, column::precursor_removed, column::coated_mass});
+  double in = 0, out = 0, held = 0, removed = 0, credited = 0, pending = 0, wall = 0, coatedPrev = 0;
   for (std::size_t s = 0; s < masses.size(); ++s) {
     const double t = dt * static_cast<double>(s + 1);
     cosim::link::ParticleData p;
@@ -49,16 +51,24 @@ fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t s
     rec.write(t, p);
     double coated = 0;
     for (double m : masses[s]) coated += m;
-    // in = out + held change + coating gained over the interval, spread over 5 steps.
     const double gained = coated - coatedPrev;
     for (int k = 1; k <= 5; ++k) {
-      const double newHeld = 1e-7 * (1.0 - std::exp(-(t - dt + 0.1 * k)));
-      const double in = 2e-6, out = in - (newHeld - held) - gained / 5.0;
+      const double step = t - dt + 0.1 * k;
+      const double newHeld = 1e-7 * (1.0 - std::exp(-step));
+      const double stepIn = 2e-6, stepRemoved = gained / 5.0;
+      credited += pending;  // last step's removal credited now
+      pending = stepRemoved;
+      in += stepIn;
+      out += stepIn - (newHeld - held) - stepRemoved;
+      removed += stepRemoved;
       held = newHeld;
-      ts.write(t - dt + 0.1 * k, {in, out, held, coatedPrev + gained * k / 5.0, static_cast<double>(n), 0.02});
+      wall += 0.02;
+      ts.write(step, {static_cast<double>(n), wall, in, out, held, removed, credited});
     }
     coatedPrev = coated;
   }
+  credited += pending;
+  ts.write(dt * 40, {static_cast<double>(n), wall, in, out, held, removed, credited});
   return dir;
 }
 
@@ -95,6 +105,7 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   // Closed by construction: only round-off remains.
   EXPECT_LT(std::abs(a.mass_balance->error_percent), 1e-8);
   EXPECT_NEAR(a.fit.a1, 4e-9, 0.02 * 4e-9);
+  EXPECT_NEAR(a.mass_balance->pending, 0.0, 1e-12 * a.mass_balance->removed);
   EXPECT_EQ(a.steps, 201u);
   EXPECT_NEAR(a.wall_seconds, 200 * 0.02, 1e-9);
 

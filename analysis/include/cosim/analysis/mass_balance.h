@@ -2,9 +2,11 @@
 //   expected coating = in - out - (held_end - held_start)
 //   error            = expected - obtained       (obtained = coated_end - coated_start)
 //   error %          = 100 error / expected
-// From a time series (time_series.h columns): in and out are summed over all rows. If the
-// first row has zero in and out it is the initial state and gives held_start and coated_start;
-// otherwise the run is taken to start with no precursor in the gas and uncoated particles.
+// From a time series (time_series.h, cumulative columns): in, out, held and coated are read
+// from the last row. If the first row has in = out = 0 it is the initial state and gives
+// held_start and coated_start; otherwise the run is taken to start with no precursor in the gas
+// and no coating credited. With a precursor_removed column the table also shows what the fluid's
+// sink removed, and `pending` what was removed but not yet credited at the last row.
 #pragma once
 
 #include <string>
@@ -23,6 +25,9 @@ struct MassBalance {
   double obtained_coating = 0; // [kg]
   double error = 0;            // [kg] expected - obtained
   double error_percent = 0;    // [%]; NaN when expected = 0
+  bool has_removed = false;    // the time series has precursor_removed
+  double removed = 0;          // [kg] taken from the gas by the sink (fluid side)
+  double pending = 0;          // [kg] removed - obtained: not yet credited at the last row
   std::string initial_state;   // where held_start/coated_start came from, in words
 };
 

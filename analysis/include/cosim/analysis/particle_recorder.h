@@ -38,7 +38,9 @@ class ParticleRecorder {
                    Mode mode = Mode::create);
 
   // Append one snapshot. `particles` must hold every recorded field with ids.size() rows.
-  // Times must increase. Throws std::runtime_error with the field / time at fault.
+  // Times must increase; a snapshot at the same time as the previous one replaces it (e.g. the
+  // final state after the last coating credit). Throws std::runtime_error with the field / time
+  // at fault.
   void write(double time, const cosim::link::ParticleData& particles);
 
   std::size_t snapshots() const { return entries_.size(); }
@@ -62,6 +64,7 @@ class ParticleRecorder {
   std::vector<std::string> fields_;
   std::vector<FieldShape> shapes_;  // components known after the first snapshot with particles
   std::vector<Entry> entries_;
+  std::size_t next_index_ = 0;  // name of the next snapshot group
 };
 
 }  // namespace cosim::analysis

@@ -60,7 +60,7 @@ struct RunAnalysis {
   PredictionCheck prediction_check;
   std::optional<MassBalance> mass_balance;
   std::string mass_balance_problem;      // why there is no mass balance
-  double wall_seconds = std::numeric_limits<double>::quiet_NaN();  // sum of the wall_seconds column
+  double wall_seconds = std::numeric_limits<double>::quiet_NaN();  // last wall_seconds (cumulative)
   std::size_t steps = 0;                 // rows of the time series
 };
 

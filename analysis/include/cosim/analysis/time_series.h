@@ -2,13 +2,18 @@
 // crash keeps every finished step. First column is always "time" [s]; the others are named by
 // the caller. readTimeSeries() loads such a file back for the report.
 //
-// Columns the report's mass balance uses (write them with these names; see docs/analysis.md):
-//   precursor_in      [kg] precursor through the inlets during the step
-//   precursor_out     [kg] precursor through the outlets during the step
-//   precursor_held    [kg] precursor in the gas at the end of the step
-//   coated_mass       [kg] coating on all particles, including what the step removed from the
-//                          gas (i.e. after crediting it), so in - out - held change = coated change
-// The first row may be the initial state (time = start, zero fluxes); see mass_balance.h.
+// Columns the report uses (write them with these names; see docs/analysis.md). Amounts are
+// CUMULATIVE since the start of the run, so a row is meaningful on its own:
+//   precursor_in       [kg] precursor through the inlets so far
+//   precursor_out      [kg] precursor through the outlets so far
+//   precursor_held     [kg] precursor in the gas now
+//   precursor_removed  [kg] precursor taken from the gas by the coating sink so far
+//   coated_mass        [kg] coating credited to the particles so far
+//   wall_seconds       [s]  wall-clock time since the run started
+// Mass balance (mass_balance.h): in - out - (held - held at start) = coated_mass. A row with
+// in = out = 0 first is read as the initial state. Because the coating removed in step k is
+// credited to the particles in step k+1, the orchestrator writes one more row after its final
+// credit (same time as the last step) so the last row holds all of it.
 #pragma once
 
 #include <cstdio>
