@@ -159,7 +159,7 @@ TEST(Engine, CoatingMassByIdAndThroughRestart) {
       "fix m2 all property/global poissonsRatio peratomtype 0.3\n"
       "fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3\n"
       "fix m4 all property/global coefficientFriction peratomtypepair 1 0.52\n"
-      "pair_style gran model hertz tangential history\npair_coeff * *\ntimestep 2e-5\n"
+      "pair_style gran model hertz tangential history\npair_coeff * *\ntimestep 3e-5\n"
       "fix integr all nve/sphere\n";
   Engine e(MPI_COMM_WORLD, dir.path());
   e.runScript(dir.path() / "in.restart");

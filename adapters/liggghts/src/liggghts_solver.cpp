@@ -90,8 +90,6 @@ void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData
         deleted_coating += c;
       }
   }
-  // coating increments of this command arrived on particles that may have left since
-  for (int k = 0; k < cmd.terms().ids_size(); ++k) (void)k;
   last_coating_ = std::move(now);
   reported_once_ = true;
 

@@ -1,0 +1,239 @@
+// cosim-liggghts as a process speaking the protocol, with 1 and 2 MPI ranks: a settling bed,
+// coating increments by id, checkpoints, and errors that must reach the orchestrator.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "adapter_harness.h"
+#include "cosim/link/fields.h"
+#include "test_dir.h"
+
+using cosim::link::ParticleData;
+using cosim::liggghts::test::AdapterRun;
+using cosim::liggghts::test::dataDir;
+using cosim::liggghts::test::ScratchDir;
+namespace field = cosim::field;
+
+namespace {
+
+const std::vector<std::string> kState = {field::position, field::velocity, field::radius,
+                                         field::coating_mass, field::type};
+const std::vector<std::string> kForcing = {field::drag_coefficient, field::fluid_velocity,
+                                           field::coating_increment};
+
+std::filesystem::path participantDir(const std::filesystem::path& base, const std::string& name,
+                                     const std::string& script) {
+  const auto dir = base / name;
+  std::filesystem::create_directories(dir);
+  std::filesystem::copy_file(dataDir() / script, dir / script);
+  return dir;
+}
+
+ParticleData stateOf(const cosim::wire::Envelope& reply) {
+  if (reply.has_error()) throw std::runtime_error("adapter error: " + reply.error().message());
+  if (!reply.has_advanced()) throw std::runtime_error("expected Advanced");
+  return ParticleData::fromWire(reply.advanced().state());
+}
+
+struct Bed {
+  ParticleData state;
+  std::set<std::int64_t> inserted, deleted;
+  double max_overlap = 0;   // largest overlap between two particles or a particle and a wall [m]
+  double max_speed = 0;
+  double bed_height = 0;    // twice the mean particle height [m]
+};
+
+// 1000 grains of 3 mm poured into a 40 mm cylinder (tests/liggghts/data/in.settling_bed),
+// settled for 0.4 s: 267 coupling intervals of 50 DEM steps of 3e-5 s.
+Bed settle(const std::filesystem::path& base, int ranks) {
+  const auto dir = participantDir(base, "particles-np" + std::to_string(ranks), "in.settling_bed");
+  AdapterRun run(dir, ranks);
+  run.handshake("script: in.settling_bed\n", 1.5e-3, 50, kState, kForcing);
+  Bed bed;
+  ParticleData s = stateOf(run.advance(0, 0, ParticleData{}));
+  for (int k = 0; k < 267; ++k) {
+    auto reply = run.advance(1.5e-3, 50, ParticleData{});
+    s = stateOf(reply);
+    for (auto id : reply.advanced().inserted_ids())
+      if (!bed.inserted.insert(id).second) throw std::runtime_error("id inserted twice");
+    for (auto id : reply.advanced().deleted_ids()) bed.deleted.insert(id);
+  }
+  EXPECT_TRUE(run.shutdown().has_goodbye());
+  EXPECT_EQ(run.waitExit(), 0);
+  bed.state = s;
+  const auto& x = s.get(field::position);
+  const auto& v = s.get(field::velocity);
+  const auto& r = s.get(field::radius);
+  const std::size_t n = s.size();
+  double zsum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    zsum += x[3 * i + 2];
+    bed.max_speed = std::max(bed.max_speed, std::hypot(v[3 * i], v[3 * i + 1], v[3 * i + 2]));
+    bed.max_overlap = std::max(bed.max_overlap, r[i] - x[3 * i + 2]);  // floor z = 0
+    bed.max_overlap = std::max(bed.max_overlap, std::hypot(x[3 * i], x[3 * i + 1]) + r[i] - 0.02);
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const double d = std::hypot(x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1],
+                                  x[3 * i + 2] - x[3 * j + 2]);
+      bed.max_overlap = std::max(bed.max_overlap, r[i] + r[j] - d);
+    }
+  }
+  bed.bed_height = n ? 2 * zsum / static_cast<double>(n) : 0;
+  return bed;
+}
+
+}  // namespace
+
+// Issue 4: 1000 particles inserted in a cylinder settle into a bed: none lost, none overlapping
+// more than 1 % of a diameter at rest, same count and same bed height (within 1 %) with 1 and 2
+// MPI ranks.
+TEST(LiggghtsAdapter, SettlingBedSameWithOneAndTwoRanks) {
+  ScratchDir dir;
+  std::map<int, Bed> beds;
+  for (int ranks : {1, 2}) {
+    beds[ranks] = settle(dir.path(), ranks);
+    const Bed& b = beds[ranks];
+    EXPECT_EQ(b.state.size(), 1000u) << ranks << " rank(s)";
+    EXPECT_EQ(b.inserted.size(), 1000u) << ranks << " rank(s): every particle reported inserted once";
+    EXPECT_TRUE(b.deleted.empty()) << ranks << " rank(s)";
+    EXPECT_LT(b.max_overlap, 0.01 * 0.003) << ranks << " rank(s)";
+    EXPECT_LT(b.max_speed, 0.01) << ranks << " rank(s): bed not at rest";
+    std::printf("%d rank(s): %zu particles, bed height %.5f m, max overlap %.3g m, max speed %.3g m/s\n",
+                ranks, b.state.size(), b.bed_height, b.max_overlap, b.max_speed);
+  }
+  EXPECT_NEAR(beds[2].bed_height, beds[1].bed_height, 0.01 * beds[1].bed_height);
+}
+
+// Issue 4: coating increments sent by the orchestrator arrive on the right particles by id,
+// while the particles fall through the rank boundary (2 ranks), and accumulate.
+class CoatingById : public ::testing::TestWithParam<int> {};
+
+TEST_P(CoatingById, IncrementsLandOnTheirParticles) {
+  ScratchDir dir;
+  const int ranks = GetParam();
+  const auto pdir = participantDir(dir.path(), "particles", "in.settling_bed");
+  AdapterRun run(pdir, ranks);
+  run.handshake("script: in.settling_bed\n", 1.5e-3, 50, kState, kForcing);
+  ParticleData s = stateOf(run.advance(0, 0, ParticleData{}));
+  s = stateOf(run.advance(1.5e-3, 50, ParticleData{}));  // insertion
+  ASSERT_EQ(s.size(), 1000u);
+  std::map<std::int64_t, double> expected;
+  // the script splits the box at mid-height (z = 0.0345 m) between 2 ranks: count crossings
+  std::map<std::int64_t, bool> started_above;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    started_above[s.ids[i]] = s.get(field::position)[3 * i + 2] > 0.0345;
+  for (int k = 0; k < 100; ++k) {
+    ParticleData terms;
+    // every other particle, an amount that depends on id and step
+    for (auto id : s.ids)
+      if ((id + k) % 2 == 0) terms.ids.push_back(id);
+    auto& inc = terms.field(field::coating_increment);  // zero-filled, one per id
+    for (std::size_t j = 0; j < terms.size(); ++j) {
+      inc[j] = 1e-9 * static_cast<double>(terms.ids[j]) + 1e-12 * k;
+      expected[terms.ids[j]] += inc[j];
+    }
+    s = stateOf(run.advance(1.5e-3, 50, terms));
+  }
+  const auto& c = s.get(field::coating_mass);
+  ASSERT_EQ(s.size(), 1000u);
+  int crossed = 0;
+  for (std::size_t i = 0; i < s.size(); ++i)
+    crossed += started_above[s.ids[i]] && s.get(field::position)[3 * i + 2] < 0.0345;
+  EXPECT_GT(crossed, 100) << "too few particles changed sub-domain to test migration";
+  for (std::size_t i = 0; i < s.size(); ++i)
+    ASSERT_NEAR(c[i], expected[s.ids[i]], 1e-15 * expected[s.ids[i]]) << "id " << s.ids[i];
+  // Advance(dt = 0) only credits and reports.
+  ParticleData terms;
+  terms.ids = {s.ids.front()};
+  terms.field(field::coating_increment) = {1e-6};
+  const ParticleData s2 = stateOf(run.advance(0, 0, terms));
+  EXPECT_NEAR(s2.get(field::coating_mass)[0], expected[s.ids.front()] + 1e-6, 1e-15);
+  EXPECT_EQ(s2.get(field::position), s.get(field::position));
+
+  // Checkpoint: a restart file written where asked.
+  auto cp = run.checkpoint((dir.path() / "checkpoint").string());
+  ASSERT_TRUE(cp.has_checkpoint_written()) << (cp.has_error() ? cp.error().message() : "");
+  ASSERT_EQ(cp.checkpoint_written().files_size(), 1);
+  EXPECT_TRUE(std::filesystem::exists(cp.checkpoint_written().files(0)));
+  EXPECT_TRUE(run.shutdown().has_goodbye());
+  EXPECT_EQ(run.waitExit(), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Ranks, CoatingById, ::testing::Values(1, 2),
+                         [](const auto& info) { return std::to_string(info.param) + "rank"; });
+
+// Issue 4: a malformed input script fails with LIGGGHTS' own message surfaced to the user
+// (as wire::Error), and the process ends (non-zero) instead of hanging.
+class MalformedScript : public ::testing::TestWithParam<int> {};
+
+TEST_P(MalformedScript, LiggghtsMessageReachesOrchestrator) {
+  ScratchDir dir;
+  const auto pdir = participantDir(dir.path(), "particles", "in.malformed");
+  AdapterRun run(pdir, GetParam());
+  run.handshake("script: in.malformed\n", 1e-3, 50, kState, kForcing);
+  const auto reply = run.receive(60);
+  ASSERT_TRUE(reply.has_error());
+  const std::string msg = reply.error().message();
+  EXPECT_NE(msg.find("Invalid fix style"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("in.malformed, line 7"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("gravity_typo"), std::string::npos) << msg;
+  const int rc = run.waitExit(30);
+  EXPECT_NE(rc, 0);
+  EXPECT_NE(rc, -1) << "adapter still running 30 s after the error";
+}
+
+INSTANTIATE_TEST_SUITE_P(Ranks, MalformedScript, ::testing::Values(1, 2),
+                         [](const auto& info) { return std::to_string(info.param) + "rank"; });
+
+// A DEM step above 0.3 Rayleigh times is refused with the dt that would work.
+TEST(LiggghtsAdapter, UnstableTimestepIsRefusedWithAWorkingValue) {
+  ScratchDir dir;
+  const auto pdir = dir.path() / "particles";
+  std::filesystem::create_directories(pdir);
+  {
+    std::ifstream in(dataDir() / "in.single_particle");
+    std::ofstream out(pdir / "in.single_particle");
+    std::string line;
+    while (std::getline(in, line)) out << (line == "timestep 1e-6" ? "timestep 5e-5" : line) << "\n";
+  }
+  AdapterRun run(pdir, 1);
+  // 50 steps of 5e-5 s = 2.5e-3 s coupling interval. t_R = 7.68e-5 s: dt = 0.65 t_R.
+  run.handshake("script: in.single_particle\n", 2.5e-3, 50, kState, kForcing);
+  const auto reply = run.receive(60);
+  ASSERT_TRUE(reply.has_error());
+  const std::string msg = reply.error().message();
+  EXPECT_NE(msg.find("0.651 x Rayleigh time"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("timestep 1.54e-05"), std::string::npos) << msg;  // 0.2 t_R
+  EXPECT_NE(run.waitExit(30), 0);
+}
+
+// The script's timestep must equal coupling dt / dem_steps.
+TEST(LiggghtsAdapter, TimestepMismatchNamesBothValues) {
+  ScratchDir dir;
+  const auto pdir = participantDir(dir.path(), "particles", "in.single_particle");
+  AdapterRun run(pdir, 1);
+  run.handshake("script: in.single_particle\n", 1e-4, 50, kState, kForcing);  // 2e-6 per step
+  const auto reply = run.receive(60);
+  ASSERT_TRUE(reply.has_error());
+  const std::string msg = reply.error().message();
+  EXPECT_NE(msg.find("timestep 1e-06"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("timestep 2e-06"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("coupling.dem_steps: 100"), std::string::npos) << msg;
+  EXPECT_NE(run.waitExit(30), 0);
+}
+
+// Options: an unknown key is refused by name.
+TEST(LiggghtsAdapter, UnknownOptionIsRefused) {
+  ScratchDir dir;
+  const auto pdir = participantDir(dir.path(), "particles", "in.single_particle");
+  AdapterRun run(pdir, 1);
+  run.handshake("script: in.single_particle\nimpact_sped: 3\n", 5e-5, 50, kState, kForcing);
+  const auto reply = run.receive(60);
+  ASSERT_TRUE(reply.has_error());
+  EXPECT_NE(reply.error().message().find("options.impact_sped: unknown option"), std::string::npos)
+      << reply.error().message();
+  EXPECT_NE(run.waitExit(30), 0);
+}
