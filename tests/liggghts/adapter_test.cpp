@@ -237,3 +237,50 @@ TEST(LiggghtsAdapter, UnknownOptionIsRefused) {
       << reply.error().message();
   EXPECT_NE(run.waitExit(30), 0);
 }
+
+// Issue 4: particles inserted (repeated insertion) and deleted (falling out of an open bottom)
+// are reported by id exactly once each; the ledger inserted - deleted always equals the state,
+// and the coating credited to particles that left is reported as deleted_coating_mass.
+class InsertDelete : public ::testing::TestWithParam<int> {};
+
+TEST_P(InsertDelete, LedgerMatchesState) {
+  ScratchDir dir;
+  const auto pdir = participantDir(dir.path(), "particles", "in.outlet");
+  AdapterRun run(pdir, GetParam());
+  run.handshake("script: in.outlet\n", 1.5e-3, 50, kState, kForcing);
+  ParticleData s = stateOf(run.advance(0, 0, ParticleData{}));
+  std::set<std::int64_t> alive(s.ids.begin(), s.ids.end()), ever = alive;
+  std::map<std::int64_t, double> credited;
+  double credited_to_deleted = 0, reported_deleted = 0;
+  std::size_t deletions = 0;
+  for (int k = 0; k < 120; ++k) {  // 0.18 s: 3 insertions, every batch falls out
+    ParticleData terms;
+    terms.ids.assign(alive.begin(), alive.end());
+    auto& inc = terms.field(field::coating_increment);
+    for (std::size_t j = 0; j < terms.size(); ++j) {
+      inc[j] = 1e-9;
+      credited[terms.ids[j]] += 1e-9;
+    }
+    const auto reply = run.advance(1.5e-3, 50, terms);
+    s = stateOf(reply);
+    for (auto id : reply.advanced().inserted_ids()) {
+      ASSERT_TRUE(ever.insert(id).second) << "id " << id << " inserted twice";
+      alive.insert(id);
+    }
+    for (auto id : reply.advanced().deleted_ids()) {
+      ASSERT_EQ(alive.erase(id), 1u) << "deleted id " << id << " was not alive";
+      credited_to_deleted += credited[id];
+      ++deletions;
+    }
+    reported_deleted += reply.advanced().scalars().at("deleted_coating_mass");
+    ASSERT_EQ(std::set<std::int64_t>(s.ids.begin(), s.ids.end()), alive) << "step " << k;
+  }
+  EXPECT_GE(ever.size(), 80u) << "expected at least two insertions of 40";
+  EXPECT_GE(deletions, 40u) << "expected at least one batch to leave";
+  EXPECT_NEAR(reported_deleted, credited_to_deleted, 1e-12 * credited_to_deleted);
+  EXPECT_TRUE(run.shutdown().has_goodbye());
+  EXPECT_EQ(run.waitExit(), 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Ranks, InsertDelete, ::testing::Values(1, 2),
+                         [](const auto& info) { return std::to_string(info.param) + "rank"; });

@@ -62,10 +62,18 @@ void LiggghtsSolver::configure(const cosim::wire::Welcome& welcome) {
   collective([&] { doConfigure(welcome); });
 }
 
-void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData&,
+void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData& terms,
                              cosim::wire::Advanced& out, ParticleData& state) {
   broadcast(kAdvance, cmd.SerializeAsString());
   collective([&] { doAdvance(cmd); });
+  // the coating credited now belongs to a particle even if it leaves during this interval
+  if (terms.has(field::coating_increment)) {
+    const auto& inc = terms.get(field::coating_increment);
+    for (std::size_t k = 0; k < terms.size(); ++k) {
+      auto it = last_coating_.find(terms.ids[k]);
+      if (it != last_coating_.end()) it->second += inc[k];
+    }
+  }
 
   // rank 0: the reply
   const State& s = last_state_;
