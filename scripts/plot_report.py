@@ -242,6 +242,32 @@ def plot_mass_balance(r, folder):
     save(fig, folder, "mass_balance.png")
 
 
+def plot_window_study(r, folder):
+    w = r.get("window_study")
+    if not w or not w["points"]:
+        return
+    pts = [p for p in w["points"] if p["ok"]]
+    if len(pts) < 2:
+        return
+    wall = num([p["wall_seconds"] for p in pts])
+    use_wall = np.isfinite(wall).all() and wall[-1] > 0
+    x = wall if use_wall else num([p["t_end"] for p in pts])
+    xlabel = "wall time to simulate the window [s]" if use_wall else "end of the fit window [s]"
+    fig, axes = plt.subplots(1, 2, figsize=(11, 3.6))
+    axes[0].plot(x, num([p["cv_horizon"] for p in pts]), "bo-", ms=4)
+    axes[0].set_ylabel("extrapolated CV at %.3g min" % (w["horizon"] / 60.0))
+    err = num([p["cv_run_end_error"] for p in pts])
+    ok = np.isfinite(err)
+    if ok.any():
+        axes[1].plot(x[ok], 100 * np.abs(err[ok]), "ro-", ms=4)
+        axes[1].set_yscale("log")
+    axes[1].set_ylabel("|error| of the CV predicted at t = %.3g s [%%]" % w["run_end"])
+    for ax in axes:
+        ax.set_xlabel(xlabel)
+        ax.grid(alpha=0.3, which="both")
+    save(fig, folder, "window_study.png")
+
+
 def run_report(folder):
     with open(os.path.join(folder, "report.json")) as fh:
         r = json.load(fh)
@@ -252,6 +278,7 @@ def run_report(folder):
     if r["verdict"]["well_mixed"]:  # no extrapolation figures for a poorly mixed run
         plot_cv_prediction(r, folder)
         plot_distributions(r, folder)
+    plot_window_study(r, folder)
     plot_mass_balance(r, folder)
 
 

@@ -93,10 +93,13 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   }
 
   const auto tsPath = run / kTimeSeriesFile;
+  const double horizon = o.predict_times.empty() ? o.predict_until : o.predict_times.back();
   if (!std::filesystem::exists(tsPath)) {
     a.mass_balance_problem = tsPath.string() + " is missing: no mass balance";
+    a.window_study = studyFitWindow(a.snapshots, t0, o.coating_start, horizon);
   } else {
     TimeSeries ts = readTimeSeries(tsPath);
+    a.window_study = studyFitWindow(a.snapshots, t0, o.coating_start, horizon, &ts);
     a.steps = ts.rows();
     if (ts.has(column::wall_seconds) && ts.rows() > 0) a.wall_seconds = ts.at(column::wall_seconds).back();
     try {

@@ -53,6 +53,8 @@ const Figure kRunFigures[] = {
     {"cv_prediction.png", "Predicted CV = (a2/a1)/sqrt(t) to the horizon, band for the stated error in a2; "
                           "simulated CV as dots (paper Fig. 11)."},
     {"distributions.png", "Reconstructed coating distributions N(a1 t, a2^2 t) (paper Fig. 12)."},
+    {"window_study.png", "Error against run time: extrapolated CV and the error of the prediction at the end of the "
+                         "run, for fit windows of growing length, against the wall time needed to simulate them."},
     {"mass_balance.png", "Cumulative precursor in, out, held in the gas and coated on particles (paper Fig. 3)."},
 };
 
@@ -156,6 +158,28 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
       h << "<p>The run ends with the fit window: no later simulated time to check the prediction against "
            "(run longer than the window, or fit a shorter window, to get the check).</p>\n";
     }
+  }
+
+  if (!a.window_study.points.empty()) {
+    const auto& w = a.window_study;
+    h << "<h2>Error against run time</h2>\n<p>The fit repeated on growing windows: how the extrapolated CV at "
+      << g(w.horizon / 60.0) << " min settles, and how well each shorter window predicts the simulated CV at the "
+      << "end of the run (t = " << g(w.run_end) << " s, CV = " << g(w.simulated_cv_run_end) << "). Wall time is "
+      << "what the simulation needed to reach the end of the window.</p>\n<table><tr><th>window end [s]</th>"
+      << "<th>wall time [s]</th><th>a1 [kg/s]</th><th>a2 [kg/s<sup>0.5</sup>]</th><th>CV at "
+      << g(w.horizon / 60.0) << " min</th><th>error of the predicted CV at the run end</th></tr>";
+    for (const auto& p : w.points) {
+      h << "<tr><td>" << g(p.t_end) << "</td><td>" << g(p.wall_seconds) << "</td>";
+      if (p.ok) {
+        h << "<td>" << g(p.a1) << " &plusmn; " << g(p.a1_se, "%.2g") << "</td><td>" << g(p.a2) << " &plusmn; "
+          << g(p.a2_se, "%.2g") << "</td><td>" << g(p.cv_horizon) << "</td><td>" << pct(p.cv_run_end_error) << "</td>";
+      } else {
+        h << "<td colspan=4>no fit (too few snapshots)</td>";
+      }
+      h << "</tr>";
+    }
+    h << "</table>\n";
+    if (!a.verdict.well_mixed) h << "<p>The run is poorly mixed: these numbers only show how the fit drifts.</p>\n";
   }
 
   h << "<h2>Mass balance (paper Table 3)</h2>\n";

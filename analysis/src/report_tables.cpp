@@ -216,6 +216,27 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   pc["max_abs_std_error"] = a.prediction_check.max_abs_std_error;
   pc["max_abs_cv_error"] = a.prediction_check.max_abs_cv_error;
 
+  Json& ws = j["window_study"] = Json::object();
+  ws["horizon"] = a.window_study.horizon;
+  ws["run_end"] = a.window_study.run_end;
+  ws["simulated_cv_run_end"] = a.window_study.simulated_cv_run_end;
+  Json wpts = Json::array();
+  for (const auto& p : a.window_study.points) {
+    Json x = Json::object();
+    x["t_end"] = p.t_end;
+    x["wall_seconds"] = p.wall_seconds;
+    x["ok"] = p.ok;
+    x["a1"] = p.a1;
+    x["a1_se"] = p.a1_se;
+    x["a2"] = p.a2;
+    x["a2_se"] = p.a2_se;
+    x["cv_horizon"] = p.cv_horizon;
+    x["cv_run_end"] = p.cv_run_end;
+    x["cv_run_end_error"] = p.cv_run_end_error;
+    wpts.push(x);
+  }
+  ws["points"] = wpts;
+
   if (a.mass_balance) {
     const MassBalance& b = *a.mass_balance;
     Json& mb = j["mass_balance"] = Json::object();
@@ -301,6 +322,16 @@ void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
     for (const auto& p : a.prediction_check.points) {
       c << p.time << p.simulated_mean << p.predicted_mean << p.mean_error << p.simulated_std << p.predicted_std
         << p.std_error << p.simulated_cv << p.predicted_cv << p.cv_error;
+      c.end();
+    }
+  }
+  {
+    Csv c(dir / "window_study.csv",
+          "fit_end_s,wall_seconds,a1_kg_per_s,a1_se,a2_kg_per_sqrt_s,a2_se,cv_at_horizon,cv_at_run_end,"
+          "cv_error_at_run_end");
+    for (const auto& p : a.window_study.points) {
+      c << p.t_end << p.wall_seconds << p.a1 << p.a1_se << p.a2 << p.a2_se << p.cv_horizon << p.cv_run_end
+        << p.cv_run_end_error;
       c.end();
     }
   }

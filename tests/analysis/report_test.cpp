@@ -89,7 +89,7 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   const fs::path out = run / "report";
   for (const char* f : {"report.json", "report.html", "statistics.csv", "histograms.csv", "fit.csv",
                         "fit_residuals.csv", "cv_prediction.csv", "distributions.csv", "prediction_check.csv",
-                        "mass_balance.csv"}) {
+                        "window_study.csv", "mass_balance.csv"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
   const std::string json = slurp(out / "report.json");
@@ -97,6 +97,7 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   const std::string html = slurp(out / "report.html");
   EXPECT_NE(html.find("Well mixed: extrapolation allowed."), std::string::npos);
   EXPECT_NE(html.find("Mass balance (paper Table 3)"), std::string::npos);
+  EXPECT_NE(html.find("Error against run time"), std::string::npos);
   EXPECT_NE(html.find("Prediction checked against the 20 simulated snapshots"), std::string::npos);
   EXPECT_NE(log.str().find("mass balance error"), std::string::npos) << log.str();
 
@@ -111,7 +112,7 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
 
   if (!matplotlibAvailable()) GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
   for (const char* png : {"histograms.png", "statistics_time.png", "cv_mean.png", "fit.png", "cv_prediction.png",
-                          "distributions.png", "mass_balance.png"}) {
+                          "distributions.png", "window_study.png", "mass_balance.png"}) {
     ASSERT_TRUE(fs::exists(out / png)) << png << "\n" << slurp(out / "plot_report.log");
     EXPECT_GT(fs::file_size(out / png), 1000u) << png;
     EXPECT_NE(html.find(std::string("src=\"") + png + "\""), std::string::npos) << png;

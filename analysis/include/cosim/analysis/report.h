@@ -20,6 +20,7 @@
 #include "cosim/analysis/json.h"
 #include "cosim/analysis/mass_balance.h"
 #include "cosim/analysis/mixing_verdict.h"
+#include "cosim/analysis/window_study.h"
 
 namespace cosim::analysis {
 
@@ -58,6 +59,7 @@ struct RunAnalysis {
   CvPrediction cv_prediction;
   std::vector<PredictedDistribution> distributions;
   PredictionCheck prediction_check;
+  WindowStudy window_study;              // extrapolation against run length / wall time
   std::optional<MassBalance> mass_balance;
   std::string mass_balance_problem;      // why there is no mass balance
   double wall_seconds = std::numeric_limits<double>::quiet_NaN();  // last wall_seconds (cumulative)
