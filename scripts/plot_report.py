@@ -260,7 +260,7 @@ def plot_window_study(r, folder):
     ok = np.isfinite(err)
     if ok.any():
         axes[1].plot(x[ok], 100 * np.abs(err[ok]), "ro-", ms=4)
-        axes[1].set_yscale("log")
+        axes[1].set_ylim(bottom=0)
     axes[1].set_ylabel("|error| of the CV predicted at t = %.3g s [%%]" % w["run_end"])
     for ax in axes:
         ax.set_xlabel(xlabel)

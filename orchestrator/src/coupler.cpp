@@ -417,6 +417,15 @@ void Coupler::writeSummary(const RunResult& r, const std::string& status) {
   extra["dem_steps"] = static_cast<double>(sc_.dem_steps);
   extra["cg"] = sc_.constants.cg;
   extra["coating"] = plan_.coating;
+  analysis::Json obs = analysis::Json::object();
+  for (const auto& o : observables_) {
+    analysis::Json j = analysis::Json::object();
+    j["value"] = o.value;
+    if (o.reference) j["reference"] = *o.reference;
+    if (o.relative_error) j["relative_error"] = *o.relative_error;
+    obs[o.name] = j;
+  }
+  extra["observables"] = obs;
   s.extra = extra;
   try {
     analysis::writeSummary(folder_ / analysis::kSummaryFile, s);
@@ -633,6 +642,8 @@ RunResult Coupler::run() {
         } else row.push_back(0.0);
       }
       rec_->series->write(time_, row);
+      series_time_.push_back(time_);
+      for (std::size_t c = 0; c < row.size(); ++c) series_[rec_->columns[c]].push_back(row[c]);
       record(time_, k + 1 == nsteps);
       if (on_step) on_step(time_, state_);
       progress.update(time_, k + 1, state_.size());
@@ -693,6 +704,24 @@ RunResult Coupler::run() {
   result.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0).count();
   result.final_state = state_;
   result.totals = totals_;
+  if (result.exit_code == 0) {
+    for (const auto& spec : sc_.observables) {
+      ObservableValue v;
+      v.name = spec.name;
+      try {
+        v.value = evaluateQuantity(spec.quantity, state_, series_time_, series_, totals_, spec.after);
+      } catch (const std::exception& e) {
+        result.exit_code = 2;
+        result.message = std::string("cosim: observables.") + spec.name + ": " + e.what();
+        status = "failed";
+        break;
+      }
+      v.reference = spec.reference;
+      v.relative_error = relativeError(v.value, v.reference);
+      result.observables.push_back(v);
+    }
+  }
+  observables_ = result.observables;
   writeSummary(result, status);
   if (!result.message.empty()) {
     std::ofstream(folder_ / "cosim.log", std::ios::app) << result.message << "\n";

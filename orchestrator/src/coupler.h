@@ -16,6 +16,7 @@
 
 #include "cosim/link/particle_data.h"
 #include "cosim/link/transport.h"
+#include "observables.h"
 #include "plan.h"
 #include "processes.h"
 #include "scenario.h"
@@ -44,6 +45,7 @@ struct RunResult {
   double wall_seconds = 0;
   link::ParticleData final_state;
   std::map<std::string, double> totals;  // mass balance and other accumulated scalars
+  std::vector<ObservableValue> observables;
 };
 
 // Set by SIGINT/SIGTERM handlers; the loop stops cleanly at the next check.
@@ -84,7 +86,10 @@ class Coupler {
   link::ParticleData state_;
   std::map<std::int64_t, double> pending_credit_;  // precursor removed, to credit as coating
   std::map<std::string, double> totals_;
-  std::map<std::string, double> wall_;  // compute seconds per participant (kept after shutdown)
+  std::map<std::string, double> wall_;
+  std::vector<ObservableValue> observables_;
+  std::vector<double> series_time_;
+  std::map<std::string, std::vector<double>> series_;  // compute seconds per participant (kept after shutdown)
   double next_output_ = 0.0;
   struct Recorders;
   std::unique_ptr<Recorders> rec_;

@@ -30,6 +30,7 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan,
   b.pressure_gradient = ptr(samples, field::pressure_gradient);
   b.precursor_fraction = ptr(samples, field::precursor_fraction);
   b.cell_size = ptr(samples, field::cell_size);
+  b.lost = lost.empty() ? nullptr : lost.data();
 
   if (m.drag) {
     auto& K = t.forcing.field(field::drag_coefficient);

@@ -7,6 +7,7 @@
 #include "cosim/models/registry.h"
 #include "plan.h"
 #include "scenario.h"
+#include "study.h"
 
 #if __has_include("cosim/analysis/report.h")
 #include "cosim/analysis/report.h"
@@ -78,6 +79,19 @@ int main(int argc, char** argv) {
   val->add_option("scenario", scenario, "scenario file or folder")->required();
   val->add_option("--set", sets, "override a value (as for run)")->take_all();
 
+  auto* study = app.add_subcommand("study",
+      "Error against run time: run variants of a scenario, compare its observables with their "
+      "analytic reference (or the finest variant), time each run, mark the Pareto front");
+  StudyOptions sopt;
+  std::vector<std::string> vary;
+  study->add_option("scenario", sopt.scenario, "scenario file or folder")->required();
+  study->add_option("--vary", vary, "key=v1,v2,... (repeat for a grid), e.g. --vary coupling.dem_steps=5,10,20")
+      ->required()->take_all();
+  study->add_option("--set", sopt.sets, "fixed override for every variant")->take_all();
+  study->add_option("-o,--output", sopt.output, "study folder (default runs/<name>-study)");
+  study->add_option("--finest", sopt.finest, "index of the variant taken as reference where no analytic one exists (default: the slowest)");
+  study->add_flag("--no-plots", [&](std::int64_t) { sopt.plots = false; }, "tables only");
+
   auto* models = app.add_subcommand("models", "List the coupling models this build knows");
 
 #ifdef COSIM_HAVE_REPORT
@@ -97,6 +111,10 @@ int main(int argc, char** argv) {
 
   try {
     if (*val) return validate(scenario, sets);
+    if (*study) {
+      for (const auto& v : vary) sopt.vary.push_back(parseVary(v));
+      return runStudy(sopt);
+    }
     if (*models) {
       auto& r = cosim::models::Registry::instance();
       std::cout << "drag laws: " << join(r.dragNames()) << "\nforce models: " << join(r.forceNames())
@@ -118,6 +136,11 @@ int main(int argc, char** argv) {
       if (r.exit_code != 0) {
         std::cerr << "\ncosim: run stopped\n" << r.message << "\n";
         return r.exit_code;
+      }
+      for (const auto& o : r.observables) {
+        std::cout << "cosim: " << o.name << " = " << o.value;
+        if (o.reference) std::cout << " (reference " << *o.reference << ", relative error " << *o.relative_error << ")";
+        std::cout << "\n";
       }
       std::cout << "cosim: results in " << r.folder.string() << "\n";
       return 0;

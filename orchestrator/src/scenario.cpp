@@ -115,7 +115,7 @@ void applySet(YAML::Node root, const std::string& set, const Context& ctx) {
   const std::string value = set.substr(eq + 1);
   static const std::set<std::string> sections = {
       "name", "description", "parameters", "participants", "coupling", "constants",
-      "models", "output", "transport", "checks"};
+      "models", "output", "transport", "checks", "observables"};
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
@@ -225,7 +225,7 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
   }
   if (!root.IsMap()) ctx.failTop("(top level)", "expected a map with name, participants, coupling, models ...");
   ctx.allowOnly(root, "", {"name", "description", "parameters", "participants", "coupling",
-                           "constants", "models", "output", "transport", "checks"});
+                           "constants", "models", "output", "transport", "checks", "observables"});
   for (const auto& s : sets) applySet(root, s, ctx);
 
   // Parameters first: each may use the ones before it.
@@ -467,6 +467,26 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
     }
     if (c["max_particle_speed"]) sc.max_particle_speed = ctx.positive(c["max_particle_speed"], "checks.max_particle_speed", "(m/s)");
     if (c["mass_balance_tolerance"]) sc.mass_balance_tolerance = ctx.positive(c["mass_balance_tolerance"], "checks.mass_balance_tolerance", "");
+  }
+  if (const YAML::Node obs = root["observables"]) {
+    if (!obs.IsMap()) ctx.fail(obs, "observables", "expected a map name: { quantity: ..., reference: ... }");
+    for (const auto& kv : obs) {
+      const std::string name = kv.first.as<std::string>();
+      const std::string key = "observables." + name;
+      const YAML::Node o = kv.second;
+      ctx.allowOnly(o, key, {"quantity", "reference", "after"});
+      ObservableSpec spec;
+      spec.name = name;
+      spec.quantity = ctx.text(o["quantity"], key + ".quantity");
+      try {
+        checkQuantity(spec.quantity);
+      } catch (const std::exception& e) {
+        ctx.fail(o["quantity"], key + ".quantity", e.what());
+      }
+      if (o["reference"]) spec.reference = ctx.number(o["reference"], key + ".reference");
+      if (o["after"]) spec.after = ctx.number(o["after"], key + ".after");
+      sc.observables.push_back(spec);
+    }
   }
   return sc;
 }

@@ -16,6 +16,7 @@
 #include "cosim/models/parameters.h"
 #include "cosim/models/parcels.h"
 #include "expression.h"
+#include "observables.h"
 
 namespace cosim::orchestrator {
 
@@ -77,6 +78,8 @@ struct Scenario {
   std::string stability = "refuse";
   double max_particle_speed = 50.0;  // m/s; a faster particle stops the run
   double mass_balance_tolerance = 1e-4;  // relative drift that stops the run (coating scenes)
+
+  std::vector<ObservableSpec> observables;  // measured at the end, with analytic references
 
   YAML::Node resolved;  // the scenario after templating and --set, as run
 };

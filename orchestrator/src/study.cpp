@@ -1,0 +1,275 @@
+#include "study.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <limits>
+#include <sstream>
+
+#include "coupler.h"
+#include "cosim/analysis/json.h"
+#include "cosim/analysis/report.h"
+#include "scenario.h"
+
+namespace cosim::orchestrator {
+
+namespace fs = std::filesystem;
+
+std::pair<std::string, std::vector<std::string>> parseVary(const std::string& text) {
+  auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 >= text.size()) {
+    throw std::runtime_error("--vary " + text + ": expected key=v1,v2,... (e.g. --vary coupling.dem_steps=5,10,20)");
+  }
+  std::vector<std::string> values;
+  std::stringstream ss(text.substr(eq + 1));
+  for (std::string v; std::getline(ss, v, ',');) {
+    if (v.empty()) throw std::runtime_error("--vary " + text + ": empty value in the list");
+    values.push_back(v);
+  }
+  return {text.substr(0, eq), values};
+}
+
+std::vector<bool> paretoFront(const std::vector<double>& cost, const std::vector<double>& error) {
+  std::vector<bool> front(cost.size(), true);
+  for (std::size_t i = 0; i < cost.size(); ++i) {
+    for (std::size_t j = 0; j < cost.size() && front[i]; ++j) {
+      if (i == j) continue;
+      const bool no_worse = cost[j] <= cost[i] && error[j] <= error[i];
+      const bool better = cost[j] < cost[i] || error[j] < error[i];
+      if (no_worse && better) front[i] = false;
+    }
+  }
+  return front;
+}
+
+namespace {
+
+struct Variant {
+  std::vector<std::string> sets;  // the varied assignments
+  std::string label;
+  fs::path folder;
+  int exit_code = 0;
+  std::string message;
+  double wall = 0;
+  std::vector<ObservableValue> observables;
+};
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << std::setprecision(6) << v;
+  return os.str();
+}
+
+}  // namespace
+
+int runStudy(const StudyOptions& opt) {
+  if (opt.vary.empty()) throw std::runtime_error("cosim study needs at least one --vary key=v1,v2,...");
+  // Validate the base scenario first (clear errors before any run starts).
+  Scenario base = loadScenario(opt.scenario, opt.sets);
+  if (base.observables.empty()) {
+    throw std::runtime_error(base.file.string() +
+                             ": observables: the scenario defines no observables, so a study has nothing to measure; "
+                             "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
+  }
+  fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study") : fs::absolute(opt.output);
+  fs::create_directories(folder);
+
+  // Cartesian product of the varied values.
+  std::vector<Variant> variants(1);
+  for (const auto& [key, values] : opt.vary) {
+    std::vector<Variant> next;
+    for (const auto& v : variants) {
+      for (const auto& value : values) {
+        Variant n = v;
+        n.sets.push_back(key + "=" + value);
+        n.label += (n.label.empty() ? "" : " ") + key + "=" + value;
+        next.push_back(n);
+      }
+    }
+    variants = next;
+  }
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    auto& v = variants[i];
+    std::ostringstream name;
+    name << "variant-" << std::setw(2) << std::setfill('0') << i;
+    v.folder = folder / name.str();
+    std::vector<std::string> sets = opt.sets;
+    sets.insert(sets.end(), v.sets.begin(), v.sets.end());
+    if (!opt.quiet) std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
+    Scenario sc = loadScenario(opt.scenario, sets);
+    RunOptions ro;
+    ro.quiet = true;
+    ro.output = v.folder;
+    ro.overwrite = true;
+    Coupler c(std::move(sc), ro);
+    RunResult r = c.run();
+    v.exit_code = r.exit_code;
+    v.message = r.message;
+    v.wall = r.wall_seconds;
+    v.observables = r.observables;
+    if (!opt.quiet) {
+      std::cout << "study:   wall " << fmt(v.wall) << " s";
+      for (const auto& o : v.observables) std::cout << ", " << o.name << " = " << fmt(o.value);
+      if (r.exit_code != 0) std::cout << "  FAILED: " << r.message.substr(0, r.message.find('\n'));
+      std::cout << std::endl;
+    }
+  }
+
+  // Reference per observable: analytic, else the finest variant.
+  int finest = opt.finest;
+  if (finest < 0) {
+    double slowest = -1;
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+      if (variants[i].exit_code == 0 && variants[i].wall > slowest) {
+        slowest = variants[i].wall;
+        finest = static_cast<int>(i);
+      }
+    }
+  }
+  if (finest >= static_cast<int>(variants.size())) throw std::runtime_error("--finest is larger than the number of variants");
+  const std::size_t nobs = base.observables.size();
+  std::vector<std::string> ref_kind(nobs);
+  std::vector<double> ref(nobs, std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; k < nobs; ++k) {
+    if (base.observables[k].reference) {
+      ref_kind[k] = "analytic";
+    } else if (finest >= 0 && variants[static_cast<std::size_t>(finest)].exit_code == 0) {
+      ref_kind[k] = "finest variant (" + variants[static_cast<std::size_t>(finest)].label + ")";
+      ref[k] = variants[static_cast<std::size_t>(finest)].observables[k].value;
+    } else {
+      ref_kind[k] = "none";
+    }
+  }
+  // errors[v][k]
+  std::vector<std::vector<double>> err(variants.size(), std::vector<double>(nobs, std::numeric_limits<double>::quiet_NaN()));
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    if (variants[i].exit_code != 0) continue;
+    for (std::size_t k = 0; k < nobs; ++k) {
+      const auto& o = variants[i].observables[k];
+      std::optional<double> r = o.reference;
+      if (!r && !std::isnan(ref[k])) r = ref[k];
+      if (auto e = relativeError(o.value, r)) err[i][k] = *e;
+    }
+  }
+  // Pareto front on (wall, worst error over the observables) among successful variants.
+  std::vector<double> cost, worst;
+  std::vector<std::size_t> ok;
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    if (variants[i].exit_code != 0) continue;
+    double w = 0;
+    for (double e : err[i]) w = std::isnan(e) ? w : std::max(w, e);
+    ok.push_back(i);
+    cost.push_back(variants[i].wall);
+    worst.push_back(w);
+  }
+  std::vector<bool> front_ok = paretoFront(cost, worst);
+  std::vector<bool> front(variants.size(), false);
+  for (std::size_t j = 0; j < ok.size(); ++j) front[ok[j]] = front_ok[j];
+
+  // study.csv
+  {
+    std::ofstream csv(folder / "study.csv");
+    csv << "variant";
+    for (const auto& [key, values] : opt.vary) csv << "," << key;
+    csv << ",wall_s,status";
+    for (const auto& o : base.observables) csv << "," << o.name << "," << o.name << "_reference," << o.name << "_error";
+    csv << ",pareto\n";
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+      const auto& v = variants[i];
+      csv << i;
+      for (const auto& s : v.sets) csv << "," << s.substr(s.find('=') + 1);
+      csv << "," << std::setprecision(10) << v.wall << "," << (v.exit_code == 0 ? "ok" : "failed");
+      for (std::size_t k = 0; k < nobs; ++k) {
+        if (v.exit_code != 0) {
+          csv << ",,,";
+          continue;
+        }
+        const auto& o = v.observables[k];
+        const double r = o.reference ? *o.reference : ref[k];
+        csv << "," << std::setprecision(12) << o.value << "," << r << "," << err[i][k];
+      }
+      csv << "," << (front[i] ? 1 : 0) << "\n";
+    }
+  }
+  // study.json
+  analysis::Json j = analysis::Json::object();
+  j["scenario"] = base.file.string();
+  analysis::Json vary = analysis::Json::array();
+  for (const auto& [key, values] : opt.vary) vary.push(key);
+  j["vary"] = vary;
+  analysis::Json refs = analysis::Json::object();
+  for (std::size_t k = 0; k < nobs; ++k) refs[base.observables[k].name] = ref_kind[k];
+  j["references"] = refs;
+  analysis::Json rows = analysis::Json::array();
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    analysis::Json r = analysis::Json::object();
+    r["label"] = variants[i].label;
+    r["folder"] = variants[i].folder.string();
+    r["wall_s"] = variants[i].wall;
+    r["ok"] = variants[i].exit_code == 0;
+    if (variants[i].exit_code != 0) r["message"] = variants[i].message;
+    r["pareto"] = static_cast<bool>(front[i]);
+    analysis::Json obs = analysis::Json::object();
+    for (std::size_t k = 0; k < nobs && variants[i].exit_code == 0; ++k) {
+      analysis::Json o = analysis::Json::object();
+      o["value"] = variants[i].observables[k].value;
+      if (!std::isnan(err[i][k])) o["error"] = err[i][k];
+      obs[base.observables[k].name] = o;
+    }
+    r["observables"] = obs;
+    rows.push(r);
+  }
+  j["variants"] = rows;
+  analysis::writeFileAtomically(folder / "study.json", j.dump());
+  // study.md: the table for docs/
+  {
+    std::ofstream md(folder / "study.md");
+    md << "| variant | wall [s] |";
+    for (const auto& o : base.observables) md << " " << o.name << " | error |";
+    md << " Pareto |\n|---|---|";
+    for (std::size_t k = 0; k < nobs; ++k) md << "---|---|";
+    md << "---|\n";
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+      const auto& v = variants[i];
+      md << "| " << v.label << " | " << fmt(v.wall) << " |";
+      for (std::size_t k = 0; k < nobs; ++k) {
+        if (v.exit_code != 0) {
+          md << " failed | |";
+          continue;
+        }
+        md << " " << fmt(v.observables[k].value) << " | " << (std::isnan(err[i][k]) ? std::string("-") : fmt(err[i][k])) << " |";
+      }
+      md << (front[i] ? " yes |" : " |") << "\n";
+    }
+    md << "\nReferences: ";
+    for (std::size_t k = 0; k < nobs; ++k) md << (k ? "; " : "") << base.observables[k].name << ": " << ref_kind[k];
+    md << ". Error = |value - reference| / |reference|; Pareto = no other variant is both faster and more accurate (worst error over the observables).\n";
+  }
+  if (!opt.quiet) {
+    std::cout << "study: written " << (folder / "study.csv").string() << ", study.json, study.md\n";
+    std::ifstream md(folder / "study.md");
+    std::cout << md.rdbuf();
+  }
+  if (opt.plots) {
+    const char* env = std::getenv("COSIM_SCRIPTS");
+    fs::path script = env ? fs::path(env) / "plot_study.py" : fs::path(COSIM_SCRIPTS_DIR) / "plot_study.py";
+    std::string why;
+    auto python = analysis::findPython(why);
+    const std::string cmd = python ? "MPLBACKEND=Agg '" + *python + "' '" + script.string() + "' '" + folder.string() + "'" : "";
+    if (!python) {
+      std::cerr << "study: the plot was not drawn: " << why << "; the tables are complete\n";
+    } else if (std::system(cmd.c_str()) != 0) {
+      std::cerr << "study: the plot script failed (" << cmd << "); the tables are complete\n";
+    } else if (!opt.quiet) {
+      std::cout << "study: plot " << (folder / "error_vs_runtime.png").string() << "\n";
+    }
+  }
+  for (const auto& v : variants) {
+    if (v.exit_code != 0) return 3;
+  }
+  return 0;
+}
+
+}  // namespace cosim::orchestrator

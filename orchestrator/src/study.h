@@ -1,0 +1,33 @@
+// `cosim study`: error against run time. Runs every combination of the varied settings, measures
+// the scenario's observables and the wall time of each run, computes each observable's error
+// against its analytic reference (or, without one, against the finest variant), marks the Pareto
+// front (no other variant both faster and more accurate), and writes study.csv, study.json,
+// study.md and a plot of error against run time.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cosim::orchestrator {
+
+struct StudyOptions {
+  std::filesystem::path scenario;
+  std::vector<std::string> sets;                                        // fixed overrides
+  std::vector<std::pair<std::string, std::vector<std::string>>> vary;  // key -> values
+  std::filesystem::path output;                                        // study folder
+  int finest = -1;  // variant used as reference where no analytic one exists; -1: the slowest
+  bool quiet = false;
+  bool plots = true;
+};
+
+// "key=v1,v2,v3" -> (key, [v1, v2, v3]); throws std::runtime_error with the expected form.
+std::pair<std::string, std::vector<std::string>> parseVary(const std::string& text);
+
+// On the front iff no other point has cost <= and error <= with one of them strictly smaller.
+std::vector<bool> paretoFront(const std::vector<double>& cost, const std::vector<double>& error);
+
+int runStudy(const StudyOptions& options);
+
+}  // namespace cosim::orchestrator
