@@ -1,0 +1,70 @@
+// Throughput of the recorder and the per-snapshot analytics on a paper-size bed.
+#include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <random>
+
+#include "cosim/analysis/coating_statistics.h"
+#include "cosim/analysis/histogram.h"
+#include "cosim/analysis/normality_test.h"
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/link/fields.h"
+
+using namespace cosim::analysis;
+
+namespace {
+std::vector<double> coating(std::size_t n) {
+  std::mt19937_64 rng(1);
+  std::normal_distribution<double> d(1e-9, 1e-10);
+  std::vector<double> m(n);
+  for (auto& x : m) x = d(rng);
+  return m;
+}
+
+cosim::link::ParticleData bed(std::size_t n) {
+  cosim::link::ParticleData p;
+  p.ids.resize(n);
+  for (std::size_t i = 0; i < n; ++i) p.ids[i] = static_cast<std::int64_t>(i + 1);
+  p.field(cosim::field::position);
+  p.field(cosim::field::velocity);
+  p.field(cosim::field::radius);
+  p.field(cosim::field::coating_mass) = coating(n);
+  return p;
+}
+}  // namespace
+
+static void RecorderSnapshot(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto dir = std::filesystem::temp_directory_path() / ("cosim_bench_rec_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  ParticleRecorder rec(dir, {cosim::field::position, cosim::field::velocity, cosim::field::radius,
+                             cosim::field::coating_mass});
+  const auto p = bed(n);
+  double t = 0;
+  for (auto _ : state) rec.write(t += 0.01, p);
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(n));
+  std::filesystem::remove_all(dir);
+}
+BENCHMARK(RecorderSnapshot)->Arg(5000)->Arg(65000)->Unit(benchmark::kMillisecond);
+
+static void Statistics(benchmark::State& state) {
+  const auto m = coating(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(coatingStatistics(1.0, m));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(Statistics)->Arg(65000);
+
+static void HistogramFreedmanDiaconis(benchmark::State& state) {
+  const auto m = coating(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(histogram(m));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(HistogramFreedmanDiaconis)->Arg(65000);
+
+static void NormalityK2(benchmark::State& state) {
+  const auto m = coating(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(dagostinoPearson(m));
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(NormalityK2)->Arg(65000);
