@@ -42,19 +42,23 @@ double radlSundaresanH(double phi) {
 }
 
 namespace {
-// G(Re) = Re F(1, Re) and Re dF/dRe for a single sphere (phi = 0) with Beetstra's F.
+// Single sphere (phi = 0) with Beetstra's F, as a function of x = ln Re:
+//   F(1, Re) = 1 + c A B,  A = Re + 8.4 Re^0.657,  B = sqrt(Re) / (1 + sqrt(Re)),  c = 0.413/24
+// returns ln F and dlnF/dx = Re F'(Re) / F (two exp and one log per call).
 struct SingleSphere {
-  double G, ReFprime, F;
+  double lnF, dlnF;
 };
-SingleSphere singleSphere(double Re) {
+SingleSphere singleSphere(double x) {
   constexpr double c = 0.413 / 24.0;
-  const double s = std::sqrt(Re);
-  const double A = Re + 8.4 * std::pow(Re, 0.657);
-  const double dA = 1.0 + 8.4 * 0.657 * std::pow(Re, -0.343);  // dA/dRe
+  const double Re = std::exp(x);
+  const double s = std::exp(0.5 * x);      // sqrt(Re)
+  const double q = std::exp(0.657 * x);    // Re^0.657
+  const double A = Re + 8.4 * q;
+  const double ReDA = Re + 8.4 * 0.657 * q;  // Re dA/dRe
   const double B = s / (s + 1.0);
-  const double dB = 0.5 / (s * (s + 1.0) * (s + 1.0));  // dB/dRe
+  const double ReDB = 0.5 * s / ((s + 1.0) * (s + 1.0));  // Re dB/dRe
   const double F = 1.0 + c * A * B;
-  return {Re * F, c * Re * (dA * B + A * dB), F};
+  return {std::log(F), c * (ReDA * B + A * ReDB) / F};
 }
 }  // namespace
 
@@ -65,25 +69,25 @@ double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, d
 double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, double g,
                                 double guess) {
   // Force balance (rho_p - rho) g pi d^3/6 = 3 pi mu d u_t F(1, Re_t), times rho d / mu^2:
-  //   Ar / 18 = Re_t F(1, Re_t). Newton on x = ln Re (slope 1 + Re F'/F in [1, 2]), kept inside
-  //   the bracket [T / F(1, T), T] (F >= 1 and F increasing), bisection when Newton leaves it.
+  //   Ar / 18 = Re_t F(1, Re_t), i.e. h(x) = x + ln F(1, e^x) - ln T = 0 with x = ln Re_t.
+  //   h' = 1 + Re F'/F in [1, 2]: Newton, kept inside the bracket [ln T - ln F(1, T), ln T]
+  //   (F >= 1 and increasing), bisection whenever Newton would leave it.
   const double T = rho * (rho_p - rho) * g * d * d * d / (18.0 * mu * mu);
-  double hi = std::log(T);
-  double lo = std::log(T / singleSphere(T).F);
+  const double lnT = std::log(T);
+  double hi = lnT;
+  double lo = lnT - singleSphere(lnT).lnF;
   // Start from the guess (e.g. the neighbour parcel's Re_t) when it lies in the bracket.
-  double x = (guess > 0.0 && std::log(guess) > lo && std::log(guess) < hi) ? std::log(guess) : lo;
+  const double lng = guess > 0.0 ? std::log(guess) : lo;
+  double x = (lng > lo && lng < hi) ? lng : lo;
   for (int it = 0; it < 200; ++it) {
-    const SingleSphere ss = singleSphere(std::exp(x));
-    const double h = std::log(ss.G) - std::log(T);
+    const SingleSphere ss = singleSphere(x);
+    const double h = x + ss.lnF - lnT;
     if (h > 0.0) hi = std::min(hi, x); else lo = std::max(lo, x);
-    const double slope = 1.0 + ss.ReFprime / ss.F;
-    double next = x - h / slope;
+    double next = x - h / (1.0 + ss.dlnF);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    if (std::abs(next - x) < 1e-14 * std::max(1.0, std::abs(x)) || hi - lo < 1e-15) {
-      x = next;
-      break;
-    }
+    const bool done = std::abs(next - x) < 1e-14 * std::max(1.0, std::abs(x)) || hi - lo < 1e-15;
     x = next;
+    if (done) break;
   }
   return std::exp(x) * mu / (rho * d);
 }
