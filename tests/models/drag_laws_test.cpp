@@ -93,13 +93,21 @@ TEST(DragLaws, DiFeliceWithDallavalleCdMatchesOriginalPaper) {
 
 TEST(DragLaws, StokesIsThreePiMuD) {
   auto law = Registry::instance().makeDrag("stokes", Parameters("stokes"));
+  // (voidage, slip, d_real, rho, mu) with cg 5; K = 125 * 3 pi mu d_real whatever eps, slip, rho
+  const double cases[5][5] = {{0.5, 3.0, kD, kRho, kMu},
+                              {1.0, 0.0, 2e-4, 1.2, 2e-5},
+                              {0.4, 100.0, 1e-6, 1000.0, 1e-3},
+                              {0.9, 0.01, 5e-3, 0.1, 1e-5},
+                              {0.7, 1.0, 1e-7, 1.12, 1.8e-5}};
+  // 125 * 3 pi * mu * d (python3)
+  const double expected[5] = {6.3617251235193305e-06, 4.71238898038469e-06,
+                              1.1780972450961724e-06, 5.890486225480863e-05,
+                              2.1205750411731104e-09};
   Batch b;
-  b.add(0.5, 3.0, kD, 5.0);
-  b.add(1.0, 0.0, 1e-3, 1.0, 1.2, 2e-5);
+  for (const auto& q : cases) b.add(q[0], q[1], q[2], 5.0, q[3], q[4]);
   const auto K = evaluate(*law, b, constants(5.0));
+  for (int i = 0; i < 5; ++i) EXPECT_TRUE(close(K[i], expected[i], 1e-14)) << i;
   EXPECT_TRUE(close(K[0], kStokesK, 1e-14));
-  // second parcel: radius 0.5e-3, cg 5 => d_real 2e-4: 125 * 3 pi 2e-5 2e-4
-  EXPECT_TRUE(close(K[1], 125.0 * 3.0 * std::numbers::pi * 2e-5 * 2e-4, 1e-14));
 }
 
 // Every law reduces to Stokes drag (K = cg^3 3 pi mu d) within 1e-6 as eps -> 1, Re -> 0.

@@ -78,3 +78,35 @@ TEST(Registry, DragLawsNeedTheFieldsOfTheirFormula) {
 
 }  // namespace
 }  // namespace cosim::models
+
+namespace cosim::models {
+namespace {
+
+TEST(Parameters, FlagAcceptsWordsAndNumbers) {
+  Parameters p("m");
+  p.setText("a", "Yes");
+  p.setText("b", "off");
+  p.set("c", 1.0);
+  p.set("d", 0.0);
+  p.set("e", 2.0);
+  EXPECT_TRUE(p.flag("a", false));
+  EXPECT_FALSE(p.flag("b", true));
+  EXPECT_TRUE(p.flag("c", false));
+  EXPECT_FALSE(p.flag("d", true));
+  EXPECT_TRUE(p.flag("missing", true));
+  EXPECT_THROW(p.flag("e", false), ModelError);
+}
+
+TEST(Parameters, WithoutDropsOneKeyAndRenames) {
+  Parameters p("old");
+  p.setText("shape", "sphere");
+  p.set("radius", 1.0);
+  const Parameters q = p.without("shape", "new");
+  EXPECT_FALSE(q.has("shape"));
+  EXPECT_EQ(q.number("radius"), 1.0);
+  EXPECT_EQ(q.owner(), "new");
+  EXPECT_TRUE(p.has("shape"));
+}
+
+}  // namespace
+}  // namespace cosim::models
