@@ -74,6 +74,15 @@ void BM_BeetstraFiltered(benchmark::State& state) {
   runDrag(state, "beetstra", p);
 }
 
+void BM_BeetstraFilteredReferenceGas(benchmark::State& state) {
+  Parameters p("beetstra");
+  p.setText("filtered", "true");
+  p.set("particle_density", 1750.0);
+  p.set("reference_fluid_density", 1.12);
+  p.set("reference_fluid_viscosity", 1.8e-5);
+  runDrag(state, "beetstra", p);
+}
+
 void BM_MassTransfer(benchmark::State& state, const char* law) {
   const Bed bed(kParcels);
   auto model = Registry::instance().makeMassTransfer(law, Parameters(law));
@@ -142,6 +151,7 @@ BENCHMARK_CAPTURE(BM_Drag, gidaspow, "gidaspow");
 BENCHMARK_CAPTURE(BM_Drag, koch_hill, "koch_hill");
 BENCHMARK_CAPTURE(BM_Drag, beetstra, "beetstra");
 BENCHMARK(BM_BeetstraFiltered);
+BENCHMARK(BM_BeetstraFilteredReferenceGas);
 BENCHMARK(BM_PressureGradient);
 BENCHMARK_CAPTURE(BM_MassTransfer, deen_gunn, "deen_gunn");
 BENCHMARK_CAPTURE(BM_MassTransfer, gunn, "gunn");

@@ -60,6 +60,19 @@ TEST(BadInput, ParameterErrorsNameModelAndKey) {
   Parameters unused("models.drag (beetstra)");
   unused.set("particle_density", 1750.0);
   expectError([&] { r.makeDrag("beetstra", unused); }, {"'particle_density'", "filtered: true"});
+  Parameters half("models.drag (beetstra)");
+  half.setText("filtered", "true");
+  half.set("particle_density", 1750.0);
+  half.set("reference_fluid_density", 1.12);
+  expectError([&] { r.makeDrag("beetstra", half); },
+              {"'reference_fluid_density'", "'reference_fluid_viscosity'", "neither"});
+  half.set("reference_fluid_viscosity", 1.8e-5);
+  half.set("reference_fluid_density", 2000.0);
+  expectError([&] { r.makeDrag("beetstra", half); }, {"must exceed"});
+  Parameters reff("models.drag (beetstra)");
+  reff.set("reference_fluid_viscosity", 1.8e-5);
+  expectError([&] { r.makeDrag("beetstra", reff); },
+              {"'reference_fluid_viscosity'", "filtered: true"});
   Parameters sw("models.drag (gidaspow)");
   sw.set("switch_voidage", 1.5);
   expectError([&] { r.makeDrag("gidaspow", sw); }, {"'switch_voidage'", "out of range"});

@@ -94,6 +94,24 @@ TEST(RadlSundaresan, FilteredBeetstraMatchesIndependentValues) {
   for (int i = 0; i < 5; ++i) EXPECT_TRUE(close(K[i], expected[i], 1e-10)) << i << ": " << K[i];
 }
 
+// Terminal velocity from the reference gas (1.12 kg/m3, 1.8e-5 Pa s) or from the parcel's own gas
+// (1.5 kg/m3, 2e-5 Pa s); eps 0.6, slip 0.5, cell 4 mm, cg 5, k 0.05 (python3 ref.py).
+TEST(RadlSundaresan, TerminalVelocityFromReferenceOrLocalGas) {
+  Parameters local("beetstra");
+  local.setText("filtered", "true");
+  local.set("particle_density", kRhoP);
+  Parameters ref = local;
+  ref.set("reference_fluid_density", kRho);
+  ref.set("reference_fluid_viscosity", kMu);
+  Batch b;
+  b.add(0.6, 0.5, kD, 5.0, 1.5, 2.0e-5, 4e-3);
+  double K_local = 0, K_ref = 0;
+  Registry::instance().makeDrag("beetstra", local)->coefficients(b.view(), constants(5.0), &K_local);
+  Registry::instance().makeDrag("beetstra", ref)->coefficients(b.view(), constants(5.0), &K_ref);
+  EXPECT_TRUE(close(K_local, 2.6122240879227543e-05, 1e-10)) << K_local;
+  EXPECT_TRUE(close(K_ref, 2.7015222887620972e-05, 1e-10)) << K_ref;
+}
+
 TEST(RadlSundaresan, ParcelSizeFactorAloneIsExpK1MinusCg) {
   Parameters plain("beetstra");
   Parameters factor("beetstra");

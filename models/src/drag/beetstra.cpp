@@ -22,7 +22,8 @@ double beetstraF(double eps, double Re) {
 }
 
 BeetstraDrag::BeetstraDrag(const Parameters& p) {
-  p.rejectUnknown({"filtered", "k", "particle_density"});
+  p.rejectUnknown({"filtered", "k", "particle_density", "reference_fluid_density",
+                   "reference_fluid_viscosity"});
   filtered_ = p.flag("filtered", false);
   parcel_factor_ = filtered_ || p.has("k");
   k_ = p.has("k") ? p.number("k", 0.0, 10.0) : 0.05;
@@ -33,9 +34,27 @@ BeetstraDrag::BeetstraDrag(const Parameters& p) {
                        "velocity of one real particle), e.g. particle_density: 1750");
     }
     particle_density_ = p.positive("particle_density");
-  } else if (p.has("particle_density")) {
-    throw ModelError(p.owner() + ": parameter 'particle_density' is only used with filtered: "
-                     "true; remove it or set filtered: true");
+    if (p.has("reference_fluid_density") != p.has("reference_fluid_viscosity")) {
+      throw ModelError(p.owner() + ": give both 'reference_fluid_density' [kg/m3] and "
+                       "'reference_fluid_viscosity' [Pa s], or neither (then each parcel's "
+                       "local gas state is used for the terminal velocity)");
+    }
+    if (p.has("reference_fluid_density")) {
+      reference_density_ = p.positive("reference_fluid_density");
+      reference_viscosity_ = p.positive("reference_fluid_viscosity");
+      if (!(particle_density_ > reference_density_)) {
+        throw ModelError(p.owner() + ": 'particle_density' must exceed "
+                         "'reference_fluid_density' (the particle must settle)");
+      }
+    }
+  } else {
+    for (const char* key : {"particle_density", "reference_fluid_density",
+                            "reference_fluid_viscosity"}) {
+      if (p.has(key)) {
+        throw ModelError(p.owner() + ": parameter '" + key + "' is only used with filtered: "
+                         "true; remove it or set filtered: true");
+      }
+    }
   }
 }
 
@@ -66,26 +85,29 @@ void BeetstraDrag::coefficients(const ParcelBatch& p, const SceneConstants& c, d
   // Terminal velocity once per distinct (d, rho, mu): remember the last one; when the fluid
   // state changes (compressible gas), start Newton from the last Re_t (2-3 iterations).
   double last_d = -1.0, last_rho = -1.0, last_mu = -1.0, L_c = 0.0, last_Re_t = 0.0;
+  const bool reference = reference_density_ > 0.0;
   for (std::size_t i = 0; i < p.n; ++i) {
     if (p.isLost(i)) {
       K[i] = 0.0;
       continue;
     }
     const ParcelState s = parcelState(p, c, i);
-    if (s.d != last_d || s.rho != last_rho || s.mu != last_mu) {
-      if (!(particle_density_ > s.rho)) {
+    const double rho_t = reference ? reference_density_ : s.rho;
+    const double mu_t = reference ? reference_viscosity_ : s.mu;
+    if (s.d != last_d || rho_t != last_rho || mu_t != last_mu) {
+      if (!(particle_density_ > rho_t)) {
         throw ModelError(owner + ": particle_density " + std::to_string(particle_density_) +
-                         " kg/m3 is not above the fluid density " + std::to_string(s.rho) +
+                         " kg/m3 is not above the fluid density " + std::to_string(rho_t) +
                          " kg/m3 of parcel " + std::to_string(i) +
                          ": the settling velocity of the filtered correction is undefined");
       }
       const double u_t =
-          beetstraTerminalVelocity(s.d, particle_density_, s.rho, s.mu, g, last_Re_t);
-      last_Re_t = s.rho * s.d * u_t / s.mu;
+          beetstraTerminalVelocity(s.d, particle_density_, rho_t, mu_t, g, last_Re_t);
+      last_Re_t = rho_t * s.d * u_t / mu_t;
       L_c = radlSundaresanLength(u_t, g, s.d);
       last_d = s.d;
-      last_rho = s.rho;
-      last_mu = s.mu;
+      last_rho = rho_t;
+      last_mu = mu_t;
     }
     const double corr = radlSundaresanCorrection(1.0 - s.eps, L_c, p.cell_size[i]);
     K[i] = cg3 * 3.0 * std::numbers::pi * s.mu * s.d * s.eps * beetstraF(s.eps, s.Re) * corr *

@@ -9,6 +9,9 @@
 //   k: number (default 0.05)  parcel-size factor exp(k (1 - cg)); applied when filtered is true
 //             or when k is given explicitly (k: 0 switches it off).
 //   particle_density: real particle density for the terminal velocity (required with filtered).
+//   reference_fluid_density [kg/m3], reference_fluid_viscosity [Pa s] (optional, both or neither):
+//             compute the terminal velocity once from these (as CFDEMcoupling does) instead of
+//             from each parcel's local gas state.
 #pragma once
 
 #include "cosim/models/model.h"
@@ -33,6 +36,8 @@ class BeetstraDrag final : public DragLaw {
   bool parcel_factor_ = false;
   double k_ = 0.05;
   double particle_density_ = 0.0;
+  double reference_density_ = 0.0;    // > 0: terminal velocity from the reference gas state
+  double reference_viscosity_ = 0.0;
 };
 
 }  // namespace cosim::models
