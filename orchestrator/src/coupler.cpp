@@ -506,23 +506,26 @@ RunResult Coupler::run() {
       state_ = link::ParticleData::fromWire(r.at("particles").advanced().state());
       checkState(state_, "particles");
     }
-    StabilityReport stab = checkBeforeRun(sc_, models_, plan_, state_);
-    for (const auto& line : stab.lines) {
-      if (!opt_.quiet) std::cout << "cosim: check: " << line << "\n";
-      std::ofstream(folder_ / "cosim.log", std::ios::app) << "check: " << line << "\n";
-    }
-    if (!stab.refusals.empty() && sc_.stability == "refuse") {
-      std::string msg = "unstable settings refused before the run:";
-      for (const auto& r : stab.refusals) msg += "\n  - " + r;
-      msg += "\n  (set checks.stability: warn to run anyway)";
-      throw RunFailure("", msg);
-    }
     double coating_initial = 0.0;
     if (plan_.coating) {
       for (double m : state_.get(field::coating_mass)) coating_initial += m;
     }
     record(time_, true);
     double in = 0, out = 0, removed = 0, credited = 0, held = 0;
+    StepMonitor monitor(sc_);
+    auto refuseOrWarn = [&](const StabilityReport& rep) {
+      for (const auto& line : rep.lines) {
+        if (!opt_.quiet) std::cout << "cosim: check: " << line << "\n";
+        std::ofstream(folder_ / "cosim.log", std::ios::app) << "check: " << line << "\n";
+      }
+      if (!rep.refusals.empty() && sc_.stability == "refuse") {
+        std::string msg = "unstable settings refused:";
+        for (const auto& r : rep.refusals) msg += "\n  - " + r;
+        msg += "\n  (set checks.stability: warn to run anyway)";
+        throw RunFailure("", msg);
+      }
+    };
+    refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_));
     std::vector<char> lost;
     for (std::uint64_t k = 0; k < nsteps; ++k) {
       step_ = k + 1;
@@ -550,6 +553,7 @@ RunResult Coupler::run() {
       }
       CouplingTerms terms = evaluateTerms(models_, plan_, sc_.constants, state_, samples, lost);
       checkState(terms.forcing, "models (forcing)");
+      if (k == 0) refuseOrWarn(checkFirstStep(sc_, state_, samples, terms.forcing));
       if (plan_.coating) {
         auto& inc = terms.forcing.field(field::coating_increment);
         for (std::size_t i = 0; i < terms.forcing.size(); ++i) {
@@ -588,7 +592,16 @@ RunResult Coupler::run() {
       time_ = sc_.start_time + static_cast<double>(k + 1) * sc_.dt;
       const auto& pa = replies.at("particles").advanced();
       peers_.at("particles")->wall += pa.wall_seconds();
-      state_ = link::ParticleData::fromWire(pa.state());
+      {
+        std::vector<std::int64_t> before = state_.ids;
+        state_ = link::ParticleData::fromWire(pa.state());
+        try {
+          monitor.checkParticleLedger(before, state_.ids, {pa.inserted_ids().begin(), pa.inserted_ids().end()},
+                                      {pa.deleted_ids().begin(), pa.deleted_ids().end()}, step_, time_);
+        } catch (const std::exception& e) {
+          throw RunFailure("particles", e.what());
+        }
+      }
       checkState(state_, "particles");
       if (plan_.fluid) {
         const auto& fa = replies.at("fluid").advanced();
@@ -612,6 +625,22 @@ RunResult Coupler::run() {
           in += scalar("precursor_in");
           out += scalar("precursor_out");
           held = scalar("precursor_held");
+          try {
+            monitor.checkMassBalance(in, out, held, removed, step_, time_);
+          } catch (const std::exception& e) {
+            throw RunFailure("fluid", e.what());
+          }
+        }
+        if (auto it = fa.scalars().find("max_courant"); it != fa.scalars().end()) {
+          try {
+            if (auto w = monitor.checkCourant(it->second, step_, time_)) {
+              progress.abort();
+              if (!opt_.quiet) std::cout << "cosim: " << *w << "\n";
+              std::ofstream(folder_ / "cosim.log", std::ios::app) << *w << "\n";
+            }
+          } catch (const std::exception& e) {
+            throw RunFailure("fluid", e.what());
+          }
         }
       }
       // Particles that left take their pending credit with them: count it as coating that left.

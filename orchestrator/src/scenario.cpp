@@ -283,7 +283,16 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
 
   // ---- constants --------------------------------------------------------------------------------
   if (const YAML::Node c = root["constants"]) {
-    ctx.allowOnly(c, "constants", {"cg", "min_voidage", "gravity", "schmidt"});
+    ctx.allowOnly(c, "constants", {"cg", "min_voidage", "gravity", "schmidt", "particle_density",
+                                   "youngs_modulus", "poisson_ratio"});
+    if (c["particle_density"]) sc.material.particle_density = ctx.positive(c["particle_density"], "constants.particle_density", "(kg/m3)");
+    if (c["youngs_modulus"]) sc.material.youngs_modulus = ctx.positive(c["youngs_modulus"], "constants.youngs_modulus", "(Pa)");
+    if (c["poisson_ratio"]) {
+      sc.material.poisson_ratio = ctx.number(c["poisson_ratio"], "constants.poisson_ratio");
+      if (sc.material.poisson_ratio <= -1 || sc.material.poisson_ratio >= 0.5) {
+        ctx.fail(c["poisson_ratio"], "constants.poisson_ratio", "expected a Poisson ratio in (-1, 0.5)");
+      }
+    }
     if (c["cg"]) {
       sc.constants.cg = ctx.number(c["cg"], "constants.cg");
       if (sc.constants.cg < 1.0) {
@@ -458,7 +467,8 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
     if (t["handshake_timeout"]) sc.handshake_timeout = ctx.positive(t["handshake_timeout"], "transport.handshake_timeout", "(seconds)");
   }
   if (const YAML::Node c = root["checks"]) {
-    ctx.allowOnly(c, "checks", {"stability", "max_particle_speed", "mass_balance_tolerance"});
+    ctx.allowOnly(c, "checks", {"stability", "max_particle_speed", "mass_balance_tolerance", "max_courant"});
+    if (c["max_courant"]) sc.max_courant = ctx.positive(c["max_courant"], "checks.max_courant", "");
     if (c["stability"]) {
       sc.stability = ctx.text(c["stability"], "checks.stability");
       if (sc.stability != "refuse" && sc.stability != "warn") {

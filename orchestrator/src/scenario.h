@@ -59,6 +59,12 @@ struct Scenario {
   double start_time = 0.0;
 
   models::SceneConstants constants;
+  // Particle material, optional: used by the stability checks (Rayleigh time, relaxation time).
+  struct Material {
+    double particle_density = 0.0;  // [kg/m3]; 0 = unknown
+    double youngs_modulus = 0.0;    // [Pa]; 0 = unknown
+    double poisson_ratio = 0.3;
+  } material;
 
   std::optional<ModelSpec> drag;
   std::vector<ModelSpec> forces;
@@ -78,6 +84,7 @@ struct Scenario {
   std::string stability = "refuse";
   double max_particle_speed = 50.0;  // m/s; a faster particle stops the run
   double mass_balance_tolerance = 1e-4;  // relative drift that stops the run (coating scenes)
+  double max_courant = 5.0;              // fluid Courant number that stops the run
 
   std::vector<ObservableSpec> observables;  // measured at the end, with analytic references
 

@@ -1,7 +1,16 @@
-// Stability checks before and at the start of a run: each prints its ratio; an unstable setting
-// is refused with the value that would work, a doubtful one is a warning.
+// Stability checks and run-time monitors.
+//
+// Before the run / at the first coupling step each check prints its ratio; an unstable setting
+// is refused (checks.stability: refuse, the default) with the value that would work, a doubtful
+// one is a warning. While running, the monitors stop the run cleanly on NaN/Inf, voidage out of
+// bounds, runaway particle speed, particles that vanish without being reported, a Courant number
+// beyond the limit, or a drifting precursor mass balance; the message says what, where and when.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -12,11 +21,43 @@
 namespace cosim::orchestrator {
 
 struct StabilityReport {
-  std::vector<std::string> lines;     // every check with its ratio
+  std::vector<std::string> lines;     // every check with its ratio ("ok", "warning: ...")
   std::vector<std::string> refusals;  // unstable: what is wrong and what would work
 };
 
+// Rayleigh time of a Hertzian sphere (PHYSICS.md 7): t_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766)
+double rayleighTime(double radius, double density, double youngs_modulus, double poisson);
+// Particle relaxation time under a drag coefficient K [kg/s]: tau = m / K.
+double relaxationTime(double mass, double drag_coefficient);
+
+// Checks that need only the scenario and the initial particle state.
 StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& models, const Plan& plan,
                                const link::ParticleData& initial_state);
+
+// Checks that need the first fluid samples and drag coefficients: relaxation time against the
+// coupling interval and DEM step, cell size against parcel size.
+StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& state,
+                               const link::ParticleData& samples, const link::ParticleData& forcing);
+
+// Per-step monitors that need memory across steps.
+class StepMonitor {
+ public:
+  explicit StepMonitor(const Scenario& sc) : sc_(sc) {}
+  // Ids that vanished without being reported deleted; throws std::runtime_error with the ids.
+  void checkParticleLedger(const std::vector<std::int64_t>& before, const std::vector<std::int64_t>& after,
+                           const std::vector<std::int64_t>& inserted, const std::vector<std::int64_t>& deleted,
+                           std::uint64_t step, double time);
+  // Courant number reported by the fluid: warning once above 1, stop above checks.max_courant.
+  // Returns a warning to show (once) or nullopt.
+  std::optional<std::string> checkCourant(double courant, std::uint64_t step, double time);
+  // Precursor balance in - out - (held - held0) - removed, relative to what came in: stop when
+  // it drifts above checks.mass_balance_tolerance.
+  void checkMassBalance(double in, double out, double held, double removed, std::uint64_t step, double time);
+
+ private:
+  const Scenario& sc_;
+  bool courant_warned_ = false;
+  std::optional<std::array<double, 4>> baseline_;
+};
 
 }  // namespace cosim::orchestrator
