@@ -183,6 +183,28 @@ TEST(DragLaws, BeetstraFIsOneAtRestInUnboundedFluidAndMatchesHandValue) {
   EXPECT_NEAR(beetstraF(0.5, 0.0), 20.515165042944954, 1e-12);
 }
 
+// A fixed bed with superficial gas velocity U: the Ergun (1952) equation gives the pressure
+// gradient dP/L = 150 mu phi^2 U / (eps^3 d^2) + 1.75 rho phi U^2 / (eps^3 d). In the model-A
+// momentum balance of the gas the drag per unit bed volume carries eps dP/L, so
+// n K w = eps dP/L with n = phi / V_p real particles per volume and w = U / eps.
+TEST(DragLaws, GidaspowErgunBranchGivesErgunPressureDrop) {
+  auto law = Registry::instance().makeDrag("gidaspow", Parameters("gidaspow"));
+  for (double eps : {0.4, 0.5, 0.7}) {
+    for (double U : {0.01, 0.1, 1.0}) {
+      const double phi = 1.0 - eps;
+      const double w = U / eps;
+      Batch b;
+      b.add(eps, w, kD, 1.0);
+      double K = 0;
+      law->coefficients(b.view(), constants(1.0), &K);
+      const double Vp = std::numbers::pi * kD * kD * kD / 6.0;
+      const double dPdL = 150.0 * kMu * phi * phi * U / (eps * eps * eps * kD * kD) +
+                          1.75 * kRho * phi * U * U / (eps * eps * eps * kD);
+      EXPECT_TRUE(close(phi / Vp * K * w, eps * dPdL, 1e-12)) << eps << " " << U;
+    }
+  }
+}
+
 TEST(DragLaws, GidaspowSwitchVoidageIsAParameter) {
   Parameters p("gidaspow");
   p.set("switch_voidage", 0.95);
