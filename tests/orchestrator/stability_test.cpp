@@ -1,0 +1,144 @@
+// Stability checks and monitors against hand-computed values.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "coupler.h"
+#include "cosim/link/fields.h"
+#include "stability.h"
+
+using namespace cosim;
+using namespace cosim::orchestrator;
+namespace fs = std::filesystem;
+
+TEST(Stability, RayleighTimeOfThePapersGrains) {
+  // PHYSICS.md 7: r = 0.75 mm, E = 5e6 Pa, nu = 0.3, rho = 1750 -> t_R ~ 7.7e-5 s.
+  // By hand: G = 5e6/2.6 = 1.9231e6; pi * 7.5e-4 * sqrt(1750/1.9231e6) / 0.92553 = 7.681e-5.
+  EXPECT_NEAR(rayleighTime(0.75e-3, 1750, 5e6, 0.3), 7.681e-5, 0.005e-5);
+}
+
+TEST(Stability, RelaxationTime) {
+  EXPECT_DOUBLE_EQ(relaxationTime(2.0, 4.0), 0.5);
+  EXPECT_TRUE(std::isinf(relaxationTime(1.0, 0.0)));
+}
+
+namespace {
+Scenario baseScenario() {
+  return parseScenario(R"(
+name: s
+participants:
+  particles: { adapter: free-particles }
+coupling: { dt: 1.0e-4, dem_steps: 1, end_time: 0.01 }
+constants: { particle_density: 1750, youngs_modulus: 5.0e6, poisson_ratio: 0.3 }
+)", fs::temp_directory_path() / "s.yaml");
+}
+link::ParticleData grains(double r) {
+  link::ParticleData d;
+  d.ids = {1, 2};
+  d.field(field::radius) = {r, r};
+  return d;
+}
+}  // namespace
+
+TEST(Stability, StiffContactsAreRefusedWithTheStepThatWouldWork) {
+  Scenario sc = baseScenario();  // DEM dt 1e-4 vs t_R 7.7e-5: ratio 1.3
+  auto rep = checkBeforeRun(sc, {}, {}, grains(0.75e-3));
+  ASSERT_EQ(rep.refusals.size(), 1u);
+  // dem_steps >= ceil(1e-4 / (0.2 * 7.681e-5)) = ceil(6.51) = 7
+  EXPECT_NE(rep.refusals[0].find("dem_steps >= 7"), std::string::npos) << rep.refusals[0];
+  sc.dem_steps = 10;  // ratio 0.13: fine
+  EXPECT_TRUE(checkBeforeRun(sc, {}, {}, grains(0.75e-3)).refusals.empty());
+}
+
+TEST(Stability, CellsSmallerThanAParcelAreRefused) {
+  Scenario sc = baseScenario();
+  auto state = grains(1e-3);  // d = 2 mm
+  link::ParticleData samples;
+  samples.ids = state.ids;
+  samples.field(field::cell_size) = {1.5e-3, 1.5e-3};  // 0.75 d
+  auto rep = checkFirstStep(sc, state, samples, {});
+  ASSERT_EQ(rep.refusals.size(), 1u);
+  EXPECT_NE(rep.refusals[0].find(">= 0.004 m"), std::string::npos) << rep.refusals[0];
+  samples.field(field::cell_size) = {6e-3, 6e-3};  // 3 d: ok
+  rep = checkFirstStep(sc, state, samples, {});
+  EXPECT_TRUE(rep.refusals.empty());
+  EXPECT_NE(rep.lines.back().find("ok"), std::string::npos);
+}
+
+TEST(Stability, RelaxationTimeIsReportedAgainstTheIntervals) {
+  Scenario sc = baseScenario();
+  auto state = grains(1e-4);
+  link::ParticleData forcing;
+  forcing.ids = state.ids;
+  // m = 1750 * 4/3 pi 1e-12 = 7.330e-9 kg; K = 7.330e-9 / 1e-6 -> tau = 1e-6 s = dt / 100
+  const double m = 1750 * 4.0 / 3.0 * M_PI * 1e-12;
+  forcing.field(field::drag_coefficient) = {m / 1e-6, m / 1e-5};
+  auto rep = checkFirstStep(sc, state, {}, forcing);
+  ASSERT_FALSE(rep.lines.empty());
+  EXPECT_NE(rep.lines[0].find("coupling interval = 100 tau_p"), std::string::npos) << rep.lines[0];
+  EXPECT_NE(rep.lines[0].find("particle 1"), std::string::npos);
+}
+
+TEST(Monitor, ParticleLedger) {
+  Scenario sc = baseScenario();
+  StepMonitor m(sc);
+  EXPECT_NO_THROW(m.checkParticleLedger({1, 2, 3}, {1, 3, 4}, {4}, {2}, 5, 0.1));
+  try {
+    m.checkParticleLedger({1, 2, 3}, {1, 3}, {}, {}, 6, 0.2);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("first vanished id 2"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Monitor, CourantWarnsOnceThenStops) {
+  Scenario sc = baseScenario();
+  StepMonitor m(sc);
+  EXPECT_FALSE(m.checkCourant(0.5, 1, 0.0));
+  EXPECT_TRUE(m.checkCourant(1.5, 2, 0.0));
+  EXPECT_FALSE(m.checkCourant(1.6, 3, 0.0));
+  try {
+    m.checkCourant(10.0, 4, 0.0);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    // dt 1e-4 * 0.5 / 10 = 5e-6
+    EXPECT_NE(std::string(e.what()).find("5e-06"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Monitor, MassBalanceDriftStops) {
+  Scenario sc = baseScenario();
+  StepMonitor m(sc);
+  m.checkMassBalance(1.0, 0.2, 0.3, 0.5, 1, 0.0);           // baseline (initial content unknown)
+  EXPECT_NO_THROW(m.checkMassBalance(2.0, 0.6, 0.5, 0.9, 2, 0.0));  // +1 in = +0.4 out +0.2 held +0.4 removed
+  EXPECT_THROW(m.checkMassBalance(3.0, 1.0, 0.7, 1.0, 3, 0.0), std::runtime_error);  // 0.2 missing
+}
+
+TEST(Stability, RefusedRunStopsBeforeAnyStepWithTheAdvice) {
+  const fs::path dir = fs::temp_directory_path() / ("cosim-stiff-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "scenario.yaml") << R"(
+name: stiff
+participants:
+  particles:
+    adapter: free-particles
+    options: { density: 1750, particles: [ { position: [0, 0, 0], radius: 0.75e-3 } ] }
+coupling: { dt: 1.0e-4, dem_steps: 1, end_time: 0.01 }
+constants: { particle_density: 1750, youngs_modulus: 5.0e9, poisson_ratio: 0.3 }
+)";
+  RunOptions o;
+  o.quiet = true;
+  o.output = dir / "run";
+  Coupler c(loadScenario(dir), o);
+  std::size_t steps = 0;
+  c.on_step = [&](double, const link::ParticleData&) { ++steps; };
+  auto r = c.run();
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(steps, 0u);
+  EXPECT_NE(r.message.find("refused"), std::string::npos) << r.message;
+  // t_R scales as E^-1/2: 7.681e-5 / sqrt(1000) = 2.429e-6 s; dem_steps >= ceil(1e-4/4.858e-7) = 206
+  EXPECT_NE(r.message.find("dem_steps >= 206"), std::string::npos) << r.message;
+}
