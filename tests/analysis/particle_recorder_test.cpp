@@ -16,12 +16,23 @@ namespace fs = std::filesystem;
 using namespace cosim::analysis;
 
 namespace {
-fs::path freshDir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("cosim_analysis_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+// A fresh folder, removed at the end of the test if it passed.
+class TempDir {
+ public:
+  explicit TempDir(const std::string& name)
+      : path_(fs::temp_directory_path() / ("cosim_analysis_" + name + "_" + std::to_string(::getpid()))) {
+    fs::remove_all(path_);
+    fs::create_directories(path_);
+  }
+  ~TempDir() {
+    if (!::testing::Test::HasFailure()) fs::remove_all(path_);
+  }
+  operator const fs::path&() const { return path_; }
+  fs::path operator/(const std::string& s) const { return path_ / s; }
+
+ private:
+  fs::path path_;
+};
 
 // Particles with ids `ids`; every value derived from the id and the time, so a reader can check
 // it without keeping the writer's arrays.
@@ -83,7 +94,7 @@ bool wellFormed(const std::string& xml, std::string& why) {
 }  // namespace
 
 TEST(ParticleRecorder, RoundTripWithChangingParticleCounts) {
-  const auto dir = freshDir("roundtrip");
+  const TempDir dir("roundtrip");
   const std::vector<std::vector<std::int64_t>> ids = {{1, 2, 3, 4, 5}, {1, 2, 3, 4, 5, 6, 7}, {2, 5, 6, 9}};
   const std::vector<double> times = {0.01, 0.02, 0.03};
   {
@@ -112,7 +123,7 @@ TEST(ParticleRecorder, RoundTripWithChangingParticleCounts) {
 }
 
 TEST(ParticleRecorder, EmptySnapshotIsRecordedAndSkippedInXdmf) {
-  const auto dir = freshDir("empty");
+  const TempDir dir("empty");
   ParticleRecorder rec(dir, kFields);
   rec.write(0.5, state({}, 0.5));
   rec.write(1.0, state({3}, 1.0));
@@ -126,7 +137,7 @@ TEST(ParticleRecorder, EmptySnapshotIsRecordedAndSkippedInXdmf) {
 }
 
 TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
-  const auto dir = freshDir("xdmf");
+  const TempDir dir("xdmf");
   {
     ParticleRecorder rec(dir, kFields);
     rec.write(0.1, state({1, 2}, 0.1));
@@ -168,7 +179,7 @@ TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
 }
 
 TEST(ParticleRecorder, SnapshotsSurviveACrashOfTheWriter) {
-  const auto dir = freshDir("crash");
+  const TempDir dir("crash");
   const pid_t child = ::fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
@@ -191,7 +202,7 @@ TEST(ParticleRecorder, SnapshotsSurviveACrashOfTheWriter) {
 
 TEST(ParticleRecorder, SnapshotAtTheSameTimeReplacesThePreviousOne) {
   // The orchestrator records the last step, credits the last coating, and records again.
-  const auto dir = freshDir("replace");
+  const TempDir dir("replace");
   {
     ParticleRecorder rec(dir, kFields);
     rec.write(0.1, state({1, 2}, 0.1));
@@ -220,7 +231,7 @@ TEST(ParticleRecorder, SnapshotAtTheSameTimeReplacesThePreviousOne) {
 }
 
 TEST(ParticleRecorder, AReaderInAnotherProcessDoesNotBlockTheWriter) {
-  const auto dir = freshDir("reader");
+  const TempDir dir("reader");
   ParticleRecorder rec(dir, kFields);
   rec.write(0.1, state({1, 2}, 0.1));
   int toChild[2], toParent[2];
@@ -251,7 +262,7 @@ TEST(ParticleRecorder, AReaderInAnotherProcessDoesNotBlockTheWriter) {
 }
 
 TEST(ParticleRecorder, AppendContinuesNumbering) {
-  const auto dir = freshDir("append");
+  const TempDir dir("append");
   { ParticleRecorder(dir, kFields).write(0.1, state({1}, 0.1)); }
   {
     ParticleRecorder rec(dir, kFields, ParticleRecorder::Mode::append);
@@ -264,7 +275,7 @@ TEST(ParticleRecorder, AppendContinuesNumbering) {
 }
 
 TEST(ParticleRecorder, ClearErrors) {
-  const auto dir = freshDir("errors");
+  const TempDir dir("errors");
   ParticleRecorder rec(dir, kFields);
   cosim::link::ParticleData p;
   p.ids = {1};

@@ -39,6 +39,15 @@ fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t s
   TimeSeriesRecorder ts(dir / kTimeSeriesFile,
                         {column::particle_count, column::wall_seconds, column::precursor_in, column::precursor_out,
                          column::precursor_held, column::precursor_removed, column::coated_mass});
+  {
+    // The orchestrator records the initial state (uncoated) before the first step.
+    cosim::link::ParticleData p0;
+    p0.ids.resize(n);
+    for (std::size_t i = 0; i < n; ++i) p0.ids[i] = static_cast<std::int64_t>(i + 1);
+    p0.field(cosim::field::position);
+    p0.field(cosim::field::coating_mass);
+    rec.write(0.0, p0);
+  }
   double in = 0, out = 0, held = 0, removed = 0, credited = 0, pending = 0, wall = 0, coatedPrev = 0;
   for (std::size_t s = 0; s < masses.size(); ++s) {
     const double t = dt * static_cast<double>(s + 1);
@@ -72,6 +81,14 @@ fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t s
   return dir;
 }
 
+// Removes the synthetic runs of a test that passed (a failed one keeps them to look at).
+struct CleanUp {
+  fs::path dir;
+  ~CleanUp() {
+    if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+  }
+};
+
 bool matplotlibAvailable() {
   std::string why;
   return findPython(why).has_value() && findPlotScript().has_value();
@@ -80,6 +97,7 @@ bool matplotlibAvailable() {
 
 TEST(Report, SingleWellMixedRunEndToEnd) {
   const fs::path run = makeRun("well-mixed", 0.0, 17);
+  CleanUp cleanup{run.parent_path()};
   ReportOptions o;
   o.runs = {run};
   o.fit_end = 10.0;  // the last 10 s check the prediction
@@ -123,6 +141,7 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   const fs::path good = makeRun("flow-100", 0.0, 23);
   const fs::path poor = makeRun("flow-1", 0.2, 29);
   const fs::path out = good.parent_path() / "sweep-report";
+  CleanUp cleanup{good.parent_path()};
   ReportOptions o;
   o.runs = {poor, good};
   o.output = out;

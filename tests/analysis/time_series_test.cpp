@@ -21,6 +21,7 @@ TEST(TimeSeries, RowsAreOnDiskRightAfterWriteAndReadBack) {
   EXPECT_EQ(ts.at("precursor_in")[1], 1.2345678901234567e-9);
   EXPECT_EQ(ts.at("time")[1], 1e-4);
   EXPECT_THROW(rec.write(2e-4, {1.0}), std::runtime_error);
+  fs::remove(path);
   try {
     ts.at("precursor_out");
     FAIL();
@@ -47,4 +48,5 @@ TEST(TimeSeries, LastLineCutByACrashIsIgnored) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(":3:"), std::string::npos) << e.what();
   }
+  fs::remove(path);
 }
