@@ -18,7 +18,7 @@ const std::vector<std::pair<double, double>> kPoints = {
     {0.75, 30.0}, {0.99, 1.0}, {0.9, 100.0}, {0.2, 1.0}};
 
 // k [kg/s per unit mass fraction] = cg^3 K_m rho pi d^2, K_m = Sh D / d, D = mu/(rho Sc), Sc = 1,
-// cg = 5, same gas and points as the drag tests; python3 /tmp/models_ref/ref.py.
+// cg = 5, same gas and points as the drag tests; python3 tests/models/reference_values.py.
 const std::vector<std::pair<const char*, std::vector<double>>> kReference = {
     {"deen_gunn",
      {4.2411500823462206e-06, 5.4186169672398708e-06, 9.9232516047802975e-06,

@@ -17,7 +17,7 @@ TEST(Plugin, ExampleDragLoadsByPathAndEvaluates) {
   auto law = r.makeDrag("tenneti", Parameters("tenneti"));
   EXPECT_EQ(law->name(), "tenneti");
   // Tenneti, Garg & Subramaniam (2011) F with K = 3 pi mu d eps F, cg 5, same points as the
-  // built-in drag tests (python3 /tmp/models_ref/ref.py).
+  // built-in drag tests (python3 tests/models/reference_values.py).
   const std::vector<std::pair<double, double>> points = {
       {1.0, 0.0}, {0.9, 0.05}, {0.6, 0.5}, {0.4, 2.0}, {0.45, 10.0}, {0.75, 30.0}};
   const std::vector<double> expected = {

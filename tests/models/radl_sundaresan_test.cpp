@@ -76,7 +76,7 @@ TEST(RadlSundaresan, LengthScaleIsUt43OverG13TimesD23) {
 }
 
 // Filtered Beetstra (k = 0.05, cg = 5, particle_density 1750) at (eps, slip, cell size):
-// python3 /tmp/models_ref/ref.py: K_beetstra * corr * exp(0.05 (1 - 5)).
+// python3 tests/models/reference_values.py: K_beetstra * corr * exp(0.05 (1 - 5)).
 TEST(RadlSundaresan, FilteredBeetstraMatchesIndependentValues) {
   const double points[5][3] = {
       {0.6, 0.5, 1e-4}, {0.4, 2.0, 1e-3}, {0.95, 1.0, 4e-3}, {0.75, 0.2, 1e-2}, {0.5, 5.0, 0.1}};
@@ -95,7 +95,7 @@ TEST(RadlSundaresan, FilteredBeetstraMatchesIndependentValues) {
 }
 
 // Terminal velocity from the reference gas (1.12 kg/m3, 1.8e-5 Pa s) or from the parcel's own gas
-// (1.5 kg/m3, 2e-5 Pa s); eps 0.6, slip 0.5, cell 4 mm, cg 5, k 0.05 (python3 ref.py).
+// (1.5 kg/m3, 2e-5 Pa s); eps 0.6, slip 0.5, cell 4 mm, cg 5, k 0.05 (python3 tests/models/reference_values.py).
 TEST(RadlSundaresan, TerminalVelocityFromReferenceOrLocalGas) {
   Parameters local("beetstra");
   local.setText("filtered", "true");
