@@ -19,7 +19,7 @@ const std::vector<std::pair<double, double>> kPoints = {
     {1.0, 0.0}, {0.9, 0.05}, {0.6, 0.5}, {0.4, 2.0}, {0.45, 10.0},
     {0.75, 30.0}, {0.99, 1.0}, {0.9, 100.0}, {0.2, 1.0}};
 
-// K [kg/s] per parcel at kPoints, computed with python3 (/tmp/models_ref/ref.py, written from the
+// K [kg/s] per parcel at kPoints, computed with python3 (tests/models/reference_values.py, written from the
 // published formulas: per-volume beta converted with K = beta V_p / phi for Ergun/Wen-Yu,
 // Cd-based forms for Schiller-Naumann/Di Felice, the Benyahia et al. (2006) fit for Koch-Hill,
 // Beetstra's F with K = 3 pi mu d eps F), times cg^3 = 125.
