@@ -62,9 +62,12 @@ std::optional<std::filesystem::path> findPlotScript() {
 
 std::optional<std::string> findPython(std::string& why_not) {
   std::vector<std::string> candidates;
-  if (const char* env = std::getenv("COSIM_PYTHON"); env != nullptr && *env != '\0') candidates.emplace_back(env);
-  candidates.emplace_back("python3");
-  candidates.emplace_back("/usr/bin/python3");
+  if (const char* env = std::getenv("COSIM_PYTHON"); env != nullptr && *env != '\0') {
+    candidates.emplace_back(env);  // the user's explicit choice: no fallback behind their back
+  } else {
+    candidates.emplace_back("python3");
+    candidates.emplace_back("/usr/bin/python3");
+  }
   for (const auto& py : candidates) {
     if (run(shellQuote(py) + " -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0) return py;
   }

@@ -170,6 +170,30 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   EXPECT_TRUE(fs::exists(out / "flow-1" / "fit.png"));
 }
 
+TEST(Report, WithoutMatplotlibTheNumbersAndHtmlStillComeOutAndSayWhatToInstall) {
+  const fs::path run = makeRun("no-python", 0.0, 31);
+  CleanUp cleanup{run.parent_path()};
+  ::setenv("COSIM_PYTHON", "/nonexistent/python3", 1);
+  ReportOptions o;
+  o.runs = {run};
+  std::ostringstream log;
+  o.log = &log;
+  const int rc = runReport(o);
+  ::unsetenv("COSIM_PYTHON");
+  ASSERT_EQ(rc, 0) << log.str();
+  const fs::path out = run / "report";
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_TRUE(fs::exists(out / "statistics.csv"));
+  EXPECT_TRUE(fs::exists(out / "mass_balance.csv"));
+  for (const auto& e : fs::directory_iterator(out)) EXPECT_NE(e.path().extension(), ".png") << e.path();
+  const std::string html = slurp(out / "report.html");
+  EXPECT_NE(html.find("Plots missing"), std::string::npos);
+  EXPECT_NE(html.find("apt-get install python3-matplotlib"), std::string::npos);
+  EXPECT_NE(html.find("<td class=l>precursor in</td>"), std::string::npos);
+  EXPECT_NE(log.str().find("but no plots"), std::string::npos) << log.str();
+  EXPECT_NE(log.str().find("/nonexistent/python3"), std::string::npos) << log.str();
+}
+
 TEST(Report, MissingRunIsAClearError) {
   ReportOptions o;
   o.runs = {"/nonexistent/run"};

@@ -84,7 +84,8 @@ int runReport(const ReportOptions& options);
 // The plot script: $COSIM_SCRIPTS/plot_report.py, else next to the executable
 // (<exe>/../share/cosim/scripts, <exe>/../../scripts), else the source tree's scripts/.
 std::optional<std::filesystem::path> findPlotScript();
-// A python3 that imports matplotlib: $COSIM_PYTHON, else python3 on PATH, else /usr/bin/python3.
+// A python3 that imports matplotlib and numpy: $COSIM_PYTHON if set (only that one), else
+// python3 on the PATH, else /usr/bin/python3.
 std::optional<std::string> findPython(std::string& why_not);
 // Runs the script on a report folder; returns true on success, else message says why.
 bool drawPlots(const std::filesystem::path& folder, std::string& message);
