@@ -209,6 +209,19 @@ ModelSpec modelSpec(const YAML::Node& n, const std::string& key, const std::stri
 
 }  // namespace
 
+namespace {
+// Deep merge: maps are merged key by key, anything else in `over` replaces `base`.
+YAML::Node merge(const YAML::Node& base, const YAML::Node& over) {
+  if (!base.IsMap() || !over.IsMap()) return YAML::Clone(over);
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& kv : over) {
+    const auto k = kv.first.as<std::string>();
+    out[k] = out[k] ? merge(out[k], kv.second) : YAML::Clone(kv.second);
+  }
+  return out;
+}
+}  // namespace
+
 Scenario parseScenario(const std::string& text, const fs::path& origin,
                        const std::vector<std::string>& sets) {
   Context ctx(origin);
@@ -224,6 +237,21 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
                         ": not valid YAML: " + e.msg);
   }
   if (!root.IsMap()) ctx.failTop("(top level)", "expected a map with name, participants, coupling, models ...");
+  // extends: another scenario file this one only changes (e.g. a size variant of a scene).
+  if (root["extends"]) {
+    const fs::path base = fs::absolute(origin).parent_path() / ctx.text(root["extends"], "extends");
+    std::ifstream in(base);
+    if (!in) ctx.fail(root["extends"], "extends", "cannot open '" + base.string() + "'");
+    YAML::Node b;
+    try {
+      b = YAML::LoadFile(base.string());
+    } catch (const YAML::ParserException& e) {
+      throw ScenarioError(base.string() + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+    }
+    if (b["extends"]) ctx.fail(root["extends"], "extends", "'" + base.string() + "' extends another file itself; one level only");
+    root.remove("extends");
+    root = merge(b, root);
+  }
   ctx.allowOnly(root, "", {"name", "description", "parameters", "participants", "coupling",
                            "constants", "models", "output", "transport", "checks", "observables"});
   for (const auto& s : sets) applySet(root, s, ctx);
