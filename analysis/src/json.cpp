@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
@@ -31,6 +32,15 @@ void Json::push(Json value) {
   auto* arr = std::get_if<Array>(&v_);
   if (arr == nullptr) throw std::logic_error("Json: push on a non-array");
   arr->push_back(std::move(value));
+}
+
+std::string formatShortest(double v) {
+  char buf[32];
+  for (int precision = 15; precision <= 17; ++precision) {
+    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
+    if (std::strtod(buf, nullptr) == v) break;
+  }
+  return buf;
 }
 
 std::string jsonQuote(const std::string& s) {
@@ -73,9 +83,7 @@ void Json::dumpTo(std::string& out, int indent, int depth) const {
     if (!std::isfinite(*d)) {
       out += "null";
     } else {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.17g", *d);
-      out += buf;
+      out += formatShortest(*d);
     }
   } else if (const auto* s = std::get_if<std::string>(&v_)) {
     out += jsonQuote(*s);

@@ -1,5 +1,7 @@
 #include "cosim/analysis/time_series.h"
 
+#include "cosim/analysis/json.h"
+
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -75,13 +77,10 @@ void TimeSeriesRecorder::write(double time, const std::vector<double>& values) {
                              std::to_string(columns_.size()) + " columns (" + header(columns_) +
                              ") in " + path_.string());
   }
-  std::string row;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", time);
-  row += buf;
+  std::string row = formatShortest(time);
   for (double v : values) {
-    std::snprintf(buf, sizeof buf, ",%.17g", v);
-    row += buf;
+    row += ',';
+    row += formatShortest(v);
   }
   row += '\n';
   if (std::fputs(row.c_str(), file_) < 0 || std::fflush(file_) != 0) {

@@ -48,6 +48,9 @@ class Json {
   std::variant<std::monostate, bool, double, std::string, Array, Object> v_;
 };
 
+// Shortest decimal text ("%.15g" .. "%.17g") that reads back as exactly the same double.
+std::string formatShortest(double v);
+
 // Escape a string for JSON (quotes included).
 std::string jsonQuote(const std::string& s);
 
