@@ -418,6 +418,9 @@ public:
             }
             Kexchange.primitiveFieldRef() = Ksum/V;
             KUp.primitiveFieldRef() = KvSum/V;
+            // Processor faces need the neighbour's values (face interpolation of A - K)
+            Kexchange.correctBoundaryConditions();
+            KUp.correctBoundaryConditions();
             if (settings_.species)
             {
                 scalarField kSum(mesh.nCells(), 0.0);
@@ -431,6 +434,7 @@ public:
                     parcels.deposit(kList, kSum);
                 }
                 sinkCoeff_->primitiveFieldRef() = kSum/V;
+                sinkCoeff_->correctBoundaryConditions();
             }
         }
 
