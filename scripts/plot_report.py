@@ -121,9 +121,9 @@ def plot_fit(r, folder):
         tt = np.linspace(max(t0c, 0.0), max(t.max(), fit["t1"]), 200)
         tau = tt - t0c
         a1, a2 = fit["a1"], fit["a2"]
-        axes[0].plot(tt, a1 * tau * f, "r-", label="a1 t, a1 = %.3g ± %.2g kg/s" % (a1, fit["a1_se"]))
+        axes[0].plot(tt, a1 * tau * f, "r-", label="a1 t, a1 = %.3g ± %.2g kg/s" % (a1, fit["a1_error"]))
         axes[1].plot(tt, a2 * a2 * tau * f * f, "r-",
-                     label="a2² t, a2 = %.3g ± %.2g kg/s^0.5" % (a2, fit["a2_se"]))
+                     label="a2² t, a2 = %.3g ± %.2g kg/s^0.5" % (a2, fit["a2_error"]))
         tf = num(fit["time"])
         rm = num(fit["mean_residual"]) / np.maximum(num(fit["mean"]), 1e-300)
         rv = num(fit["variance_residual"]) / np.maximum(num(fit["variance"]), 1e-300)

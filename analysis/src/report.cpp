@@ -59,9 +59,9 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
     r["uncoated_share"] = l.uncoated_share;
     r["fit_ok"] = a.fit.ok;
     r["a1"] = a.fit.a1;
-    r["a1_se"] = a.fit.a1_se;
+    r["a1_se"] = a.a1Error();
     r["a2"] = a.fit.a2;
-    r["a2_se"] = a.fit.a2_se;
+    r["a2_se"] = a.a2Error();
     r["well_mixed"] = a.verdict.well_mixed;
     r["verdict"] = a.verdict.summary();
     r["mass_balance_error_percent"] = a.mass_balance ? a.mass_balance->error_percent : std::nan("");
@@ -79,8 +79,8 @@ void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::file
     const auto& l = a.snapshots.back();
     char buf[512];
     std::snprintf(buf, sizeof buf, "\"%s\",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%.10g,%.10g\n",
-                  a.label.c_str(), l.time, l.total, l.mean, l.cv, l.uncoated_share, a.fit.a1, a.fit.a1_se, a.fit.a2,
-                  a.fit.a2_se, a.verdict.well_mixed ? 1 : 0,
+                  a.label.c_str(), l.time, l.total, l.mean, l.cv, l.uncoated_share, a.fit.a1, a.a1Error(), a.fit.a2,
+                  a.a2Error(), a.verdict.well_mixed ? 1 : 0,
                   a.mass_balance ? a.mass_balance->error_percent : std::nan(""), a.wall_seconds);
     csv += buf;
   }

@@ -1,7 +1,9 @@
 // analyseRun: every number of one run's report, computed from its recorded files.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/particle_recorder.h"
@@ -51,6 +53,31 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     histIndex.push_back(best);
   }
 
+  const double t0 = std::isnan(o.fit_start) ? snaps.front().time : o.fit_start;
+  const double t1 = std::isnan(o.fit_end) ? last : o.fit_end;
+  if (t1 <= t0) {
+    throw std::runtime_error("fit window [" + std::to_string(t0) + ", " + std::to_string(t1) +
+                             "] s is empty: give --fit-start below --fit-end");
+  }
+  // Snapshots kept per parcel for the bootstrap: at most bootstrap_snapshots, evenly spread
+  // over the fitted ones.
+  std::vector<std::size_t> fitted;
+  for (std::size_t i = 0; i < snaps.size(); ++i) {
+    if (snaps[i].time >= t0 && snaps[i].time <= t1 && snaps[i].time > o.coating_start && snaps[i].count > 0) {
+      fitted.push_back(i);
+    }
+  }
+  std::vector<char> keep(snaps.size(), 0);
+  if (o.bootstrap_resamples > 0 && !fitted.empty()) {
+    const std::size_t k = std::min(fitted.size(), std::max<std::size_t>(o.bootstrap_snapshots, 3));
+    for (std::size_t j = 0; j < k; ++j) {
+      keep[fitted[k == 1 ? 0 : j * (fitted.size() - 1) / (k - 1)]] = 1;
+    }
+  }
+  ParcelHistories histories;
+  std::unordered_map<std::int64_t, std::size_t> parcelColumn;
+  std::vector<std::pair<std::vector<std::int64_t>, std::vector<double>>> kept;
+
   std::vector<double> lastValues;
   a.histograms.resize(wanted.size());
   for (std::size_t i = 0; i < snaps.size(); ++i) {
@@ -63,16 +90,25 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
         a.histograms[h].histogram = histogram(m);
       }
     }
+    if (keep[i]) {
+      auto ids = file.ids(i);
+      for (auto id : ids) parcelColumn.emplace(id, parcelColumn.size());
+      histories.time.push_back(snaps[i].time);
+      kept.emplace_back(std::move(ids), m);
+    }
     if (i + 1 == snaps.size()) lastValues = std::move(m);
   }
 
-  const double t0 = std::isnan(o.fit_start) ? snaps.front().time : o.fit_start;
-  const double t1 = std::isnan(o.fit_end) ? last : o.fit_end;
-  if (t1 <= t0) {
-    throw std::runtime_error("fit window [" + std::to_string(t0) + ", " + std::to_string(t1) +
-                             "] s is empty: give --fit-start below --fit-end");
-  }
   a.fit = fitGrowth(a.snapshots, t0, t1, o.coating_start);
+  if (a.fit.ok && kept.size() >= 3) {
+    for (const auto& [ids, m] : kept) {
+      std::vector<double> row(parcelColumn.size(), std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t j = 0; j < ids.size(); ++j) row[parcelColumn.at(ids[j])] = m[j];
+      histories.mass.push_back(std::move(row));
+    }
+    kept.clear();
+    a.bootstrap = bootstrapGrowthErrors(histories, o.coating_start, o.bootstrap_resamples);
+  }
   // The verdict looks at the last snapshot of the fit window (what the fit saw).
   std::size_t lastInWindow = snaps.size() - 1;
   for (std::size_t i = snaps.size(); i-- > 0;) {

@@ -113,11 +113,22 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
   if (!a.fit.ok) {
     h << "<p class=bad>No fit: " << htmlEscape(a.fit.problem) << "</p>\n";
   } else {
-    h << "<table><tr><th class=l>parameter</th><th>value</th><th>standard error (HC3)</th><th>standard error "
-         "(classic)</th></tr><tr><td class=l>a1 [kg/s]</td><td>"
-      << g(a.fit.a1) << "</td><td>" << g(a.fit.a1_se) << "</td><td>" << g(a.fit.a1_se_classic)
-      << "</td></tr><tr><td class=l>a2 [kg/s<sup>0.5</sup>]</td><td>" << g(a.fit.a2) << "</td><td>" << g(a.fit.a2_se)
-      << "</td><td>" << g(a.fit.a2_se_classic) << "</td></tr></table>\n<p>" << a.fit.tau.size()
+    const double nan = std::nan("");
+    h << "<table><tr><th class=l>parameter</th><th>value</th><th>standard error (particle bootstrap)</th>"
+         "<th>standard error (regression, HC3)</th><th>standard error (regression, classic)</th></tr>"
+         "<tr><td class=l>a1 [kg/s]</td><td>"
+      << g(a.fit.a1) << "</td><td>" << g(a.bootstrap.ok ? a.bootstrap.a1_se : nan) << "</td><td>" << g(a.fit.a1_se)
+      << "</td><td>" << g(a.fit.a1_se_classic) << "</td></tr><tr><td class=l>a2 [kg/s<sup>0.5</sup>]</td><td>"
+      << g(a.fit.a2) << "</td><td>" << g(a.bootstrap.ok ? a.bootstrap.a2_se : nan) << "</td><td>" << g(a.fit.a2_se)
+      << "</td><td>" << g(a.fit.a2_se_classic) << "</td></tr></table>\n<p>";
+    if (a.bootstrap.ok) {
+      h << "Bootstrap: " << a.bootstrap.resamples << " resamples of the " << a.bootstrap.parcels << " parcels over "
+        << a.bootstrap.snapshots << " snapshots of the window; it accounts for the snapshots following the same "
+        << "parcels, which the regression errors ignore (they are too small for such data). ";
+    } else if (!a.bootstrap.problem.empty()) {
+      h << "No bootstrap: " << htmlEscape(a.bootstrap.problem) << ". ";
+    }
+    h << a.fit.tau.size()
       << " snapshots; RMS residual " << pct(a.fit.mean_relative_rms) << " of the mean (mean fit), "
       << pct(a.fit.variance_relative_rms) << " of the mean variance (variance fit). Normality of the last "
       << "snapshot in the window: ";
@@ -166,7 +177,7 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
       << g(w.horizon / 60.0) << " min settles, and how well each shorter window predicts the simulated CV at the "
       << "end of the run (t = " << g(w.run_end) << " s, CV = " << g(w.simulated_cv_run_end) << "). Wall time is "
       << "what the simulation needed to reach the end of the window.</p>\n<table><tr><th>window end [s]</th>"
-      << "<th>wall time [s]</th><th>a1 [kg/s]</th><th>a2 [kg/s<sup>0.5</sup>]</th><th>CV at "
+      << "<th>wall time [s]</th><th>a1 [kg/s] &plusmn; HC3</th><th>a2 [kg/s<sup>0.5</sup>] &plusmn; HC3</th><th>CV at "
       << g(w.horizon / 60.0) << " min</th><th>error of the predicted CV at the run end</th></tr>";
     for (const auto& p : w.points) {
       h << "<tr><td>" << g(p.t_end) << "</td><td>" << g(p.wall_seconds) << "</td>";
@@ -247,8 +258,8 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector
     const auto& l = a.snapshots.back();
     h << "<tr><td class=l><a href=\"" << htmlEscape(folders[i]) << "/report.html\">" << htmlEscape(a.label)
       << "</a></td><td>" << g(l.time) << "</td><td>" << g(l.total) << "</td><td>" << g(l.mean) << "</td><td>" << g(l.cv)
-      << "</td><td>" << pct(l.uncoated_share) << "</td><td>" << (a.fit.ok ? g(a.fit.a1) + " &plusmn; " + g(a.fit.a1_se, "%.2g") : "&ndash;")
-      << "</td><td>" << (a.fit.ok ? g(a.fit.a2) + " &plusmn; " + g(a.fit.a2_se, "%.2g") : "&ndash;") << "</td><td>"
+      << "</td><td>" << pct(l.uncoated_share) << "</td><td>" << (a.fit.ok ? g(a.fit.a1) + " &plusmn; " + g(a.a1Error(), "%.2g") : "&ndash;")
+      << "</td><td>" << (a.fit.ok ? g(a.fit.a2) + " &plusmn; " + g(a.a2Error(), "%.2g") : "&ndash;") << "</td><td>"
       << (a.fit.ok && a.verdict.well_mixed ? g(predictDistribution(a.fit, 1200.0).cv) : "&ndash;") << "</td><td>"
       << (a.mass_balance ? g(a.mass_balance->error_percent, "%.3g") : "&ndash;") << "</td><td>" << g(a.wall_seconds)
       << "</td><td class=l><span class=" << (a.verdict.well_mixed ? "ok>well mixed" : "bad>poorly mixed") << "</span>";

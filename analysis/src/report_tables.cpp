@@ -1,6 +1,7 @@
 // report.json and the CSV tables of one run's report.
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 
 #include "cosim/analysis/report.h"
@@ -152,6 +153,14 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   fit["a2"] = f.a2;
   fit["a2_se"] = f.a2_se;
   fit["a2_se_classic"] = f.a2_se_classic;
+  fit["bootstrap_ok"] = a.bootstrap.ok;
+  fit["bootstrap_problem"] = a.bootstrap.problem;
+  fit["bootstrap_resamples"] = static_cast<unsigned long long>(a.bootstrap.resamples);
+  fit["bootstrap_snapshots"] = static_cast<unsigned long long>(a.bootstrap.snapshots);
+  fit["a1_se_bootstrap"] = a.bootstrap.ok ? Json(a.bootstrap.a1_se) : Json();
+  fit["a2_se_bootstrap"] = a.bootstrap.ok ? Json(a.bootstrap.a2_se) : Json();
+  fit["a1_error"] = a.a1Error();  // the one shown: bootstrap if available, else HC3
+  fit["a2_error"] = a.a2Error();
   fit["mean_relative_rms"] = f.mean_relative_rms;
   fit["variance_relative_rms"] = f.variance_relative_rms;
 
@@ -284,10 +293,14 @@ void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
     }
   }
   {
-    Csv c(dir / "fit.csv", "parameter,value,standard_error_hc3,standard_error_classic,unit");
-    c << std::string("a1") << a.fit.a1 << a.fit.a1_se << a.fit.a1_se_classic << std::string("kg/s");
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    Csv c(dir / "fit.csv",
+          "parameter,value,standard_error_bootstrap,standard_error_hc3,standard_error_classic,unit");
+    c << std::string("a1") << a.fit.a1 << (a.bootstrap.ok ? a.bootstrap.a1_se : nan) << a.fit.a1_se
+      << a.fit.a1_se_classic << std::string("kg/s");
     c.end();
-    c << std::string("a2") << a.fit.a2 << a.fit.a2_se << a.fit.a2_se_classic << std::string("kg/s^0.5");
+    c << std::string("a2") << a.fit.a2 << (a.bootstrap.ok ? a.bootstrap.a2_se : nan) << a.fit.a2_se
+      << a.fit.a2_se_classic << std::string("kg/s^0.5");
     c.end();
   }
   {

@@ -124,6 +124,14 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   // Closed by construction: only round-off remains.
   EXPECT_LT(std::abs(a.mass_balance->error_percent), 1e-8);
   EXPECT_NEAR(a.fit.a1, 4e-9, 0.02 * 4e-9);
+  // The synthetic bed follows the same parcels: the bootstrap error of a2 is what the report
+  // shows, and it is several times the regression error.
+  ASSERT_TRUE(a.bootstrap.ok) << a.bootstrap.problem;
+  EXPECT_EQ(a.bootstrap.parcels, 1500u);
+  EXPECT_EQ(a.bootstrap.snapshots, 20u);  // the fitted snapshots 0.5 .. 10 s
+  EXPECT_DOUBLE_EQ(a.a2Error(), a.bootstrap.a2_se);
+  EXPECT_GT(a.bootstrap.a2_se, 2 * a.fit.a2_se);
+  EXPECT_LT(std::abs(a.fit.a2 - 1e-9), 4 * a.a2Error());
   EXPECT_NEAR(a.mass_balance->pending, 0.0, 1e-12 * a.mass_balance->removed);
   EXPECT_EQ(a.steps, 201u);
   EXPECT_NEAR(a.wall_seconds, 200 * 0.02, 1e-9);

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/analysis/bootstrap_errors.h"
 #include "cosim/analysis/coating_statistics.h"
 #include "cosim/analysis/extrapolation.h"
 #include "cosim/analysis/growth_fit.h"
@@ -39,6 +40,10 @@ struct ReportOptions {
   double band = 0.2;                // relative band on a2 (Fig. 11)
   double uncoated_relative = 1e-6;  // never-coated threshold as a fraction of the mean
   MixingCriteria criteria;
+  // Particle-bootstrap standard errors of a1 and a2 (bootstrap_errors.h): resamples (0 = off)
+  // over at most bootstrap_snapshots snapshots evenly spread over the fit window.
+  std::size_t bootstrap_resamples = 100;
+  std::size_t bootstrap_snapshots = 50;
   bool plots = true;                // false: numbers and HTML only
   std::ostream* log = nullptr;      // progress and messages; nullptr = std::cout
 };
@@ -50,11 +55,16 @@ struct HistogramAt {
 };
 
 struct RunAnalysis {
+  // Standard errors shown with a1 and a2: the particle bootstrap when available, else HC3.
+  double a1Error() const { return bootstrap.ok ? bootstrap.a1_se : fit.a1_se; }
+  double a2Error() const { return bootstrap.ok ? bootstrap.a2_se : fit.a2_se; }
+
   std::filesystem::path run;
   std::string label;
   std::vector<CoatingStatistics> snapshots;
   std::vector<HistogramAt> histograms;
   GrowthFit fit;
+  BootstrapErrors bootstrap;             // particle-bootstrap errors of a1, a2 (preferred when ok)
   MixingVerdict verdict;
   CvPrediction cv_prediction;
   std::vector<PredictedDistribution> distributions;
