@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -94,7 +95,10 @@ TEST(LiggghtsAdapter, SettlingBedSameWithOneAndTwoRanks) {
   ScratchDir dir;
   std::map<int, Bed> beds;
   for (int ranks : {1, 2}) {
+    const auto t0 = std::chrono::steady_clock::now();
     beds[ranks] = settle(dir.path(), ranks);
+    std::printf("%d rank(s): %.1f s wall\n", ranks,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     const Bed& b = beds[ranks];
     EXPECT_EQ(b.state.size(), 1000u) << ranks << " rank(s)";
     EXPECT_EQ(b.inserted.size(), 1000u) << ranks << " rank(s): every particle reported inserted once";

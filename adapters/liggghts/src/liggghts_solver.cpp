@@ -2,9 +2,11 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <thread>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -33,9 +35,15 @@ cosim::link::Capabilities LiggghtsSolver::capabilities() const {
   return caps;
 }
 
+// The command header travels with a non-blocking broadcast on every rank (non-blocking and
+// blocking collectives do not match each other): the waiting ranks test it with short sleeps
+// instead of spinning inside MPI_Bcast, so that idle LIGGGHTS ranks do not take CPU from the
+// fluid solver while it computes.
 void LiggghtsSolver::broadcast(Op op, const std::string& payload) {
   int header[2] = {op, static_cast<int>(payload.size())};
-  MPI_Bcast(header, 2, MPI_INT, 0, comm_);
+  MPI_Request request;
+  MPI_Ibcast(header, 2, MPI_INT, 0, comm_, &request);
+  MPI_Wait(&request, MPI_STATUS_IGNORE);
   if (header[1] > 0)
     MPI_Bcast(const_cast<char*>(payload.data()), header[1], MPI_CHAR, 0, comm_);
   if (op == kFinish || op == kQuit) ranks_released_ = true;
@@ -129,7 +137,13 @@ void LiggghtsSolver::releaseOtherRanks() {
 int LiggghtsSolver::serve() {
   while (true) {
     int header[2] = {0, 0};
-    MPI_Bcast(header, 2, MPI_INT, 0, comm_);
+    MPI_Request request;
+    MPI_Ibcast(header, 2, MPI_INT, 0, comm_, &request);
+    for (int done = 0;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) break;
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
     std::string payload(static_cast<std::size_t>(header[1]), '\0');
     if (header[1] > 0) MPI_Bcast(payload.data(), header[1], MPI_CHAR, 0, comm_);
     try {
