@@ -34,6 +34,7 @@ MassBalance massBalance(const TimeSeries& s) {
                               initialRow ? coated.front() : 0.0, coated.back());
   b.initial_state = initialRow ? "first row (t = " + std::to_string(s.at(column::time).front()) + " s)"
                                : "assumed: no precursor in the gas and no coating at the start";
+  b.obtained_source = s.source + ", column coated_mass (coating credited by the orchestrator)";
   if (s.has(column::precursor_removed)) {
     const auto& removed = s.at(column::precursor_removed);
     b.has_removed = true;
@@ -41,6 +42,17 @@ MassBalance massBalance(const TimeSeries& s) {
     b.pending = b.removed - b.obtained_coating;
   }
   return b;
+}
+
+MassBalance withParticleCoating(const MassBalance& b, double coated_start, double coated_end,
+                                const std::string& source) {
+  MassBalance r = massBalance(b.precursor_in, b.precursor_out, b.held_start, b.held_end, coated_start, coated_end);
+  r.initial_state = b.initial_state;
+  r.obtained_source = source;
+  r.has_removed = b.has_removed;
+  r.removed = b.removed;
+  r.pending = b.has_removed ? r.removed - r.obtained_coating : 0.0;
+  return r;
 }
 
 }  // namespace cosim::analysis

@@ -140,6 +140,21 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     if (ts.has(column::wall_seconds) && ts.rows() > 0) a.wall_seconds = ts.at(column::wall_seconds).back();
     try {
       a.mass_balance = massBalance(ts);
+      // Coating on the particles themselves when particles.h5 holds the state at the end of the
+      // time series (the orchestrator records the final state after its last credit) and an
+      // initial state before its first row.
+      const auto& times = ts.at(column::time);
+      const double tEnd = times.back();
+      const double tol = 1e-9 * std::max(1.0, std::abs(tEnd));
+      if (a.snapshots.size() >= 2 && std::abs(a.snapshots.back().time - tEnd) <= tol &&
+          a.snapshots.front().time < times.front() - tol) {
+        const auto& first = a.snapshots.front();
+        const auto& lastSnap = a.snapshots.back();
+        a.mass_balance = withParticleCoating(
+            *a.mass_balance, first.total, lastSnap.total,
+            file.path().string() + ": sum of coating_mass at t = " + std::to_string(lastSnap.time) +
+                " s minus at t = " + std::to_string(first.time) + " s");
+      }
     } catch (const std::exception& e) {
       a.mass_balance_problem = std::string("no mass balance: ") + e.what();
     }

@@ -205,11 +205,12 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
       << "<tr><td class=l>coating on particles</td><td>" << g(b.obtained_coating, "%.6g") << "</td></tr>"
       << "<tr><td class=l>error (expected &minus; obtained)</td><td>" << g(b.error, "%.3g") << "</td></tr>"
       << "<tr><td class=l>error %</td><td>" << g(b.error_percent, "%.3g") << "</td></tr></table>\n"
-      << "<p>Initial state: " << htmlEscape(b.initial_state) << ".</p>\n";
+      << "<p>Initial state: " << htmlEscape(b.initial_state) << ". Coating on particles: "
+      << htmlEscape(b.obtained_source) << ".</p>\n";
     if (b.has_removed && b.pending != 0.0) {
-      h << "<p class=note>" << g(b.pending, "%.3g") << " kg removed from the gas had not been credited to the particles "
-        << "at the last row of timeseries.csv (the last step's coating is credited after it; the orchestrator should "
-        << "write a final row after its final credit).</p>\n";
+      h << "<p class=note>" << g(b.pending, "%.3g") << " kg removed from the gas is not on the particles "
+        << "(removed minus coating on particles). If the coating was read from timeseries.csv, the last step's "
+        << "credit comes after its last row; otherwise coating was lost between the fluid and the particles.</p>\n";
     }
   } else {
     h << "<p>" << htmlEscape(a.mass_balance_problem) << "</p>\n";

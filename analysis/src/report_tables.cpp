@@ -261,6 +261,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
     mb["error"] = b.error;
     mb["error_percent"] = b.error_percent;
     mb["initial_state"] = b.initial_state;
+    mb["obtained_source"] = b.obtained_source;
     mb["removed"] = b.has_removed ? Json(b.removed) : Json();
     mb["pending"] = b.has_removed ? Json(b.pending) : Json();
   } else {

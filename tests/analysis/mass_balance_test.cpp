@@ -67,3 +67,14 @@ TEST(MassBalance, WithoutInitialRowStartsEmpty) {
     EXPECT_NE(std::string(e.what()).find("coated_mass"), std::string::npos);
   }
 }
+
+TEST(MassBalance, CoatingReadOnTheParticlesReplacesTheCreditedColumn) {
+  // Time series: 6 mg in, 1.5 mg out, held +1.5 mg, 3 mg removed, but only 2 mg credited in
+  // its last row. The particles carry 0.5 mg at the start and 3.5 mg at the end: 3 mg obtained.
+  const auto fromSeries = massBalance(6e-6, 1.5e-6, 0.0, 1.5e-6, 0.0, 2e-6);
+  const auto b = withParticleCoating(fromSeries, 0.5e-6, 3.5e-6, "particles.h5");
+  EXPECT_NEAR(b.expected_coating, 3e-6, 1e-20);
+  EXPECT_NEAR(b.obtained_coating, 3e-6, 1e-20);
+  EXPECT_NEAR(b.error, 0.0, 1e-20);
+  EXPECT_EQ(b.obtained_source, "particles.h5");
+}

@@ -133,6 +133,8 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   EXPECT_GT(a.bootstrap.a2_se, 2 * a.fit.a2_se);
   EXPECT_LT(std::abs(a.fit.a2 - 1e-9), 4 * a.a2Error());
   EXPECT_NEAR(a.mass_balance->pending, 0.0, 1e-12 * a.mass_balance->removed);
+  // Read on the particles (particles.h5 holds the initial and the final state).
+  EXPECT_NE(a.mass_balance->obtained_source.find("particles.h5"), std::string::npos);
   EXPECT_EQ(a.steps, 201u);
   EXPECT_NEAR(a.wall_seconds, 200 * 0.02, 1e-9);
 

@@ -29,6 +29,7 @@ struct MassBalance {
   double removed = 0;          // [kg] taken from the gas by the sink (fluid side)
   double pending = 0;          // [kg] removed - obtained: not yet credited at the last row
   std::string initial_state;   // where held_start/coated_start came from, in words
+  std::string obtained_source; // where the coating on particles was read, in words
 };
 
 MassBalance massBalance(double in, double out, double held_start, double held_end,
@@ -36,5 +37,11 @@ MassBalance massBalance(double in, double out, double held_start, double held_en
 
 // Throws std::runtime_error naming the file and the missing column.
 MassBalance massBalance(const TimeSeries& series);
+
+// The same balance with the coating read on the particles themselves (e.g. the sums of
+// coating_mass over the first and last snapshot of particles.h5): the paper's "obtained
+// coating", and an end-to-end check that every credit reached a particle.
+MassBalance withParticleCoating(const MassBalance& b, double coated_start, double coated_end,
+                                const std::string& source);
 
 }  // namespace cosim::analysis
