@@ -228,16 +228,21 @@ def plot_mass_balance(r, folder):
     axes[0].plot(t, cout * f, label="out")
     axes[0].plot(t, held * f, label="held in gas (change)")
     axes[0].plot(t, (cin - cout - held) * f, "k--", label="expected coating")
-    axes[0].plot(t, coated * f, "r:", lw=2, label="coating on particles")
+    axes[0].plot(t, coated * f, "r:", lw=2, label="coating credited to particles")
     axes[0].set_xlabel("time [s]")
     axes[0].set_ylabel("cumulative precursor [%s]" % unit)
     axes[0].legend(fontsize=8)
     axes[0].grid(alpha=0.3)
     err = (cin - cout - held) - coated
-    axes[1].plot(t, err * f, "k-")
+    axes[1].plot(t, err * f, "k-", label="expected − credited")
+    if "precursor_removed" in ts:
+        removed = ts["precursor_removed"] - (ts["precursor_removed"][0] if initial else 0.0)
+        axes[1].plot(t, ((cin - cout - held) - removed) * f, "g-", label="expected − removed by the sink")
+    axes[1].legend(fontsize=7)
     axes[1].set_xlabel("time [s]")
-    axes[1].set_ylabel("expected − obtained [%s]" % unit)
-    axes[1].set_title("mass balance error: %.3g %% at the end" % (mb["error_percent"] or 0.0), fontsize=9)
+    axes[1].set_ylabel("expected − credited [%s]" % unit)
+    axes[1].set_title("expected − credited over time (a step's removal is credited one step later)\n"
+                      "final mass balance error: %.3g %%" % (mb["error_percent"] or 0.0), fontsize=8)
     axes[1].grid(alpha=0.3)
     save(fig, folder, "mass_balance.png")
 
