@@ -288,3 +288,35 @@ TEST_P(InsertDelete, LedgerMatchesState) {
 
 INSTANTIATE_TEST_SUITE_P(Ranks, InsertDelete, ::testing::Values(1, 2),
                          [](const auto& info) { return std::to_string(info.param) + "rank"; });
+
+// A LIGGGHTS error in the middle of a run reaches the orchestrator as an Error with LIGGGHTS'
+// message, and the process ends. The error is a division by zero in a variable printed at
+// DEM step 600 (interval 12): LIGGGHTS raises it with error->one (MPI_Abort) on every rank.
+class ErrorDuringRun : public ::testing::TestWithParam<int> {};
+
+TEST_P(ErrorDuringRun, LiggghtsMessageReachesOrchestrator) {
+  ScratchDir dir;
+  const auto pdir = dir.path() / "particles";
+  std::filesystem::create_directories(pdir);
+  std::filesystem::copy_file(dataDir() / "in.outlet", pdir / "in.outlet");
+  std::ofstream(pdir / "in.outlet", std::ios::app)
+      << "variable a equal 1.0/(step-600)\nfix pr all print 100 \"a = $a\"\n";
+  AdapterRun run(pdir, GetParam());
+  run.handshake("script: in.outlet\n", 1.5e-3, 50, kState, kForcing);
+  ASSERT_TRUE(run.advance(0, 0, ParticleData{}).has_advanced());
+  std::string msg;
+  int steps = 0;
+  for (; steps < 30 && msg.empty(); ++steps) {
+    const auto reply = run.advance(1.5e-3, 50, ParticleData{});
+    if (reply.has_error()) msg = reply.error().message();
+  }
+  EXPECT_EQ(steps, 12);
+  EXPECT_NE(msg.find("Divide by 0"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("running 50 DEM steps"), std::string::npos) << msg;
+  const int rc = run.waitExit(30);
+  EXPECT_NE(rc, 0);
+  EXPECT_NE(rc, -1) << "adapter still running 30 s after the error";
+}
+
+INSTANTIATE_TEST_SUITE_P(Ranks, ErrorDuringRun, ::testing::Values(1, 2),
+                         [](const auto& info) { return std::to_string(info.param) + "rank"; });
