@@ -56,6 +56,19 @@ FoamRun::FoamRun(const FoamRunConfig& config) {
   fs::remove_all(dir_);
   fs::create_directories(dir_);
   copyCase(fs::path(COSIM_FOAM_CASES) / config.case_name, dir_, config.substitute);
+  for (const auto& edit : config.edits) {
+    const fs::path file = fs::path(dir_) / edit.file;
+    std::ifstream in(file);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    const auto pos = text.find(edit.from);
+    if (pos == std::string::npos) {
+      throw std::runtime_error("test edit: '" + edit.from + "' not in " + file.string());
+    }
+    text.replace(pos, edit.from.size(), edit.to);
+    std::ofstream(file) << text;
+  }
 
   run_id_ = "test-" + tag;
   const std::string endpoint = "ipc:///tmp/cosimfoam-" + tag + ".ipc";

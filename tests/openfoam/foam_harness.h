@@ -20,6 +20,10 @@ namespace cosim::test {
 struct FoamRunConfig {
   std::string case_name = "column";               // folder under tests/openfoam/cases
   std::map<std::string, std::string> substitute;  // ${key} -> value in every case file
+  struct Edit {
+    std::string file, from, to;  // replace text `from` by `to` in the copied case's file
+  };
+  std::vector<Edit> edits;
   std::string options_yaml;                       // Welcome.config_yaml
   bool species = false;
   std::vector<std::string> send;                  // Welcome.send

@@ -76,7 +76,9 @@ class FoamGasDomain : public GasDomain
 {
     GasSettings settings_;
 
-    autoPtr<argList> args_;
+    // Never deleted: Foam::argList's destructor ends the process (UPstream::exit), which
+    // must not happen before the session has sent its Goodbye or Error.
+    argList* args_ = nullptr;
     autoPtr<Time> runTime_;
     autoPtr<fvMesh> mesh_;
     autoPtr<pimpleControl> pimple_;
@@ -111,12 +113,12 @@ public:
 
         guarded("reading the case", [&]
         {
-            args_.reset(new argList(argc, argv));
+            args_ = new argList(argc, argv);
             if (!args_->checkRootCase())
             {
                 FatalError.exit();
             }
-            runTime_.reset(new Time(Time::controlDictName, args_()));
+            runTime_.reset(new Time(Time::controlDictName, *args_));
             Time& runTime = runTime_();
 
             mesh_.reset(new fvMesh

@@ -1,0 +1,62 @@
+// Wrong settings give an error that names the key and says what was expected, sent to the
+// orchestrator as wire::Error (not a hang, not a crash).
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "foam_harness.h"
+
+namespace cosim::test {
+namespace {
+
+std::string firstError(const FoamRunConfig& cfg) {
+  try {
+    FoamRun run(cfg);
+    run.sample(makeParticles({0.01, 0.01, 0.05}, 1e-3));
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+FoamRunConfig base() {
+  FoamRunConfig cfg;
+  cfg.substitute = {{"inlet_velocity", "0.1"}, {"inlet_precursor", "0"},
+                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.send = {"voidage"};
+  cfg.receive = {"position", "radius"};
+  return cfg;
+}
+
+TEST(OpenFoamSettings, UnknownOptionIsNamed) {
+  auto cfg = base();
+  cfg.options_yaml = "{min_voidage: 0.3, min_viodage: 0.4}";
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("unknown key 'min_viodage'"), std::string::npos) << msg;
+}
+
+TEST(OpenFoamSettings, OutOfRangeValueSaysWhatIsExpected) {
+  auto cfg = base();
+  cfg.options_yaml = "{min_voidage: 1.5}";
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("min_voidage: expected a value in [0.01"), std::string::npos) << msg;
+}
+
+TEST(OpenFoamSettings, PrecursorWithoutMassTransferIsRefused) {
+  auto cfg = base();
+  cfg.species = false;
+  cfg.send = {"voidage", "precursor_fraction"};
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("no mass transfer"), std::string::npos) << msg;
+}
+
+TEST(OpenFoamSettings, NonEulerTimeSchemeIsRefusedWithTheFile) {
+  auto cfg = base();
+  cfg.edits.push_back({"system/fvSchemes", "default Euler;", "default backward;"});
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("system/fvSchemes"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("Euler"), std::string::npos) << msg;
+}
+
+}  // namespace
+}  // namespace cosim::test
