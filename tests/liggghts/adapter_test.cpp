@@ -86,6 +86,10 @@ Bed settle(const std::filesystem::path& base, int ranks) {
   return bed;
 }
 
+std::string rankName(const ::testing::TestParamInfo<int>& p) {
+  return std::to_string(p.param) + "rank";
+}
+
 }  // namespace
 
 // Issue 4: 1000 particles inserted in a cylinder settle into a bed: none lost, none overlapping
@@ -167,7 +171,7 @@ TEST_P(CoatingById, IncrementsLandOnTheirParticles) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ranks, CoatingById, ::testing::Values(1, 2),
-                         [](const auto& info) { return std::to_string(info.param) + "rank"; });
+                         rankName);
 
 // Issue 4: a malformed input script fails with LIGGGHTS' own message surfaced to the user
 // (as wire::Error), and the process ends (non-zero) instead of hanging.
@@ -190,7 +194,7 @@ TEST_P(MalformedScript, LiggghtsMessageReachesOrchestrator) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ranks, MalformedScript, ::testing::Values(1, 2),
-                         [](const auto& info) { return std::to_string(info.param) + "rank"; });
+                         rankName);
 
 // A DEM step above 0.3 Rayleigh times is refused with the dt that would work.
 TEST(LiggghtsAdapter, UnstableTimestepIsRefusedWithAWorkingValue) {
@@ -287,7 +291,7 @@ TEST_P(InsertDelete, LedgerMatchesState) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ranks, InsertDelete, ::testing::Values(1, 2),
-                         [](const auto& info) { return std::to_string(info.param) + "rank"; });
+                         rankName);
 
 // A LIGGGHTS error in the middle of a run reaches the orchestrator as an Error with LIGGGHTS'
 // message, and the process ends. The error is a division by zero in a variable printed at
@@ -319,4 +323,4 @@ TEST_P(ErrorDuringRun, LiggghtsMessageReachesOrchestrator) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ranks, ErrorDuringRun, ::testing::Values(1, 2),
-                         [](const auto& info) { return std::to_string(info.param) + "rank"; });
+                         rankName);

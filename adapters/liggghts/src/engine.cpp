@@ -297,7 +297,7 @@ void Engine::applyTerms(const Terms& terms) {
   std::string missing;
   int count = 0;
   for (std::size_t k = 0; k < n; ++k)
-    if (!found_anywhere[k] && count++ < 10) missing += " " + std::to_string(terms.ids[k]);
+    if (!found_anywhere[k] && count++ < 10) missing.append(" ").append(std::to_string(terms.ids[k]));
   if (count > 0)
     throw std::runtime_error("forcing names " + std::to_string(count) +
                              " particle id(s) that LIGGGHTS does not have:" + missing +
