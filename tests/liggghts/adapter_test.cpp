@@ -324,3 +324,30 @@ TEST_P(ErrorDuringRun, LiggghtsMessageReachesOrchestrator) {
 
 INSTANTIATE_TEST_SUITE_P(Ranks, ErrorDuringRun, ::testing::Values(1, 2),
                          rankName);
+
+// Particles inserted after start-up are checked when they appear: a 3 mm bead (t_R = 1.836e-4 s) with a DEM step of 1e-4 s is refused at the first
+// interval that inserts it.
+TEST(LiggghtsAdapter, TimestepCheckedWhenParticlesAppear) {
+  ScratchDir dir;
+  const auto pdir = dir.path() / "particles";
+  std::filesystem::create_directories(pdir);
+  {
+    std::ifstream in(dataDir() / "in.settling_bed");
+    std::ofstream out(pdir / "in.settling_bed");
+    std::string line;
+    while (std::getline(in, line)) out << (line == "timestep 3e-5" ? "timestep 1e-4" : line) << "\n";
+  }
+  AdapterRun run(pdir, 1);
+  run.handshake("script: in.settling_bed\n", 5e-3, 50, kState, kForcing);
+  const auto first = run.advance(0, 0, ParticleData{});
+  ASSERT_TRUE(first.has_advanced()) << "no particles yet: nothing to refuse";
+  EXPECT_EQ(first.advanced().state().ids_size(), 0);
+  const auto reply = run.advance(5e-3, 50, ParticleData{});
+  ASSERT_TRUE(reply.has_error());
+  const std::string msg = reply.error().message();
+  // t_R = pi * 1.5e-3 * sqrt(2500 / 1.9231e6) / 0.92553 = 1.6991e-4 / 0.92553 = 1.8358e-4 s:
+  // dt/t_R = 0.5447, 0.2 t_R = 3.672e-5 s
+  EXPECT_NE(msg.find("0.545 x Rayleigh time"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("timestep 3.67e-05"), std::string::npos) << msg;
+  EXPECT_NE(run.waitExit(30), 0);
+}
