@@ -102,6 +102,28 @@ TEST(Engine, DragRelaxesToTerminalVelocity) {
   }
 }
 
+// Drag and an explicit force together: v_t = u_f + (F - m g)/K, here with F = 0.4 m g upwards
+// and tau = m/K = 0.5 ms: v_t = 0.3 - 0.6 g tau (z up).
+TEST(Engine, DragWithExplicitForceTerminalVelocity) {
+  ScratchDir dir;
+  auto e = singleParticle();
+  e->command("unfix floor");
+  e->command("set atom 1 z 0.025");
+  e->command("velocity all set 0 0 0");
+  const double tau = 5e-4, K = kMass / tau;
+  Terms t;
+  t.ids = {1};
+  t.drag_coefficient = {K};
+  t.fluid_velocity = {0, 0, 0.3};
+  t.explicit_force = {0, 0, 0.4 * kMass * kGravity};
+  for (int k = 0; k < 10; ++k) {  // 10 ms = 20 tau
+    e->applyTerms(t);
+    e->advance(1000);
+  }
+  const double vt = 0.3 - 0.6 * kGravity * tau;
+  EXPECT_NEAR(e->state().velocity[2], vt, 0.005 * 0.6 * kGravity * tau);
+}
+
 // An explicit force alone (no K) accelerates the particle like any other force: with
 // F = m g upwards the grain floats at constant velocity.
 TEST(Engine, ExplicitForceWithoutDrag) {
