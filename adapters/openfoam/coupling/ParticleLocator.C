@@ -43,7 +43,7 @@ Foam::label Foam::cosim::ParticleLocator::walk(const point& p, label celli) cons
 
     for (label step = 0; step < maxSteps_; ++step)
     {
-        if (mesh_.pointInCell(p, celli))
+        if (mesh_.pointInCell(p, celli, polyMesh::FACE_PLANES))
         {
             return celli;
         }

@@ -1,6 +1,7 @@
 #include "FoamParticipant.h"
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -203,6 +204,7 @@ void FoamParticipant::sample(const cosim::link::ParticleData& particles,
     if (n != field::precursor_removed) names.push_back(n);
   }
 
+  const auto t0 = std::chrono::steady_clock::now();
   bridge_.command(RankCommand::sample);
   bridge_.share(set.ids);
   bridge_.share(set.position);
@@ -211,12 +213,14 @@ void FoamParticipant::sample(const cosim::link::ParticleData& particles,
   bridge_.share(names);
   const auto lost = gas_->place(set);
   const auto values = gas_->sample(names);
+  sampleSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   sampledIds_ = set.ids;
   out.ids = set.ids;
   for (const auto& [name, v] : values) out.field(name) = v;
   lost_ids.clear();
   for (const auto i : lost) lost_ids.push_back(set.ids[i]);
+  lostCount_ = lost.size();
 }
 
 void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::ParticleData& terms,
@@ -260,6 +264,8 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
   const StepResult r = gas_->advance(dt, K, k);
 
   for (const auto& [name, v] : r.scalars) (*out.mutable_scalars())[name] = v;
+  (*out.mutable_scalars())["sample_seconds"] = sampleSeconds_;
+  (*out.mutable_scalars())["lost_particles"] = static_cast<double>(lostCount_);
   if (std::find(send_.begin(), send_.end(), field::precursor_removed) != send_.end()) {
     state.ids = sampledIds_;
     auto& removed = state.field(field::precursor_removed);
