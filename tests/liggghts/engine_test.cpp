@@ -244,3 +244,27 @@ TEST(Engine, MalformedScriptSurfacesLiggghtsMessage) {
   }
   EXPECT_TRUE(e.broken());
 }
+
+// The mechanism behind the error capture: inside a LiggghtsCall, MPI_Abort (LIGGGHTS
+// error->one) and MPI_Finalize (error->all) throw instead of ending the process; outside, they
+// are the library's (not called here: they would end the test).
+TEST(LiggghtsCallScope, FinalizeAndAbortThrowInside) {
+  {
+    LiggghtsCall call;
+    try {
+      MPI_Abort(MPI_COMM_WORLD, 3);
+      FAIL() << "MPI_Abort returned";
+    } catch (const LiggghtsStop& stop) {
+      EXPECT_TRUE(stop.aborted);
+    }
+    try {
+      MPI_Finalize();
+      FAIL() << "MPI_Finalize returned";
+    } catch (const LiggghtsStop& stop) {
+      EXPECT_FALSE(stop.aborted);
+    }
+  }
+  int finalized = 1;
+  MPI_Finalized(&finalized);
+  EXPECT_EQ(finalized, 0) << "MPI must still be usable";
+}
