@@ -163,14 +163,20 @@ TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
   std::regex item(R"re(<DataItem Dimensions="(\d+)[^"]*"[^>]*>particles\.h5:/snapshots/(\d+)/(\w+)</DataItem>)re");
   int refs = 0;
   for (auto it = std::sregex_iterator(x.begin(), x.end(), item); it != std::sregex_iterator(); ++it, ++refs) {
-    const auto snap = static_cast<std::size_t>(std::stoul((*it)[2]));
+    std::size_t snap = f.snapshots().size();  // index of the referenced group among the snapshots
+    for (std::size_t i = 0; i < f.snapshots().size(); ++i) {
+      if (f.snapshots()[i].group == (*it)[2]) snap = i;
+    }
+    ASSERT_LT(snap, f.snapshots().size()) << "XDMF references a missing group " << (*it)[2];
     const std::string field = (*it)[3];
     const auto rows = std::stoul((*it)[1]);
     if (field == "id") {
       EXPECT_EQ(f.ids(snap).size(), rows);
     } else {
       std::uint64_t comps = 0;
-      EXPECT_EQ(f.read(snap, field, &comps).size() / comps, rows) << field;
+      const auto values = f.read(snap, field, &comps);
+      ASSERT_GT(comps, 0u) << field;
+      EXPECT_EQ(values.size() / comps, rows) << field;
     }
   }
   EXPECT_EQ(refs, 2 * 5);  // position + id + velocity + radius + coating_mass per grid
