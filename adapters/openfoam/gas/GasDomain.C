@@ -14,6 +14,8 @@
 #include "gravityMeshObject.H"
 #include "interpolationCellPoint.H"
 #include "zeroGradientFvPatchFields.H"
+#include "fixedValueFvPatchFields.H"
+#include "wallPolyPatch.H"
 #include "physicoChemicalConstants.H"
 #include "ParcelDeposition.H"
 
