@@ -207,7 +207,7 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
       << "<tr><td class=l>error %</td><td>" << g(b.error_percent, "%.3g") << "</td></tr></table>\n"
       << "<p>Initial state: " << htmlEscape(b.initial_state) << ". Coating on particles: "
       << htmlEscape(b.obtained_source) << ".</p>\n";
-    if (b.has_removed && b.pending != 0.0) {
+    if (b.has_removed && std::abs(b.pending) > 1e-9 * std::abs(b.removed)) {
       h << "<p class=note>" << g(b.pending, "%.3g") << " kg removed from the gas is not on the particles "
         << "(removed minus coating on particles). If the coating was read from timeseries.csv, the last step's "
         << "credit comes after its last row; otherwise coating was lost between the fluid and the particles.</p>\n";

@@ -1,5 +1,6 @@
 #include "cosim/analysis/window_study.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -32,13 +33,18 @@ WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, doub
   w.run_end = last.time;
   w.simulated_cv_run_end = last.cv;
   const bool haveWall = wall != nullptr && wall->has(column::wall_seconds) && wall->rows() > 0;
+  std::size_t fittedBefore = 0;
   for (int k = 2; k <= 10; ++k) {
     WindowStudyPoint p;
-    p.t_end = t0 + 0.1 * k * (w.run_end - t0);
-    if (k == 10) p.t_end = w.run_end;
-    p.wall_seconds = haveWall ? interpolate(wall->at(column::time), wall->at(column::wall_seconds), p.t_end) : nan;
-    const GrowthFit f = fitGrowth(snapshots, t0, p.t_end, coating_start);
+    const double nominal = k == 10 ? w.run_end : t0 + 0.1 * k * (w.run_end - t0);
+    const double slack = 1e-9 * std::max(1.0, std::abs(nominal));  // a snapshot at the window end is in
+    const GrowthFit f = fitGrowth(snapshots, t0, nominal + slack, coating_start);
+    // A window holding the same snapshots as the previous one repeats it.
+    if (!w.points.empty() && f.tau.size() == fittedBefore) continue;
+    fittedBefore = f.tau.size();
     p.ok = f.ok;
+    p.t_end = f.ok ? f.time.back() : nominal;  // the last snapshot the fit used
+    p.wall_seconds = haveWall ? interpolate(wall->at(column::time), wall->at(column::wall_seconds), p.t_end) : nan;
     if (f.ok) {
       p.a1 = f.a1;
       p.a1_se = f.a1_se;
@@ -47,7 +53,8 @@ WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, doub
       p.cv_horizon = (f.a2 / f.a1) / std::sqrt(horizon);
       const double tau = w.run_end - coating_start;
       p.cv_run_end = tau > 0 ? (f.a2 / f.a1) / std::sqrt(tau) : nan;
-      p.cv_run_end_error = k < 10 && last.cv > 0 ? (p.cv_run_end - last.cv) / last.cv : nan;
+      // A prediction only for windows that end before the run does.
+      p.cv_run_end_error = p.t_end < w.run_end && last.cv > 0 ? (p.cv_run_end - last.cv) / last.cv : nan;
     }
     w.points.push_back(p);
   }

@@ -1,6 +1,7 @@
 // Error against run time: how long must a run be for its extrapolation to be trusted?
 // The Eqs. 9-10 fit is repeated on growing windows [t0, t_k] (t_k = t0 + f_k (t_end - t0),
-// f_k = 0.2, 0.3, ..., 1.0). For each window: a1, a2 with standard errors, the CV predicted at
+// f_k = 0.2, 0.3, ..., 1.0; a window holding the same snapshots as the previous one is
+// skipped). For each window: a1, a2 with standard errors, the CV predicted at
 // the horizon (e.g. 20 min), the CV predicted at the end of the run and its error against the
 // simulated CV there (for windows shorter than the run), and the wall-clock time the
 // simulation needed to reach t_k (from the cumulative wall_seconds of timeseries.csv).
@@ -14,7 +15,7 @@
 namespace cosim::analysis {
 
 struct WindowStudyPoint {
-  double t_end = 0;               // [s] end of the fit window
+  double t_end = 0;               // [s] last snapshot in the window (nominal end if no fit)
   double wall_seconds = 0;        // [s] wall time to simulate up to t_end; NaN if unknown
   bool ok = false;                // fit possible
   double a1 = 0, a1_se = 0, a2 = 0, a2_se = 0;
