@@ -11,6 +11,7 @@ import json
 import math
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -171,6 +172,66 @@ def plot_cv_prediction(r, folder):
     save(fig, folder, "cv_prediction.png")
 
 
+def refusal_text(r, width=95):
+    lines = ["Extrapolation refused (poorly mixed):"]
+    for reason in r["verdict"]["reasons"]:
+        lines += textwrap.wrap("• " + reason, width=width, subsequent_indent="   ")
+    return "\n".join(lines)
+
+
+def figure_with_note(note, figsize=(7.5, 4.2)):
+    """A figure with one plot and, under it, a panel holding `note` (wrapped text)."""
+    n_lines = note.count("\n") + 1
+    fig = plt.figure(figsize=(figsize[0], figsize[1] + 0.16 * n_lines))
+    gs = fig.add_gridspec(2, 1, height_ratios=[figsize[1], 0.16 * n_lines + 0.1])
+    ax = fig.add_subplot(gs[0])
+    box = fig.add_subplot(gs[1])
+    box.axis("off")
+    box.text(0.0, 1.0, note, fontsize=7.5, va="top", ha="left", family="sans-serif",
+             bbox=dict(facecolor="#fde8e8", edgecolor="#a11"))
+    return fig, ax
+
+
+def plot_refused_prediction(r, folder):
+    """Poorly mixed run: the simulated CV with the fitted trend over the simulated times only,
+    and why there is no prediction (no extrapolation is drawn)."""
+    s = r["snapshots"]
+    fit = r["fit"]
+    t0c = fit["coating_start"] or 0.0
+    t = num(s["time"]) - t0c
+    cv = num(s["cv"])
+    ok = (t > 0) & np.isfinite(cv)
+    fig, ax = figure_with_note(refusal_text(r))
+    ax.plot(t[ok], cv[ok], "k.-", ms=4, label="simulated CV")
+    if fit["ok"] and ok.any():
+        tt = np.linspace(t[ok].min(), t[ok].max(), 100)
+        ax.plot(tt, (fit["a2"] / fit["a1"]) / np.sqrt(tt), "b--", lw=1,
+                label="(a2/a1)/√t on the simulated window only")
+    ax.set_xlabel("coating time [s]")
+    ax.set_ylabel("CV [-]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper right")
+    ax.set_title("CV: no prediction for a poorly mixed run (paper Fig. 11)", fontsize=9)
+    save(fig, folder, "cv_prediction.png")
+
+
+def plot_refused_distributions(r, folder):
+    """Poorly mixed run: the last simulated histogram instead of reconstructed distributions."""
+    hs = r["histograms"]
+    fig, ax = figure_with_note("No reconstructed distributions.\n" + refusal_text(r))
+    if hs and hs[-1]["counts"]:
+        h = hs[-1]
+        f, unit = scale_for(num([h["max"]]))
+        edges = num(h["edges"]) * f
+        ax.bar(edges[:-1], h["counts"], width=np.diff(edges), align="edge", color="#7fa7d9", edgecolor="#2c5d9b",
+               lw=0.5, label="simulated, t = %.3g s" % h["time"])
+        ax.set_xlabel("coating mass per parcel [%s]" % unit)
+        ax.set_ylabel("parcels")
+        ax.legend(fontsize=8, loc="upper right")
+    ax.set_title("distributions: not reconstructed for a poorly mixed run (paper Fig. 12)", fontsize=9)
+    save(fig, folder, "distributions.png")
+
+
 def plot_distributions(r, folder):
     ds = r["distributions"]
     if not ds:
@@ -280,9 +341,12 @@ def run_report(folder):
     plot_statistics_time(r, folder)
     plot_cv_mean(r, folder)
     plot_fit(r, folder)
-    if r["verdict"]["well_mixed"]:  # no extrapolation figures for a poorly mixed run
+    if r["verdict"]["well_mixed"]:
         plot_cv_prediction(r, folder)
         plot_distributions(r, folder)
+    else:  # same figures, but no extrapolation in them: they say why
+        plot_refused_prediction(r, folder)
+        plot_refused_distributions(r, folder)
     plot_window_study(r, folder)
     plot_mass_balance(r, folder)
 

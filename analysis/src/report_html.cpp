@@ -58,13 +58,22 @@ const Figure kRunFigures[] = {
     {"mass_balance.png", "Cumulative precursor in, out, held in the gas and coated on particles (paper Fig. 3)."},
 };
 
-void figures(std::ostringstream& h, const std::vector<std::string>& pngs, const Figure* list, std::size_t n) {
+void figures(std::ostringstream& h, const std::vector<std::string>& pngs, const Figure* list, std::size_t n,
+             bool refused = false) {
   for (std::size_t i = 0; i < n; ++i) {
     bool present = false;
     for (const auto& p : pngs) present = present || p == list[i].file;
     if (!present) continue;
-    h << "<figure><img src=\"" << list[i].file << "\" alt=\"" << list[i].file << "\"><figcaption>"
-      << htmlEscape(list[i].caption) << "</figcaption></figure>\n";
+    std::string caption = list[i].caption;
+    const std::string file = list[i].file;
+    if (refused && file == "cv_prediction.png") {
+      caption = "Simulated CV with the fitted trend over the simulated times only: no prediction, the run is "
+                "poorly mixed (paper Fig. 11).";
+    } else if (refused && file == "distributions.png") {
+      caption = "Last simulated histogram: no reconstructed distributions, the run is poorly mixed (paper Fig. 12).";
+    }
+    h << "<figure><img src=\"" << file << "\" alt=\"" << file << "\"><figcaption>" << htmlEscape(caption)
+      << "</figcaption></figure>\n";
   }
 }
 
@@ -221,7 +230,7 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
   }
 
   h << "<h2>Figures</h2>\n";
-  figures(h, pngs, kRunFigures, std::size(kRunFigures));
+  figures(h, pngs, kRunFigures, std::size(kRunFigures), !a.verdict.well_mixed);
 
   h << "<h2>Statistics over time</h2>\n<table><tr><th>t [s]</th><th>parcels</th><th>mean [kg]</th><th>&sigma; "
        "[kg]</th><th>CV</th><th>never coated</th></tr>";
