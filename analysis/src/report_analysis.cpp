@@ -1,13 +1,17 @@
 // analyseRun: every number of one run's report, computed from its recorded files.
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <regex>
+#include <sstream>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/analysis/report.h"
+#include "cosim/analysis/summary.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
 
@@ -28,6 +32,15 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   if (!std::filesystem::is_directory(run)) {
     throw std::runtime_error("run folder " + run.string() + " does not exist (give the folder a `cosim run` wrote, "
                              "e.g. runs/plasma-coating-bed)");
+  }
+  {
+    // summary.json is ours (summary.h): its top-level "status" string is all we need here.
+    std::ifstream in(run / kSummaryFile);
+    std::stringstream text;
+    text << in.rdbuf();
+    std::smatch m;
+    const std::string t = text.str();
+    if (std::regex_search(t, m, std::regex(R"re(\n  "status": "([^"]*)")re"))) a.run_status = m[1];
   }
   ParticleFile file(run / kParticlesFile);
   if (!file.hasField(cosim::field::coating_mass)) {

@@ -103,6 +103,10 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
     << " snapshots from t = " << g(a.snapshots.front().time) << " s to " << g(a.snapshots.back().time)
     << " s. Numbers: <a href=\"report.json\">report.json</a> and the CSV tables in this folder.</p>\n";
   if (!plot_message.empty()) h << "<p class=\"note\">Plots missing: " << htmlEscape(plot_message) << "</p>\n";
+  if (!a.run_status.empty() && a.run_status != "completed") {
+    h << "<p class=\"note\">The run did not complete (summary.json status: " << htmlEscape(a.run_status)
+      << "): this report covers what it recorded up to t = " << g(a.snapshots.back().time) << " s.</p>\n";
+  }
 
   h << "<h2>Mixing verdict</h2>\n";
   verdictBlock(h, a.verdict);

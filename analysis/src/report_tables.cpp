@@ -91,6 +91,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   j["version"] = 1;
   j["run"] = a.run.string();
   j["label"] = a.label;
+  j["run_status"] = a.run_status;
   Json& opt = j["options"] = Json::object();
   opt["fit_start"] = a.fit.t0;
   opt["fit_end"] = a.fit.t1;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "cosim/analysis/particle_recorder.h"
+#include "cosim/analysis/summary.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
 #include "synthetic.h"
@@ -205,6 +206,23 @@ TEST(Report, WithoutMatplotlibTheNumbersAndHtmlStillComeOutAndSayWhatToInstall) 
   EXPECT_NE(html.find("<td class=l>precursor in</td>"), std::string::npos);
   EXPECT_NE(log.str().find("but no plots"), std::string::npos) << log.str();
   EXPECT_NE(log.str().find("/nonexistent/python3"), std::string::npos) << log.str();
+}
+
+TEST(Report, AFailedRunIsReportedAsFarAsItGot) {
+  const fs::path run = makeRun("failed", 0.0, 37);
+  CleanUp cleanup{run.parent_path()};
+  Summary s;
+  s.status = "failed";
+  s.message = "participant 'fluid': timeout";
+  writeSummary(run / kSummaryFile, s);
+  ReportOptions o;
+  o.runs = {run};
+  o.plots = false;
+  std::ostringstream log;
+  o.log = &log;
+  ASSERT_EQ(runReport(o), 0) << log.str();
+  const std::string html = slurp(run / "report" / "report.html");
+  EXPECT_NE(html.find("The run did not complete (summary.json status: failed)"), std::string::npos);
 }
 
 TEST(Report, MissingRunIsAClearError) {

@@ -73,6 +73,7 @@ struct RunAnalysis {
   std::optional<MassBalance> mass_balance;
   std::string mass_balance_problem;      // why there is no mass balance
   double wall_seconds = std::numeric_limits<double>::quiet_NaN();  // last wall_seconds (cumulative)
+  std::string run_status;                // summary.json "status" ("completed", "failed", ...); empty if none
   std::size_t steps = 0;                 // rows of the time series
 };
 
