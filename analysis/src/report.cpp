@@ -25,6 +25,25 @@ void prepare(const std::filesystem::path& dir) {
   }
   removePngs(dir);  // a figure left from an earlier report must not pass for a new one
 }
+void validate(const ReportOptions& o) {
+  auto bad = [](const std::string& option, double value, const std::string& expected) {
+    throw std::runtime_error("report option " + option + " = " + std::to_string(value) + ": expected " + expected);
+  };
+  if (!std::isfinite(o.coating_start)) bad("--coating-start", o.coating_start, "a time in seconds");
+  for (double t : o.predict_times) {
+    if (!(t > 0)) bad("--predict", t, "times after the coating start, in seconds (e.g. 300,1200)");
+  }
+  for (double t : o.histogram_times) {
+    if (!std::isfinite(t)) bad("--histograms", t, "times in seconds");
+  }
+  if (!(o.predict_until > 0)) bad("predict_until", o.predict_until, "a positive horizon in seconds (3600 = 60 min)");
+  if (!(o.band >= 0 && o.band < 1)) bad("band", o.band, "a relative error of a2 between 0 and 1 (0.2 = 20 %)");
+  if (!(o.uncoated_relative >= 0)) bad("uncoated_relative", o.uncoated_relative, "a fraction of the mean >= 0 (1e-6)");
+  if (!std::isnan(o.fit_start) && !std::isnan(o.fit_end) && !(o.fit_end > o.fit_start)) {
+    throw std::runtime_error("report options --fit-start " + std::to_string(o.fit_start) + " and --fit-end " +
+                             std::to_string(o.fit_end) + ": the window is empty; give --fit-end after --fit-start");
+  }
+}
 }  // namespace
 
 std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOptions& o,
@@ -91,6 +110,7 @@ int runReport(const ReportOptions& o) {
   std::ostream& log = o.log != nullptr ? *o.log : std::cout;
   try {
     if (o.runs.empty()) throw std::runtime_error("no run folder given: `cosim report RUN [RUN...]`");
+    validate(o);
     std::vector<RunAnalysis> analyses;
     for (const auto& run : o.runs) {
       log << "cosim report: analysing " << run.string() << "\n";

@@ -225,6 +225,23 @@ TEST(Report, AFailedRunIsReportedAsFarAsItGot) {
   EXPECT_NE(html.find("The run did not complete (summary.json status: failed)"), std::string::npos);
 }
 
+TEST(Report, BadOptionsAreClearErrors) {
+  ReportOptions o;
+  o.runs = {"/nonexistent/run"};
+  o.predict_times = {300, -5};
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(runReport(o), 1);
+  std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("--predict = -5"), std::string::npos) << err;
+  o.predict_times = {300};
+  o.fit_start = 10;
+  o.fit_end = 5;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(runReport(o), 1);
+  err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("the window is empty"), std::string::npos) << err;
+}
+
 TEST(Report, MissingRunIsAClearError) {
   ReportOptions o;
   o.runs = {"/nonexistent/run"};
