@@ -188,3 +188,22 @@ void Foam::cosim::ParcelDeposition::gatherAverage
         perParticle[i] = sum;
     }
 }
+
+
+void Foam::cosim::ParcelDeposition::gatherAverage
+(
+    const UList<vector>& cellField,
+    List<vector>& perParticle
+) const
+{
+    perParticle.setSize(nParticles_);
+    for (label i = 0; i < nParticles_; ++i)
+    {
+        vector sum(Zero);
+        for (label d = start_[i]; d < start_[i + 1]; ++d)
+        {
+            sum += depWeight_[d]*cellField[depCell_[d]];
+        }
+        perParticle[i] = sum;
+    }
+}

@@ -11,8 +11,8 @@
 #include "pimpleControl.H"
 #include "constrainHbyA.H"
 #include "constrainPressure.H"
+#include "fixedFluxPressureFvPatchScalarField.H"
 #include "gravityMeshObject.H"
-#include "interpolationCellPoint.H"
 #include "zeroGradientFvPatchFields.H"
 #include "fixedValueFvPatchFields.H"
 #include "wallPolyPatch.H"
@@ -160,16 +160,6 @@ public:
             const fvMesh& mesh = mesh_();
             const label n = label(particles.size());
             Foam::cosim::ParcelDeposition& parcels = parcels_();
-            lastPositions_.setSize(n);
-            for (label i = 0; i < n; ++i)
-            {
-                lastPositions_[i] = point
-                (
-                    particles.position[3*i],
-                    particles.position[3*i + 1],
-                    particles.position[3*i + 2]
-                );
-            }
             parcels.place(particles.ids, particles.position, particles.radius);
 
             // Parcel volume per cell -> voidage, bounded below
@@ -256,28 +246,25 @@ public:
                 List<scalar> values;
                 if (name == "fluid_velocity" || name == "pressure_gradient")
                 {
-                    autoPtr<interpolationCellPoint<vector>> interp;
-                    autoPtr<volVectorField> gradp;
+                    // Average over the cells the parcel's volume went to, with the same
+                    // weights as its K: the parcel feels K (u - v) and -V grad p exactly as
+                    // the cells give them up (momentum conserved between gas and parcels)
+                    List<vector> perParticle;
                     if (name == "fluid_velocity")
                     {
-                        interp.reset(new interpolationCellPoint<vector>(U_()));
+                        parcels.gatherAverage(U_().primitiveField(), perParticle);
                     }
                     else
                     {
-                        gradp.reset(new volVectorField("gradp", fvc::grad(p_())));
-                        interp.reset(new interpolationCellPoint<vector>(gradp()));
+                        const volVectorField gradp(fvc::grad(p_()));
+                        parcels.gatherAverage(gradp.primitiveField(), perParticle);
                     }
                     values.setSize(3*n, 0.0);
                     for (label i = 0; i < n; ++i)
                     {
-                        if (cell[i] >= 0)
+                        for (direction d = 0; d < 3; ++d)
                         {
-                            const point x(centre(i));
-                            const vector v = interp->interpolate(x, cell[i]);
-                            for (direction d = 0; d < 3; ++d)
-                            {
-                                values[3*i + d] = v[d];
-                            }
+                            values[3*i + d] = perParticle[i][d];
                         }
                     }
                 }
@@ -339,12 +326,6 @@ public:
         });
     }
 
-    point centre(label i) const
-    {
-        return lastPositions_[i];
-    }
-
-    List<point> lastPositions_;
 
     StepResult advance
     (

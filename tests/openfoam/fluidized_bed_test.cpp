@@ -1,0 +1,93 @@
+// The first real coupled scene (scenarios/fluidized-bed): OpenFOAM (cosimFoam) and LIGGGHTS as
+// separate processes through the orchestrator. Above minimum fluidization the time-averaged bed
+// pressure drop equals (bed weight - buoyancy)/area (+ the gas column) within 3 %; below it the
+// bed stays put. Results land in OpenFOAM time folders and particle files.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "coupler.h"
+#include "scenario.h"
+
+namespace {
+
+using namespace cosim::orchestrator;
+namespace fs = std::filesystem;
+
+const fs::path kScene = fs::path(COSIM_SOURCE_DIR) / "scenarios/fluidized-bed/scenario.yaml";
+
+// Independent of the scene's own expressions: 1000 parcels of 1.5 mm at 1750 kg/m3 in N2
+// (1.1231 kg/m3) over a 16 x 16 mm section, plus the 64 mm gas column (the scene's inlet is
+// fixedFluxPressure, so the inlet face pressure is extrapolated to the distributor).
+double expectedPressureDrop() {
+  const double pi = 3.14159265358979323846;
+  const double dp = 1.5e-3, W = 0.016, rho_p = 1750, rho_g = 1.1231, g = 9.81;
+  const double weight = 1000 * pi / 6 * dp * dp * dp * (rho_p - rho_g) * g / (W * W);
+  return weight + rho_g * g * 0.064;
+}
+
+RunResult runScene(const std::vector<std::string>& sets, const std::string& tag,
+                   std::map<std::int64_t, std::array<double, 3>>* start = nullptr) {
+  const fs::path out = fs::temp_directory_path() / ("cosim-fluidized-" + tag + "-" +
+                                                     std::to_string(getpid()));
+  fs::remove_all(out);
+  RunOptions o;
+  o.quiet = true;
+  o.output = out;
+  Coupler c(loadScenario(kScene, sets), o);
+  bool first = true;
+  c.on_step = [&](double, const cosim::link::ParticleData& s) {
+    if (!first || start == nullptr) return;
+    first = false;
+    const auto& x = s.get("position");
+    for (std::size_t i = 0; i < s.size(); ++i) (*start)[s.ids[i]] = {x[3 * i], x[3 * i + 1], x[3 * i + 2]};
+  };
+  return c.run();
+}
+
+double observable(const RunResult& r, const std::string& name) {
+  for (const auto& o : r.observables) {
+    if (o.name == name) return o.value;
+  }
+  ADD_FAILURE() << "no observable " << name;
+  return NAN;
+}
+
+TEST(FluidizedBed, AboveMinimumFluidizationPressureDropCarriesTheBed) {
+  const RunResult r = runScene({}, "above");
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  const double dp = observable(r, "bed_pressure_drop");
+  const double expected = expectedPressureDrop();
+  EXPECT_NEAR(dp, expected, 0.03 * expected);
+  std::printf("time-averaged pressure drop %.2f Pa, (weight - buoyancy)/area + gas %.2f Pa (%.2f %%)\n",
+              dp, expected, 100 * (dp - expected) / expected);
+  // Results where a user looks for them
+  EXPECT_TRUE(fs::exists(r.folder / "fluid" / "0.1" / "voidage"));
+  EXPECT_TRUE(fs::exists(r.folder / "fluid" / "0.3" / "U"));
+  EXPECT_TRUE(fs::exists(r.folder / "particles.h5"));
+  fs::remove_all(r.folder);
+}
+
+TEST(FluidizedBed, BelowMinimumFluidizationTheBedStaysPut) {
+  std::map<std::int64_t, std::array<double, 3>> start;
+  const RunResult r = runScene({"u0=0.02", "end_time=0.1", "average_after=0.05"}, "below", &start);
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  ASSERT_EQ(start.size(), 1000u);
+  const auto& x = r.final_state.get("position");
+  double moved = 0;
+  for (std::size_t i = 0; i < r.final_state.size(); ++i) {
+    const auto& s = start.at(r.final_state.ids[i]);
+    moved = std::max(moved, std::hypot(x[3 * i] - s[0], x[3 * i + 1] - s[1], x[3 * i + 2] - s[2]));
+  }
+  EXPECT_LT(moved, 0.05e-3) << "a grain moved " << moved << " m in a bed below u_mf";
+  // The gas passes through a fixed bed: it carries only part of the weight
+  EXPECT_LT(observable(r, "bed_pressure_drop"), 0.8 * expectedPressureDrop());
+  std::printf("largest grain displacement %.3g m; pressure drop %.2f Pa\n", moved,
+              observable(r, "bed_pressure_drop"));
+  fs::remove_all(r.folder);
+}
+
+}  // namespace
