@@ -366,7 +366,7 @@ def comparison_report(folder):
         s = r["snapshots"]
         style = "-" if run["well_mixed"] else "--"
         ax.plot(num(s["mean"]) * f, num(s["cv"]), style, marker=".", ms=3,
-                label="%s (%s)" % (run["label"], "well mixed" if run["well_mixed"] else "poorly mixed"))
+                label="%s (%s)" % (run.get("legend", run["label"]), "well mixed" if run["well_mixed"] else "poorly mixed"))
     ax.set_xlabel("mean coating mass per parcel [%s]" % unit)
     ax.set_ylabel("CV [-]")
     ax.set_title("CV against mean coated mass (paper Fig. 8)", fontsize=9)
@@ -378,8 +378,8 @@ def comparison_report(folder):
     for run, r in reports:
         s = r["snapshots"]
         t = num(s["time"])
-        axes[0].plot(t, num(s["mean"]) * f, label=run["label"])
-        axes[1].plot(t, num(s["cv"]), label=run["label"])
+        axes[0].plot(t, num(s["mean"]) * f, label=run.get("legend", run["label"]))
+        axes[1].plot(t, num(s["cv"]), label=run.get("legend", run["label"]))
     axes[0].set_ylabel("mean coating mass per parcel [%s]" % unit)
     axes[1].set_ylabel("CV [-]")
     for ax in axes:
@@ -396,7 +396,8 @@ def comparison_report(folder):
         edges = num(h["edges"]) * f
         ax.bar(edges[:-1], h["counts"], width=np.diff(edges), align="edge", color="#7fa7d9", edgecolor="#2c5d9b",
                lw=0.5)
-        ax.set_title("%s, t = %.3g s\nnever coated %.1f %%" % (run["label"], h["time"], 100 * h["uncoated_share"]),
+        ax.set_title("%s, t = %.3g s\nnever coated %.1f %%" % (run.get("legend", run["label"]), h["time"],
+                                                             100 * h["uncoated_share"]),
                      fontsize=8)
         ax.set_xlabel("coating mass [%s]" % unit)
         ax.set_ylabel("parcels")

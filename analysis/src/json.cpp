@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <string>
 #include <stdexcept>
 #include <system_error>
 
@@ -126,6 +127,133 @@ std::string Json::dump(int indent) const {
   dumpTo(out, indent, 0);
   return out;
 }
+
+const Json* Json::find(const std::string& key) const {
+  const auto* obj = members();
+  if (obj == nullptr) return nullptr;
+  for (const auto& [k, v] : *obj) {
+    if (k == key) return &v;
+  }
+  return nullptr;
+}
+
+namespace {
+class Parser {
+ public:
+  explicit Parser(const std::string& t) : t_(t) {}
+  Json document() {
+    Json v = value();
+    space();
+    if (i_ != t_.size()) fail("end of the text");
+    return v;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& expected) const {
+    throw std::runtime_error("JSON: expected " + expected + " at offset " + std::to_string(i_));
+  }
+  void space() {
+    while (i_ < t_.size() && (t_[i_] == ' ' || t_[i_] == '\n' || t_[i_] == '\r' || t_[i_] == '\t')) ++i_;
+  }
+  bool take(char c) {
+    space();
+    if (i_ < t_.size() && t_[i_] == c) {
+      ++i_;
+      return true;
+    }
+    return false;
+  }
+  bool word(const char* w) {
+    const std::size_t n = std::char_traits<char>::length(w);
+    if (t_.compare(i_, n, w) == 0) {
+      i_ += n;
+      return true;
+    }
+    return false;
+  }
+  std::string text() {
+    if (!take('"')) fail("a string");
+    std::string out;
+    while (i_ < t_.size() && t_[i_] != '"') {
+      char c = t_[i_++];
+      if (c == '\\') {
+        if (i_ >= t_.size()) fail("an escape");
+        c = t_[i_++];
+        switch (c) {
+          case 'n': out += '\n'; break;
+          case 't': out += '\t'; break;
+          case 'r': out += '\r'; break;
+          case 'b': out += '\b'; break;
+          case 'f': out += '\f'; break;
+          case 'u': {
+            if (i_ + 4 > t_.size()) fail("4 hex digits");
+            const unsigned code = static_cast<unsigned>(std::stoul(t_.substr(i_, 4), nullptr, 16));
+            i_ += 4;
+            if (code < 0x80) {
+              out += static_cast<char>(code);
+            } else if (code < 0x800) {
+              out += static_cast<char>(0xC0 | (code >> 6));
+              out += static_cast<char>(0x80 | (code & 0x3F));
+            } else {
+              out += static_cast<char>(0xE0 | (code >> 12));
+              out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
+              out += static_cast<char>(0x80 | (code & 0x3F));
+            }
+            break;
+          }
+          default: out += c;  // " \\ /
+        }
+      } else {
+        out += c;
+      }
+    }
+    if (i_ >= t_.size()) fail("the closing quote of a string");
+    ++i_;
+    return out;
+  }
+  Json value() {
+    space();
+    if (i_ >= t_.size()) fail("a value");
+    const char c = t_[i_];
+    if (c == '{') {
+      ++i_;
+      Json o = Json::object();
+      if (take('}')) return o;
+      do {
+        std::string key = text();
+        if (!take(':')) fail("':'");
+        o[key] = value();
+      } while (take(','));
+      if (!take('}')) fail("',' or '}'");
+      return o;
+    }
+    if (c == '[') {
+      ++i_;
+      Json a = Json::array();
+      if (take(']')) return a;
+      do {
+        a.push(value());
+      } while (take(','));
+      if (!take(']')) fail("',' or ']'");
+      return a;
+    }
+    if (c == '"') return Json(text());
+    if (word("true")) return Json(true);
+    if (word("false")) return Json(false);
+    if (word("null")) return Json();
+    char* end = nullptr;
+    const double d = std::strtod(t_.c_str() + i_, &end);
+    if (end == t_.c_str() + i_) fail("a value");
+    i_ = static_cast<std::size_t>(end - t_.c_str());
+    return Json(d);
+  }
+
+  const std::string& t_;
+  std::size_t i_ = 0;
+};
+}  // namespace
+
+Json Json::parse(const std::string& text) { return Parser(text).document(); }
 
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {
   std::filesystem::path tmp = path;

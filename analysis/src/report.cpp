@@ -59,16 +59,55 @@ std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOption
   return pngs;
 }
 
+std::vector<std::string> variedParameters(const std::vector<RunAnalysis>& runs) {
+  std::vector<std::string> names;
+  if (runs.size() < 2) return names;
+  for (const auto& [name, value] : runs.front().parameters) {
+    bool differs = false, everywhere = true;
+    for (const auto& r : runs) {
+      bool found = false;
+      for (const auto& [n, v] : r.parameters) {
+        if (n == name) {
+          found = true;
+          differs = differs || v != value;
+        }
+      }
+      everywhere = everywhere && found;
+    }
+    if (differs && everywhere) names.push_back(name);
+  }
+  return names;
+}
+
+double parameter(const RunAnalysis& a, const std::string& name) {
+  for (const auto& [n, v] : a.parameters) {
+    if (n == name) return v;
+  }
+  return std::nan("");
+}
+
 Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders) {
   Json j = Json::object();
   j["format"] = "cosim-comparison";
   j["version"] = 1;
+  const auto varied = variedParameters(runs);
+  Json v = Json::array();
+  for (const auto& n : varied) v.push(n);
+  j["varied_parameters"] = v;
   Json& rs = j["runs"] = Json::array();
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& a = runs[i];
     const auto& l = a.snapshots.back();
     Json r = Json::object();
     r["label"] = a.label;
+    std::string legend = a.label;
+    Json ps = Json::object();
+    for (const auto& n : varied) {
+      ps[n] = parameter(a, n);
+      legend += " " + n + "=" + formatShortest(parameter(a, n));
+    }
+    r["parameters"] = ps;
+    r["legend"] = legend;
     r["run"] = a.run.string();
     r["report"] = folders[i] + "/report.json";
     r["end_time"] = l.time;

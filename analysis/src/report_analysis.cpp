@@ -3,7 +3,6 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -33,14 +32,25 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     throw std::runtime_error("run folder " + run.string() + " does not exist (give the folder a `cosim run` wrote, "
                              "e.g. runs/plasma-coating-bed)");
   }
-  {
-    // summary.json is ours (summary.h): its top-level "status" string is all we need here.
+  if (std::filesystem::exists(run / kSummaryFile)) {
+    // Status and scenario parameters of the run (a sweep's comparison shows what differs).
     std::ifstream in(run / kSummaryFile);
     std::stringstream text;
     text << in.rdbuf();
-    std::smatch m;
-    const std::string t = text.str();
-    if (std::regex_search(t, m, std::regex(R"re(\n  "status": "([^"]*)")re"))) a.run_status = m[1];
+    try {
+      const Json summary = Json::parse(text.str());
+      if (const Json* st = summary.find("status"); st != nullptr && st->string() != nullptr) a.run_status = *st->string();
+      const Json* extra = summary.find("extra");
+      const Json* params = extra != nullptr ? extra->find("parameters") : nullptr;
+      if (params != nullptr && params->members() != nullptr) {
+        for (const auto& [k, v] : *params->members()) {
+          if (v.number() != nullptr) a.parameters.emplace_back(k, *v.number());
+        }
+      }
+    } catch (const std::exception& e) {
+      throw std::runtime_error((run / kSummaryFile).string() + " is not valid JSON (" + e.what() +
+                               "); move it away to report the run without it");
+    }
   }
   ParticleFile file(run / kParticlesFile);
   if (!file.hasField(cosim::field::coating_mass)) {

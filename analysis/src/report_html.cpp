@@ -264,14 +264,19 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector
   h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>cosim comparison report</title>\n" << kStyle
     << "</head><body>\n<h1>Coating comparison of " << runs.size() << " runs</h1>\n";
   if (!plot_message.empty()) h << "<p class=\"note\">Plots missing: " << htmlEscape(plot_message) << "</p>\n";
-  h << "<table><tr><th class=l>run</th><th>end [s]</th><th>total coating [kg]</th><th>mean [kg]</th><th>CV</th>"
+  const auto varied = variedParameters(runs);
+  h << "<table><tr><th class=l>run</th>";
+  for (const auto& n : varied) h << "<th>" << htmlEscape(n) << "</th>";
+  h << "<th>end [s]</th><th>total coating [kg]</th><th>mean [kg]</th><th>CV</th>"
        "<th>never coated</th><th>a1 [kg/s]</th><th>a2 [kg/s<sup>0.5</sup>]</th><th>CV at 20 min</th>"
        "<th>mass balance error %</th><th>wall time [s]</th><th class=l>verdict</th></tr>\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& a = runs[i];
     const auto& l = a.snapshots.back();
     h << "<tr><td class=l><a href=\"" << htmlEscape(folders[i]) << "/report.html\">" << htmlEscape(a.label)
-      << "</a></td><td>" << g(l.time) << "</td><td>" << g(l.total) << "</td><td>" << g(l.mean) << "</td><td>" << g(l.cv)
+      << "</a></td>";
+    for (const auto& n : varied) h << "<td>" << g(parameter(a, n), "%.6g") << "</td>";
+    h << "<td>" << g(l.time) << "</td><td>" << g(l.total) << "</td><td>" << g(l.mean) << "</td><td>" << g(l.cv)
       << "</td><td>" << pct(l.uncoated_share) << "</td><td>" << (a.fit.ok ? g(a.fit.a1) + " &plusmn; " + g(a.a1Error(), "%.2g") : "&ndash;")
       << "</td><td>" << (a.fit.ok ? g(a.fit.a2) + " &plusmn; " + g(a.a2Error(), "%.2g") : "&ndash;") << "</td><td>"
       << (a.fit.ok && a.verdict.well_mixed ? g(predictDistribution(a.fit, 1200.0).cv) : "&ndash;") << "</td><td>"

@@ -19,6 +19,10 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector
                          const std::filesystem::path& dir, const std::vector<std::string>& pngs,
                          const std::string& plot_message);
 
+// Scenario parameters (summary.json) present in every run with different values.
+std::vector<std::string> variedParameters(const std::vector<RunAnalysis>& runs);
+double parameter(const RunAnalysis& a, const std::string& name);
+
 // PNG files (names) present in dir, sorted.
 std::vector<std::string> pngsIn(const std::filesystem::path& dir);
 std::string htmlEscape(const std::string& s);

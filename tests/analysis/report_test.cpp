@@ -153,6 +153,13 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   const fs::path poor = makeRun("flow-1", 0.2, 29);
   const fs::path out = good.parent_path() / "sweep-report";
   CleanUp cleanup{good.parent_path()};
+  for (const auto& [run, flow] : {std::pair{good, 100.0}, std::pair{poor, 1.0}}) {
+    Summary s;
+    s.status = "completed";
+    s.extra["parameters"]["flow_lpm"] = flow;
+    s.extra["parameters"]["cg"] = 5;  // same in both runs: not a comparison column
+    writeSummary(run / kSummaryFile, s);
+  }
   ReportOptions o;
   o.runs = {poor, good};
   o.output = out;
@@ -170,6 +177,10 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   EXPECT_NE(html.find("never coated", poorRow), std::string::npos);
   EXPECT_NE(html.find("well mixed", goodRow), std::string::npos);
   EXPECT_NE(slurp(out / "flow-1" / "report.html").find("Poorly mixed: extrapolation refused."), std::string::npos);
+  // The parameter that differs between the runs is a column; the one that does not is not.
+  EXPECT_NE(html.find("<th>flow_lpm</th>"), std::string::npos);
+  EXPECT_EQ(html.find("<th>cg</th>"), std::string::npos);
+  EXPECT_NE(slurp(out / "comparison.json").find("\"legend\": \"flow-1 flow_lpm=1\""), std::string::npos);
   const std::string csv = slurp(out / "comparison.csv");
   EXPECT_NE(csv.find("\"flow-1\""), std::string::npos);
   if (!matplotlibAvailable()) GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";

@@ -40,6 +40,15 @@ class Json {
   void push(Json value);
 
   bool isNull() const { return std::holds_alternative<std::monostate>(v_); }
+  const double* number() const { return std::get_if<double>(&v_); }
+  const std::string* string() const { return std::get_if<std::string>(&v_); }
+  const Object* members() const { return std::get_if<Object>(&v_); }
+  const Array* elements() const { return std::get_if<Array>(&v_); }
+  // Member of an object, nullptr if absent or not an object.
+  const Json* find(const std::string& key) const;
+
+  // Parses JSON text; throws std::runtime_error with the offset and what was expected.
+  static Json parse(const std::string& text);
   // Serialised text; indent < 0 writes one line.
   std::string dump(int indent = 2) const;
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cosim/analysis/bootstrap_errors.h"
@@ -74,6 +75,7 @@ struct RunAnalysis {
   std::string mass_balance_problem;      // why there is no mass balance
   double wall_seconds = std::numeric_limits<double>::quiet_NaN();  // last wall_seconds (cumulative)
   std::string run_status;                // summary.json "status" ("completed", "failed", ...); empty if none
+  std::vector<std::pair<std::string, double>> parameters;  // summary.json extra.parameters (numbers)
   std::size_t steps = 0;                 // rows of the time series
 };
 
