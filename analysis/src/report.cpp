@@ -196,7 +196,24 @@ int runReport(const ReportOptions& o) {
     if (!anyPlotProblem.empty() && o.plots) {
       log << "cosim report: numbers and HTML tables written, but no plots: " << anyPlotProblem << "\n";
     }
-    return 0;
+    int rc = 0;
+    if (!std::isnan(o.mass_balance_limit_percent)) {
+      for (const auto& a : analyses) {
+        if (!a.mass_balance) {
+          std::cerr << "cosim report: " << a.label << ": mass balance check failed: " << a.mass_balance_problem << "\n";
+          rc = 3;
+        } else if (!(std::abs(a.mass_balance->error_percent) <= o.mass_balance_limit_percent)) {
+          char buf[256];
+          std::snprintf(buf, sizeof buf, "cosim report: %s: mass balance error %.3g %% exceeds the limit %.3g %%\n",
+                        a.label.c_str(), a.mass_balance->error_percent, o.mass_balance_limit_percent);
+          std::cerr << buf;
+          rc = 3;
+        } else {
+          log << "cosim report: " << a.label << ": mass balance within " << o.mass_balance_limit_percent << " %\n";
+        }
+      }
+    }
+    return rc;
   } catch (const std::exception& e) {
     std::cerr << "cosim report: error: " << e.what() << "\n";
     return 1;

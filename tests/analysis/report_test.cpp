@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/analysis/summary.h"
 #include "cosim/analysis/time_series.h"
@@ -251,6 +252,39 @@ TEST(Report, BadOptionsAreClearErrors) {
   EXPECT_EQ(runReport(o), 1);
   err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("the window is empty"), std::string::npos) << err;
+}
+
+TEST(Report, MassBalanceCheckForCi) {
+  const fs::path run = makeRun("check", 0.0, 41);
+  CleanUp cleanup{run.parent_path()};
+  ReportOptions o;
+  o.runs = {run};
+  o.plots = false;
+  o.mass_balance_limit_percent = 0.01;
+  std::ostringstream log;
+  o.log = &log;
+  EXPECT_EQ(runReport(o), 0) << log.str();
+  // Break the balance: the particles lose 1 % of their coating at the end.
+  {
+    cosim::link::ParticleData p;
+    double time = 0;
+    {
+      ParticleFile f(run / kParticlesFile);  // closed before the recorder opens the file
+      const std::size_t last = f.snapshots().size() - 1;
+      time = f.snapshots()[last].time;
+      p.ids = f.ids(last);
+      p.field(cosim::field::position) = f.read(last, cosim::field::position);
+      auto m = f.read(last, cosim::field::coating_mass);
+      for (auto& x : m) x *= 0.99;
+      p.field(cosim::field::coating_mass) = m;
+    }
+    ParticleRecorder rec(run, {cosim::field::position, cosim::field::coating_mass}, ParticleRecorder::Mode::append);
+    rec.write(time, p);  // replaces the last snapshot
+  }
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(runReport(o), 3);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("exceeds the limit 0.01 %"), std::string::npos) << err;
 }
 
 TEST(Report, MissingRunIsAClearError) {

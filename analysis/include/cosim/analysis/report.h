@@ -46,6 +46,9 @@ struct ReportOptions {
   std::size_t bootstrap_resamples = 100;
   std::size_t bootstrap_snapshots = 50;
   bool plots = true;                // false: numbers and HTML only
+  // Check for CI: when set, runReport returns 3 if a run has no mass balance or its |error %|
+  // exceeds this limit (the project's target: 0.01). NaN = no check.
+  double mass_balance_limit_percent = std::numeric_limits<double>::quiet_NaN();
   std::ostream* log = nullptr;      // progress and messages; nullptr = std::cout
 };
 
@@ -90,7 +93,8 @@ std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOption
                                         const std::filesystem::path& folder, std::string& plot_message);
 
 // Runs the whole report. Returns 0 on success (also when only the plots could not be drawn:
-// the message says what to install), 1 on an error (printed to std::cerr with what to do).
+// the message says what to install), 1 on an error (printed to std::cerr with what to do),
+// 3 when mass_balance_limit_percent is set and a run misses it (after writing every report).
 int runReport(const ReportOptions& options);
 
 // Plotting helpers (report_plots.cpp).
