@@ -43,6 +43,15 @@ int main(int argc, char** argv) {
 
   bool parallel = false;
   for (const auto& a : rest) parallel = parallel || a == "-parallel";
+  // Started by mpirun on several ranks without -parallel: a decomposed run is meant (otherwise
+  // every rank would be a separate serial participant of the same name)
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+    const char* v = std::getenv(var);
+    if (!parallel && v != nullptr && std::atoi(v) > 1) {
+      parallel = true;
+      rest.push_back("-parallel");
+    }
+  }
   if (parallel) {
     int provided = 0;
     MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
