@@ -187,6 +187,16 @@ cosim::wire::Advanced FoamRun::advance(double dt, const cosim::link::ParticleDat
   return reply.advanced();
 }
 
+std::vector<std::string> FoamRun::checkpoint(const std::string& path) {
+  cosim::wire::Envelope env;
+  env.mutable_checkpoint()->set_path(path);
+  fillHeader(env.mutable_header());
+  hub_->send("fluid", env);
+  const auto reply = receive("CheckpointWritten");
+  if (!reply.has_checkpoint_written()) throw std::runtime_error("expected CheckpointWritten");
+  return {reply.checkpoint_written().files().begin(), reply.checkpoint_written().files().end()};
+}
+
 int FoamRun::shutdown() {
   cosim::wire::Envelope env;
   env.mutable_shutdown()->set_reason("test done");

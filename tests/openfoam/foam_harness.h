@@ -46,6 +46,8 @@ class FoamRun {
   SampleReply sample(const cosim::link::ParticleData& particles);
   // Advances the gas by dt with the exchange terms; ends the step.
   cosim::wire::Advanced advance(double dt, const cosim::link::ParticleData& terms);
+  // Checkpoint{path} -> CheckpointWritten; returns the files/folders written.
+  std::vector<std::string> checkpoint(const std::string& path);
   // Shutdown -> Goodbye; returns the process exit code.
   int shutdown();
 
