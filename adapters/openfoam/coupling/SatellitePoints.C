@@ -53,6 +53,19 @@ Foam::cosim::SatellitePoints::SatellitePoints(label divisions)
         weights[i] /= total;
     }
 
+    // Turn the pattern by a fixed oblique rotation (Rodrigues, axis (1 2 3), 0.6 rad) so that no
+    // two satellites share an x, y or z: on the axis-aligned faces of a blockMesh mesh a parcel
+    // then crosses a face one satellite at a time, not a whole layer at once. A rotation keeps
+    // every satellite inside the sphere and the weights unchanged.
+    const vector k = vector(1, 2, 3)/Foam::sqrt(14.0);
+    const scalar theta = 0.6;
+    const scalar c = Foam::cos(theta), sn = Foam::sin(theta);
+    forAll(offsets, i)
+    {
+        const vector& v = offsets[i];
+        offsets[i] = v*c + (k ^ v)*sn + k*(k & v)*(1 - c);
+    }
+
     offsets_.transfer(offsets);
     weights_.transfer(weights);
 }
