@@ -101,4 +101,22 @@ TEST(FluidizedBed, BelowMinimumFluidizationTheBedStaysPut) {
   fs::remove_all(r.folder);
 }
 
+TEST(FluidizedBed, DecomposedFluidIsOneParticipant) {
+  // participants.fluid.mpi = 2: the orchestrator starts `mpirun -np 2 cosimFoam`, which runs
+  // decomposed and talks to it as one participant; the fields land in processor*/ folders.
+  const RunResult r = runScene({"participants.fluid.mpi=2", "u0=0.02", "end_time=0.05",
+                                "average_after=0.02"},
+                               "mpi");
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  for (const char* proc : {"processor0", "processor1"}) {
+    EXPECT_TRUE(fs::exists(r.folder / "fluid" / proc / "0.05" / "voidage")) << proc;
+    EXPECT_TRUE(fs::exists(r.folder / "fluid" / proc / "0.05" / "p")) << proc;
+  }
+  EXPECT_EQ(r.final_state.size(), 1000u);
+  const double dp = observable(r, "bed_pressure_drop");
+  EXPECT_GT(dp, 0.1 * expectedPressureDrop());
+  EXPECT_LT(dp, 0.8 * expectedPressureDrop());
+  fs::remove_all(r.folder);
+}
+
 }  // namespace
