@@ -120,8 +120,17 @@ FoamRun::~FoamRun() {
   if (child_ > 0) {
     int status = 0;
     if (waitpid(child_, &status, WNOHANG) == 0) {
-      kill(child_, SIGKILL);
-      waitpid(child_, &status, 0);
+      // SIGTERM first: mpirun forwards it to its ranks (it cannot forward SIGKILL)
+      kill(child_, SIGTERM);
+      bool gone = false;
+      for (int i = 0; i < 50 && !gone; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        gone = waitpid(child_, &status, WNOHANG) == child_;
+      }
+      if (!gone) {
+        kill(child_, SIGKILL);
+        waitpid(child_, &status, 0);
+      }
     }
   }
   std::error_code ec;

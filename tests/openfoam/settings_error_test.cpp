@@ -58,5 +58,15 @@ TEST(OpenFoamSettings, NonEulerTimeSchemeIsRefusedWithTheFile) {
   EXPECT_NE(msg.find("Euler"), std::string::npos) << msg;
 }
 
+TEST(OpenFoamSettings, DecompositionNotMatchingTheRanksIsNamed) {
+  // Two MPI ranks, a decomposeParDict for three: rank 0 refuses, every rank stops, no hang
+  auto cfg = base();
+  cfg.ranks = 2;
+  cfg.edits.push_back({"system/decomposeParDict", "numberOfSubdomains 2;", "numberOfSubdomains 3;"});
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("numberOfSubdomains is 3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("2 MPI ranks"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace cosim::test
