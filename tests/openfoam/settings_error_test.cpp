@@ -42,6 +42,13 @@ TEST(OpenFoamSettings, OutOfRangeValueSaysWhatIsExpected) {
   EXPECT_NE(msg.find("min_voidage: expected a value in [0.01"), std::string::npos) << msg;
 }
 
+TEST(OpenFoamSettings, UnknownPatchIsNamed) {
+  auto cfg = base();
+  cfg.options_yaml = "{inlet_patches: [distributor]}";
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("options.inlet_patches: no patch 'distributor'"), std::string::npos) << msg;
+}
+
 TEST(OpenFoamSettings, PrecursorWithoutMassTransferIsRefused) {
   auto cfg = base();
   cfg.species = false;

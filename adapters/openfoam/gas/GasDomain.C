@@ -56,8 +56,7 @@ void sumOverRanks(Foam::List<T>& list)
     }
 }
 
-bool hasPatch(const Foam::fvMesh& mesh, const std::vector<std::string>& names,
-              const Foam::word& patchName)
+bool hasPatch(const std::vector<std::string>& names, const Foam::word& patchName)
 {
     for (const auto& n : names)
     {
@@ -131,12 +130,34 @@ public:
             pimple_.reset(new pimpleControl(mesh));
 
             checkSchemes(mesh);
+            checkPatches(mesh, settings_.inlet_patches, "inlet_patches");
+            checkPatches(mesh, settings_.outlet_patches, "outlet_patches");
 
             #include "createFields.H"
 
             parcels_.reset(new Foam::cosim::ParcelDeposition(mesh, settings_.voidage_divisions));
             return 0;
         });
+    }
+
+    // Patch names in the options must be patches of the mesh
+    static void checkPatches
+    (
+        const fvMesh& mesh,
+        const std::vector<std::string>& names,
+        const char* key
+    )
+    {
+        for (const auto& n : names)
+        {
+            if (mesh.boundaryMesh().findPatchID(word(n)) < 0)
+            {
+                FatalErrorInFunction
+                    << "options." << key << ": no patch '" << n.c_str()
+                    << "' in the mesh (constant/polyMesh/boundary has "
+                    << mesh.boundaryMesh().names() << ")" << exit(FatalError);
+            }
+        }
     }
 
     // Euler time stepping is what makes the reported precursor balance exact
@@ -548,7 +569,7 @@ public:
         scalar sum = 0, area = 0;
         forAll(mesh.boundary(), patchi)
         {
-            if (!hasPatch(mesh, names, mesh.boundary()[patchi].name()))
+            if (!hasPatch(names, mesh.boundary()[patchi].name()))
             {
                 continue;
             }
