@@ -1,0 +1,30 @@
+// Verification 4d with the real solvers: the reduced plasma coating bed (cosimFoam +
+// LIGGGHTS, scenarios/plasma-coating-bed/ci.yaml) with no precursor in the nozzle gas
+// (Y_nozzle = 0): every coupling step runs, nothing is coated, nothing is NaN, and the mass
+// balance is trivially closed (all precursor totals exactly 0).
+// Known orchestrator issue (docs/verification.md, findings): the scene's observable
+// `particles.coating_mass.cv` is undefined for a zero mean and makes the completed run end with
+// exit code 2; the test therefore checks the steps and totals, not the exit code.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cosim/link/fields.h"
+#include "run_scene.h"
+
+using cosim::verification::runScene;
+namespace field = cosim::field;
+
+TEST(ZeroPrecursor, PlasmaBedWithoutPrecursorCoatsNothingAndStaysFinite) {
+  auto r = runScene("plasma-coating-bed/ci.yaml", {"Y_nozzle=0"}, "y0-plasma");
+  std::printf("zero precursor: exit %d, %zu steps; %s\n", r.exit_code, r.steps, r.message.c_str());
+  EXPECT_EQ(r.steps, 500u) << r.message;  // 0.05 s of 1e-4 s: the run was not stopped early
+  for (const char* t : {"precursor_in_kg", "precursor_out_kg", "precursor_held_kg", "precursor_removed_kg",
+                        "coating_credited_kg", "coating_on_particles_kg"}) {
+    ASSERT_TRUE(r.totals.count(t)) << t;
+    EXPECT_EQ(r.totals.at(t), 0.0) << t;
+  }
+  ASSERT_EQ(r.final_state.size(), 1000u);
+  for (double m : r.final_state.get(field::coating_mass)) EXPECT_EQ(m, 0.0);
+  for (double v : r.final_state.get(field::velocity)) EXPECT_TRUE(std::isfinite(v));
+}
