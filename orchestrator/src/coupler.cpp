@@ -408,7 +408,8 @@ void Coupler::writeSummary(const RunResult& r, const std::string& status) {
   for (const auto& [k, v] : totals_) s.headline.emplace_back(k, v);
   s.headline.emplace_back("particle_count", static_cast<double>(state_.size()));
   s.timings.emplace_back("total", r.wall_seconds);
-  for (const auto& [n, w] : wall_) s.timings.emplace_back(n, w);
+  for (const auto& [n, w] : wall_) s.timings.emplace_back(n + "_compute", w);
+  for (const auto& [n, w] : phase_) s.timings.emplace_back("step_" + n, w);
   analysis::Json extra = analysis::Json::object();
   analysis::Json params = analysis::Json::object();
   for (const auto& [k, v] : sc_.parameters) params[k] = v;
@@ -532,6 +533,12 @@ RunResult Coupler::run() {
       time_ = sc_.start_time + static_cast<double>(k) * sc_.dt;
       link::ParticleData samples;
       lost.assign(state_.size(), 0);
+      auto tick = Clock::now();
+      auto lap = [&](const char* phase) {
+        const auto now = Clock::now();
+        phase_[phase] += std::chrono::duration<double>(now - tick).count();
+        tick = now;
+      };
       if (plan_.fluid) {
         wire::Envelope e;
         state_.select(plan_.fluid_receive).toWire(*e.mutable_sample()->mutable_particles());
@@ -550,6 +557,7 @@ RunResult Coupler::run() {
           }
         }
         checkState(samples, "fluid");
+        lap("fluid_sample");
       }
       CouplingTerms terms = evaluateTerms(models_, plan_, sc_.constants, state_, samples, lost);
       checkState(terms.forcing, "models (forcing)");
@@ -565,6 +573,7 @@ RunResult Coupler::run() {
           }
         }
       }
+      lap("models");
       // Particles and fluid advance at the same time.
       std::map<std::string, wire::Envelope::BodyCase> wait;
       double timeout = 0;
@@ -589,6 +598,7 @@ RunResult Coupler::run() {
         timeout = std::max(timeout, peers_.at("fluid")->spec.timeout);
       }
       auto replies = await(wait, timeout);
+      lap("advance");
       time_ = sc_.start_time + static_cast<double>(k + 1) * sc_.dt;
       const auto& pa = replies.at("particles").advanced();
       peers_.at("particles")->wall += pa.wall_seconds();
@@ -675,6 +685,7 @@ RunResult Coupler::run() {
       for (std::size_t c = 0; c < row.size(); ++c) series_[rec_->columns[c]].push_back(row[c]);
       record(time_, k + 1 == nsteps);
       if (on_step) on_step(time_, state_);
+      lap("bookkeeping");
       progress.update(time_, k + 1, state_.size());
       result.steps = k + 1;
     }

@@ -87,6 +87,7 @@ class Coupler {
   std::map<std::int64_t, double> pending_credit_;  // precursor removed, to credit as coating
   std::map<std::string, double> totals_;
   std::map<std::string, double> wall_;
+  std::map<std::string, double> phase_;  // wall seconds per phase of the coupling step
   std::vector<ObservableValue> observables_;
   std::vector<double> series_time_;
   std::map<std::string, std::vector<double>> series_;  // compute seconds per participant (kept after shutdown)
