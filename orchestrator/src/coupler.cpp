@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <limits>
 #include <iostream>
 #include <random>
 #include <set>
@@ -421,7 +422,8 @@ void Coupler::writeSummary(const RunResult& r, const std::string& status) {
   analysis::Json obs = analysis::Json::object();
   for (const auto& o : observables_) {
     analysis::Json j = analysis::Json::object();
-    j["value"] = o.value;
+    if (o.undefined.empty()) j["value"] = o.value;
+    else j["undefined"] = o.undefined;
     if (o.reference) j["reference"] = *o.reference;
     if (o.relative_error) j["relative_error"] = *o.relative_error;
     obs[o.name] = j;
@@ -527,6 +529,33 @@ RunResult Coupler::run() {
       }
     };
     refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_));
+    double held_start = 0.0, deleted_coating = 0.0;
+    bool initial_row_written = false;
+    // Credit what the fluid removed in the last step to the particles that took it up (the
+    // fluid reports removal after a step; particles receive it with the next step's terms, so
+    // the last step's removal needs an Advance of zero length of its own).
+    auto flushCredit = [&] {
+      wire::Envelope e;
+      auto* a = e.mutable_advance();
+      a->set_dt(0.0);
+      link::ParticleData flush;
+      flush.ids = state_.ids;
+      auto& inc = flush.field(field::coating_increment);
+      for (std::size_t i = 0; i < flush.size(); ++i) {
+        auto it = pending_credit_.find(flush.ids[i]);
+        if (it != pending_credit_.end()) {
+          inc[i] = it->second;
+          credited += it->second;
+          pending_credit_.erase(it);
+        }
+      }
+      flush.toWire(*a->mutable_terms());
+      send("particles", e);
+      auto r = await({{"particles", wire::Envelope::kAdvanced}}, peers_.at("particles")->spec.timeout);
+      state_ = link::ParticleData::fromWire(r.at("particles").advanced().state());
+      checkState(state_, "particles");
+    };
+    const std::size_t initial_count = state_.size();
     std::vector<char> lost;
     for (std::uint64_t k = 0; k < nsteps; ++k) {
       step_ = k + 1;
@@ -635,6 +664,10 @@ RunResult Coupler::run() {
           in += scalar("precursor_in");
           out += scalar("precursor_out");
           held = scalar("precursor_held");
+          if (auto hs = fa.scalars().find("precursor_held_start"); k == 0 && hs != fa.scalars().end()) {
+            held_start = hs->second;
+            monitor.setHeldAtStart(held_start);
+          }
           try {
             monitor.checkMassBalance(in, out, held, removed, step_, time_);
           } catch (const std::exception& e) {
@@ -662,9 +695,24 @@ RunResult Coupler::run() {
           pending_credit_.erase(it);
         }
       }
+      if (auto it = pa.scalars().find("deleted_coating_mass"); it != pa.scalars().end()) deleted_coating += it->second;
+      if (plan_.coating && k + 1 == nsteps) flushCredit();
       if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
       if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
 
+      if (!initial_row_written) {
+        // The state at the start, written once the fluid has said what it holds at the start.
+        std::vector<double> row0;
+        for (const auto& c : rec_->columns) {
+          if (c == "particle_count") row0.push_back(static_cast<double>(initial_count));
+          else if (c == analysis::column::precursor_held) row0.push_back(held_start);
+          else row0.push_back(0.0);
+        }
+        rec_->series->write(sc_.start_time, row0);
+        series_time_.push_back(sc_.start_time);
+        for (std::size_t c = 0; c < row0.size(); ++c) series_[rec_->columns[c]].push_back(row0[c]);
+        initial_row_written = true;
+      }
       std::vector<double> row;
       for (const auto& c : rec_->columns) {
         if (c == "particle_count") row.push_back(static_cast<double>(state_.size()));
@@ -689,36 +737,19 @@ RunResult Coupler::run() {
       progress.update(time_, k + 1, state_.size());
       result.steps = k + 1;
     }
-    // Credit what the fluid removed in the last step.
+    totals_["particles_inserted"] += 0.0;
+    totals_["particles_deleted"] += 0.0;
     if (plan_.coating) {
-      step_ = nsteps + 1;
-      wire::Envelope e;
-      auto* a = e.mutable_advance();
-      a->set_dt(0.0);
-      link::ParticleData flush;
-      flush.ids = state_.ids;
-      auto& inc = flush.field(field::coating_increment);
-      for (std::size_t i = 0; i < flush.size(); ++i) {
-        auto it = pending_credit_.find(flush.ids[i]);
-        if (it != pending_credit_.end()) {
-          inc[i] = it->second;
-          credited += it->second;
-          pending_credit_.erase(it);
-        }
-      }
-      flush.toWire(*a->mutable_terms());
-      send("particles", e);
-      auto r = await({{"particles", wire::Envelope::kAdvanced}}, peers_.at("particles")->spec.timeout);
-      state_ = link::ParticleData::fromWire(r.at("particles").advanced().state());
       double coating_final = 0.0;
       for (double m : state_.get(field::coating_mass)) coating_final += m;
       totals_["precursor_in_kg"] = in;
       totals_["precursor_out_kg"] = out;
+      totals_["precursor_held_start_kg"] = held_start;
       totals_["precursor_held_kg"] = held;
       totals_["precursor_removed_kg"] = removed;
       totals_["coating_credited_kg"] = credited;
-      totals_["coating_on_particles_kg"] = coating_final - coating_initial;
-      rec_->particles->write(time_, state_);
+      totals_["coating_on_particles_kg"] = coating_final - coating_initial + deleted_coating;
+      if (deleted_coating != 0.0) totals_["coating_on_deleted_particles_kg"] = deleted_coating;
     }
     progress.finish(time_, result.steps);
     shutdown(true);
@@ -750,6 +781,9 @@ RunResult Coupler::run() {
       v.name = spec.name;
       try {
         v.value = evaluateQuantity(spec.quantity, state_, series_time_, series_, totals_, spec.after);
+      } catch (const UndefinedQuantity& e) {
+        v.value = std::numeric_limits<double>::quiet_NaN();
+        v.undefined = e.what();
       } catch (const std::exception& e) {
         result.exit_code = 2;
         result.message = std::string("cosim: observables.") + spec.name + ": " + e.what();
@@ -757,7 +791,7 @@ RunResult Coupler::run() {
         break;
       }
       v.reference = spec.reference;
-      v.relative_error = relativeError(v.value, v.reference);
+      if (v.undefined.empty()) v.relative_error = relativeError(v.value, v.reference);
       result.observables.push_back(v);
     }
   }

@@ -174,6 +174,13 @@ std::string substitute(const std::string& text, const Variables& vars) {
     if (e == std::string::npos) {
       throw ExpressionError("unclosed '${' in '" + text.substr(b, 40) + "'");
     }
+    if (b > 0 && text[b - 1] == '$') {
+      // $${...} is the escape for a literal ${...} (e.g. a shell or LIGGGHTS variable in a case file)
+      out.append(text, pos, b - 1 - pos);
+      out.append(text, b, e + 1 - b);
+      pos = e + 1;
+      continue;
+    }
     out.append(text, pos, b - pos);
     out += formatNumber(evaluate(text.substr(b + 2, e - b - 2), vars));
     pos = e + 1;

@@ -99,12 +99,23 @@ int main(int argc, char** argv) {
   auto* rep = app.add_subcommand("report", "Analyse run folders: coating statistics, fits, extrapolation, plots, HTML");
   rep->add_option("runs", rep_opt.runs, "run folders (several: one comparison report, e.g. a flow sweep)")
       ->required();
-  rep->add_option("-o,--output", rep_opt.output, "report folder (default: RUN/report)");
+  rep->add_option("-o,--output", rep_opt.output,
+                  "report folder (default: RUN/report for one run, report-comparison beside the runs for several)");
   rep->add_option("--fit-start", rep_opt.fit_start, "start of the fit window [s] (default: first snapshot)");
   rep->add_option("--fit-end", rep_opt.fit_end, "end of the fit window [s] (default: last snapshot)");
   rep->add_option("--coating-start", rep_opt.coating_start, "time coating starts [s], origin of mu = a1 t");
   rep->add_option("--histograms", rep_opt.histogram_times, "times of the histograms [s]")->delimiter(',');
   rep->add_option("--predict", rep_opt.predict_times, "times of the extrapolated distributions [s]")->delimiter(',');
+  rep->add_option("--predict-until", rep_opt.predict_until, "horizon of the CV prediction [s] (default 3600)");
+  rep->add_option("--band", rep_opt.band, "relative band on a2 drawn around the CV prediction (default 0.2)");
+  rep->add_option("--bootstrap", rep_opt.bootstrap_resamples,
+                  "particle-bootstrap resamples for the errors of a1, a2 (default 100; 0 = HC3 errors only)");
+  rep->add_option("--uncoated-threshold", rep_opt.uncoated_relative,
+                  "a particle counts as never coated below this fraction of the mean coating (default 1e-6)");
+  rep->add_option("--check-mass-balance", rep_opt.mass_balance_limit_percent,
+                  "exit 3 if a run's mass-balance error exceeds this many percent (e.g. 0.01)");
+  bool no_plots = false;
+  rep->add_flag("--no-plots", no_plots, "numbers and HTML only, no matplotlib");
 #endif
 
   CLI11_PARSE(app, argc, argv);
@@ -123,6 +134,7 @@ int main(int argc, char** argv) {
       return 0;
     }
 #ifdef COSIM_HAVE_REPORT
+    if (no_plots) rep_opt.plots = false;
     if (*rep) return cosim::analysis::runReport(rep_opt);
 #endif
     if (*run) {
@@ -138,6 +150,10 @@ int main(int argc, char** argv) {
         return r.exit_code;
       }
       for (const auto& o : r.observables) {
+        if (!o.undefined.empty()) {
+          std::cout << "cosim: " << o.name << ": no value (" << o.undefined << ")\n";
+          continue;
+        }
         std::cout << "cosim: " << o.name << " = " << o.value;
         if (o.reference) std::cout << " (reference " << *o.reference << ", relative error " << *o.relative_error << ")";
         std::cout << "\n";

@@ -24,8 +24,12 @@ std::vector<std::string> split(const std::string& s) {
                            "series.<column>.<mean|final|min|max>, totals.<name>)");
 }
 
+[[noreturn]] void undefined(const std::string& q, const std::string& why) {
+  throw UndefinedQuantity("observable quantity '" + q + "' has no value: " + why);
+}
+
 double stat(const std::vector<double>& v, const std::string& s, const std::string& q) {
-  if (v.empty()) bad(q, "no values (no particles or no rows)");
+  if (v.empty()) undefined(q, "no values (no particles left or no rows)");
   double sum = 0, mn = v[0], mx = v[0];
   for (double x : v) {
     sum += x;
@@ -44,7 +48,7 @@ double stat(const std::vector<double>& v, const std::string& s, const std::strin
     var /= static_cast<double>(v.size());
     const double sd = std::sqrt(var);
     if (s == "std") return sd;
-    if (mean == 0.0) bad(q, "cv of values whose mean is 0");
+    if (mean == 0.0) undefined(q, "cv of values whose mean is 0");
     return sd / mean;
   }
   bad(q, "unknown statistic '" + s + "'");

@@ -14,6 +14,7 @@
 
 #include <map>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -28,15 +29,24 @@ struct ObservableSpec {
   double after = -1e300;  // series: only rows with t >= after
 };
 
+// A quantity that has no value for this run's outcome (no particle left for a mean, a CV of
+// values whose mean is 0): the run is not wrong, the number just does not exist.
+class UndefinedQuantity : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 struct ObservableValue {
   std::string name;
-  double value = 0.0;
+  double value = 0.0;  // NaN when undefined
+  std::string undefined;  // why there is no value (empty when there is one)
   std::optional<double> reference;
   // |value - reference| / |reference| (absolute error if the reference is 0).
   std::optional<double> relative_error;
 };
 
-// Throws std::runtime_error naming the quantity when it cannot be evaluated.
+// Throws std::runtime_error naming the quantity when it cannot be evaluated, UndefinedQuantity
+// when the run's outcome leaves it without a value.
 double evaluateQuantity(const std::string& quantity, const link::ParticleData& state,
                         const std::vector<double>& series_time,
                         const std::map<std::string, std::vector<double>>& series,

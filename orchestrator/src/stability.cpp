@@ -154,10 +154,13 @@ std::optional<std::string> StepMonitor::checkCourant(double co, std::uint64_t st
   return std::nullopt;
 }
 
+void StepMonitor::setHeldAtStart(double held) { baseline_ = {0.0, 0.0, held, 0.0}; }
+
 void StepMonitor::checkMassBalance(double in, double out, double held, double removed, std::uint64_t step, double time) {
   // Balance from the end of the first step on, so precursor already in the gas at the start
   // (unknown to the orchestrator) does not count as an error.
   if (!baseline_) {
+    // Without the fluid's held-at-start, balance from the end of the first step on.
     baseline_ = {in, out, held, removed};
     return;
   }

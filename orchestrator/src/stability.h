@@ -52,6 +52,9 @@ class StepMonitor {
   std::optional<std::string> checkCourant(double courant, std::uint64_t step, double time);
   // Precursor balance in - out - (held - held0) - removed, relative to what came in: stop when
   // it drifts above checks.mass_balance_tolerance.
+  // Precursor the gas held at the start (the fluid's precursor_held_start): the balance then
+  // counts from the start instead of from the end of the first step.
+  void setHeldAtStart(double held);
   void checkMassBalance(double in, double out, double held, double removed, std::uint64_t step, double time);
 
  private:

@@ -202,3 +202,10 @@ TEST(Expression, SubstituteKeepsTextAndFormatsExactly) {
   EXPECT_EQ(std::stod(formatNumber(x)), x);
   EXPECT_THROW(substitute("${u", v), ExpressionError);
 }
+
+TEST(Expression, DoubleDollarIsALiteral) {
+  Variables v{{"u", 0.1}};
+  // LIGGGHTS and shell variables survive templating when written $${...}
+  EXPECT_EQ(substitute("variable vz equal $${vel} + ${u}", v), "variable vz equal ${vel} + 0.1");
+  EXPECT_EQ(substitute("$${a}$${b}", v), "${a}${b}");
+}

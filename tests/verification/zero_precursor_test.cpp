@@ -2,9 +2,8 @@
 // LIGGGHTS, scenarios/plasma-coating-bed/ci.yaml) with no precursor in the nozzle gas
 // (Y_nozzle = 0): every coupling step runs, nothing is coated, nothing is NaN, and the mass
 // balance is trivially closed (all precursor totals exactly 0).
-// Known orchestrator issue (docs/verification.md, findings): the scene's observable
-// `particles.coating_mass.cv` is undefined for a zero mean and makes the completed run end with
-// exit code 2; the test therefore checks the steps and totals, not the exit code.
+// The scene's observable `particles.coating_mass.cv` has no value for a zero mean: the run still
+// completes with exit code 0 and reports the observable as undefined (not as a failure).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,7 +17,13 @@ namespace field = cosim::field;
 TEST(ZeroPrecursor, PlasmaBedWithoutPrecursorCoatsNothingAndStaysFinite) {
   auto r = runScene("plasma-coating-bed/ci.yaml", {"Y_nozzle=0"}, "y0-plasma");
   std::printf("zero precursor: exit %d, %zu steps; %s\n", r.exit_code, r.steps, r.message.c_str());
+  EXPECT_EQ(r.exit_code, 0) << r.message;
   EXPECT_EQ(r.steps, 500u) << r.message;  // 0.05 s of 1e-4 s: the run was not stopped early
+  bool cv_undefined = false;
+  for (const auto& o : r.observables) {
+    if (o.name == "coating_cv") cv_undefined = std::isnan(o.value) && !o.undefined.empty();
+  }
+  EXPECT_TRUE(cv_undefined) << "coating_cv should be reported without a value";
   for (const char* t : {"precursor_in_kg", "precursor_out_kg", "precursor_held_kg", "precursor_removed_kg",
                         "coating_credited_kg", "coating_on_particles_kg"}) {
     ASSERT_TRUE(r.totals.count(t)) << t;
