@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Sets everything up on a bare Debian 12 machine, builds, runs the default scene with live
-# progress and writes its report. Extra arguments go to `cosim run` (e.g. --set flow_lpm=50).
+# progress and writes its report. Extra arguments go to `cosim run` (e.g. --set flow_lpm=50);
+# COSIM_SCENE=scenarios/settling-sphere picks a seconds-long analytic scene instead.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
-scene="${COSIM_SCENE:-scenarios/settling-sphere}"
+scene="${COSIM_SCENE:-scenarios/plasma-coating-bed}"   # the quick coating bed, about 7 minutes
 echo "== setup"; scripts/setup.sh
 echo "== build"; scripts/build.sh
 echo "== run $scene"

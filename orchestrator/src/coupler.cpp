@@ -700,12 +700,14 @@ RunResult Coupler::run() {
       if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
       if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
 
-      if (!initial_row_written) {
-        // The state at the start, written once the fluid has said what it holds at the start.
+      if (plan_.coating && !initial_row_written) {
+        // The state at the start for the mass balance, written once the fluid has said what it
+        // holds at the start. Quantities that only exist over a step (pressure drop) are NaN.
         std::vector<double> row0;
         for (const auto& c : rec_->columns) {
           if (c == "particle_count") row0.push_back(static_cast<double>(initial_count));
           else if (c == analysis::column::precursor_held) row0.push_back(held_start);
+          else if (c == "pressure_drop") row0.push_back(std::numeric_limits<double>::quiet_NaN());
           else row0.push_back(0.0);
         }
         rec_->series->write(sc_.start_time, row0);

@@ -97,7 +97,8 @@ double evaluateQuantity(const std::string& q, const link::ParticleData& state,
     if (it == series.end()) bad(q, "the run's time series has no column '" + p[1] + "'");
     std::vector<double> vals;
     for (std::size_t i = 0; i < time.size() && i < it->second.size(); ++i) {
-      if (time[i] >= after) vals.push_back(it->second[i]);
+      // rows without a value (NaN: the pressure drop of the initial row) are skipped
+      if (time[i] >= after && std::isfinite(it->second[i])) vals.push_back(it->second[i]);
     }
     return stat(vals, p[2], q);
   }

@@ -1,0 +1,82 @@
+#!/usr/bin/python3
+"""Side views of a fluidized bed run and its pressure drop over time.
+
+    python3 scripts/plot_bed.py RUN_FOLDER [--times 0.3,0.4,0.5] [-o bed.png]
+
+Reads RUN/particles.h5 (one group per snapshot) and RUN/timeseries.csv. Draws the parcels of the
+central slab |y| < slab (default: 1.5 parcel diameters) in the x-z plane at up to six snapshots,
+so bubbles show as empty regions in the bed, and the bed pressure drop against time below.
+"""
+import argparse
+import csv
+import sys
+
+import h5py
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("run")
+    ap.add_argument("--times", help="snapshot times [s], comma separated (default: six across the run)")
+    ap.add_argument("--slab", type=float, default=1.5, help="half thickness of the slab in parcel diameters")
+    ap.add_argument("-o", "--output", help="PNG file (default RUN/bed.png)")
+    a = ap.parse_args()
+    try:
+        f = h5py.File(f"{a.run}/particles.h5", "r")
+    except OSError as e:
+        sys.exit(f"plot_bed: cannot read {a.run}/particles.h5: {e}")
+    snaps = [(float(g.attrs["time"]), name) for name, g in f["snapshots"].items() if int(g.attrs["count"]) > 0]
+    snaps.sort()
+    if not snaps:
+        sys.exit(f"plot_bed: {a.run}/particles.h5 has no snapshot with particles")
+    if a.times:
+        want = [float(t) for t in a.times.split(",")]
+    else:
+        t0, t1 = snaps[0][0], snaps[-1][0]
+        want = list(np.linspace(t0 + 0.5 * (t1 - t0), t1, 6))
+    chosen = []
+    for t in want:
+        best = min(snaps, key=lambda s: abs(s[0] - t))
+        if best not in chosen:
+            chosen.append(best)
+    fig = plt.figure(figsize=(2.2 * len(chosen), 7.5))
+    grid = fig.add_gridspec(2, len(chosen), height_ratios=[3, 1])
+    for k, (t, name) in enumerate(chosen):
+        g = f["snapshots"][name]
+        x = g["position"][:].reshape(-1, 3)
+        r = g["radius"][:]
+        d = 2 * float(np.median(r))
+        sel = np.abs(x[:, 1]) < a.slab * d
+        ax = fig.add_subplot(grid[0, k])
+        ax.scatter(x[sel, 0] * 1e3, x[sel, 2] * 1e3, s=(72 * d * 1e3 / 25.4 * 2.2) ** 2 / 4, c="tab:brown",
+                   edgecolors="none")
+        ax.set_aspect("equal")
+        ax.set_xlim(x[:, 0].min() * 1e3 - d * 1e3, x[:, 0].max() * 1e3 + d * 1e3)
+        ax.set_ylim(0, max(np.percentile(x[:, 2], 99.9) * 1e3 * 1.3, 10))
+        ax.set_title(f"t = {t:.3f} s", fontsize=9)
+        ax.set_xlabel("x [mm]")
+        if k == 0:
+            ax.set_ylabel("z [mm]")
+    rows = list(csv.DictReader(open(f"{a.run}/timeseries.csv")))
+    if rows and "pressure_drop" in rows[0]:
+        ax = fig.add_subplot(grid[1, :])
+        t = [float(r["time"]) for r in rows]
+        dp = [float(r["pressure_drop"]) for r in rows]
+        ax.plot(t, dp, lw=0.6)
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("bed pressure drop [Pa]")
+        ax.grid(alpha=0.3)
+    fig.suptitle(f"{a.run}: parcels with |y| < {a.slab:g} d (side view)", fontsize=10)
+    fig.tight_layout()
+    out = a.output or f"{a.run}/bed.png"
+    fig.savefig(out, dpi=110)
+    print(f"plot_bed: wrote {out}")
+
+
+if __name__ == "__main__":
+    main()
