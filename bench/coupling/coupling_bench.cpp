@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cstdio>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -218,6 +219,7 @@ void BM_Exchange(benchmark::State& state, const char* transport, Pair pair) {
   if (!hello || !hello->envelope || !hello->envelope->has_hello()) {
     state.SkipWithError("the peer thread did not connect");
     stop();
+    if (endpoint.rfind("ipc://", 0) == 0) std::remove(endpoint.c_str() + 6);
     return;
   }
 
@@ -235,6 +237,8 @@ void BM_Exchange(benchmark::State& state, const char* transport, Pair pair) {
   }
   const long faults = minorFaults() - faults0;
   stop();
+  // ZeroMQ leaves the socket file of a closed ipc:// endpoint behind.
+  if (endpoint.rfind("ipc://", 0) == 0) std::remove(endpoint.c_str() + 6);
 
   const std::size_t bytes = cosim::link::serialize(envelope(pair.request, request, step)).size() +
                             cosim::link::serialize(envelope(pair.reply, reply, step)).size();
