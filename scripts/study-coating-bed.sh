@@ -13,7 +13,7 @@ out="${1:-runs}"
 cosim="build/bin/cosim"
 common=(--set coupling.end_time=0.4 --set zone_base_radius=0.004 --set zone_top_radius=0.01)
 "$cosim" study scenarios/plasma-coating-bed --vary cell=0.0033,0.004,0.0045 \
-  --set 'W=${9*cell}' --set 'n=${cell}' --set 'hn=${cell}' --set 'n_grains=${round(4000*(W/0.036)^2)}' \
+  --set 'W=${9*cell}' --set 'n=${cell}' --set 'hn=${cell}' --set 'n_grains=${round(4000*(9*cell/0.036)^2)}' \
   "${common[@]}" -o "$out/study-coating-cell"
 "$cosim" study scenarios/plasma-coating-bed --vary cg=4,5,6 \
   --set 'n_grains=${round(4000*(5/cg)^3)}' "${common[@]}" -o "$out/study-coating-cg"

@@ -468,7 +468,15 @@ void Coupler::shutdown(bool clean) {
     wall_[n] = p->wall;
   }
   peers_.clear();
-  hub_.reset();
+  if (hub_) {
+    // An ipc:// endpoint is a socket file that zmq leaves behind: remove it with the hub.
+    const std::string ep = hub_->endpoint();
+    hub_.reset();
+    if (ep.rfind("ipc://", 0) == 0) {
+      std::error_code ec;
+      fs::remove(ep.substr(6), ec);
+    }
+  }
 }
 
 RunResult Coupler::run() {

@@ -139,6 +139,11 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
   std::stringstream ss;
   ss << summary.rdbuf();
   EXPECT_NE(ss.str().find("failed"), std::string::npos);
+  // Nor is the socket file of the ipc:// endpoint left in /tmp.
+  const auto at = ss.str().find("\"run_id\": \"");
+  ASSERT_NE(at, std::string::npos);
+  const std::string id = ss.str().substr(at + 11, ss.str().find('"', at + 11) - at - 11);
+  EXPECT_FALSE(fs::exists("/tmp/cosim-" + id + ".ipc")) << "/tmp/cosim-" << id << ".ipc left behind";
 }
 
 TEST(EndToEnd, UnusedFluidIsNotStarted) {
