@@ -80,8 +80,10 @@ def plot_statistics_time(r, folder):
     f, unit = scale_for(mean)
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.3))
     axes[0].plot(t, mean * f, "b.-", ms=3, label="mean")
-    axes[0].fill_between(t, (mean - num(s["std"])) * f, (mean + num(s["std"])) * f, color="b", alpha=0.15,
-                         label="± σ")
+    low = mean - num(s["std"])
+    clipped = bool((low < 0).any())  # a skewed (poorly mixed) distribution: no negative coating
+    axes[0].fill_between(t, np.maximum(low, 0) * f, (mean + num(s["std"])) * f, color="b", alpha=0.15,
+                         label="± σ (cut at 0)" if clipped else "± σ")
     axes[0].set_ylabel("coating mass per parcel [%s]" % unit)
     axes[0].legend(fontsize=8)
     axes[1].plot(t, num(s["cv"]), "k.-", ms=3)

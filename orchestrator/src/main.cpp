@@ -89,8 +89,11 @@ int main(int argc, char** argv) {
       ->required()->take_all();
   study->add_option("--set", sopt.sets, "fixed override for every variant")->take_all();
   study->add_option("-o,--output", sopt.output, "study folder (default runs/<name>-study)");
-  study->add_option("--finest", sopt.finest, "index of the variant taken as reference where no analytic one exists (default: the slowest)");
+  study->add_option("--finest", sopt.finest, "index (0-based, in --vary order) of the variant taken as reference where no analytic one exists (default: the slowest)");
   study->add_flag("--no-plots", [&](std::int64_t) { sopt.plots = false; }, "tables only");
+  study->add_flag("--rerun", sopt.rerun,
+                  "run every variant again (default: a variant whose folder holds a completed run of the same "
+                  "resolved scene is read back, so an interrupted study resumes and --finest can be changed for free)");
 
   auto* models = app.add_subcommand("models", "List the coupling models this build knows");
 

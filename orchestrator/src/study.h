@@ -20,6 +20,9 @@ struct StudyOptions {
   int finest = -1;  // variant used as reference where no analytic one exists; -1: the slowest
   bool quiet = false;
   bool plots = true;
+  // false: a variant whose folder holds a completed run of exactly the same resolved scene is
+  // read back, not run again (resume an interrupted study, or re-analyse with another --finest)
+  bool rerun = false;
 };
 
 // "key=v1,v2,v3" -> (key, [v1, v2, v3]); throws std::runtime_error with the expected form.

@@ -81,3 +81,41 @@ TEST(Study, RunsVariantsAndWritesTables) {
   }
   EXPECT_EQ(rows, 2);
 }
+
+TEST(Study, CompletedVariantsAreReadBackNotRunAgain) {
+  const fs::path out = fs::temp_directory_path() / ("cosim-study-reuse-" + std::to_string(getpid()));
+  fs::remove_all(out);
+  StudyOptions o;
+  o.scenario = fs::path(COSIM_SOURCE_DIR) / "scenarios" / "settling-sphere";
+  o.vary = {parseVary("coupling.dt=1e-4,2e-4")};
+  o.output = out;
+  o.quiet = true;
+  o.plots = false;
+  ASSERT_EQ(runStudy(o), 0);
+  auto read = [&](const fs::path& f) {
+    std::ifstream is(f);
+    std::stringstream ss;
+    ss << is.rdbuf();
+    return ss.str();
+  };
+  const std::string first = read(out / "study.csv");
+  const auto stamp = fs::last_write_time(out / "variant-00" / "summary.json");
+  const auto stamp1 = fs::last_write_time(out / "variant-01" / "summary.json");
+  // Same study again: nothing re-run, same table (the wall times come from the summaries).
+  ASSERT_EQ(runStudy(o), 0);
+  EXPECT_EQ(fs::last_write_time(out / "variant-00" / "summary.json"), stamp);
+  EXPECT_EQ(read(out / "study.csv"), first);
+  // Another reference variant: still nothing re-run.
+  o.finest = 0;
+  ASSERT_EQ(runStudy(o), 0);
+  EXPECT_EQ(fs::last_write_time(out / "variant-01" / "summary.json"), stamp1);
+  // A changed scene (another end time) is run again.
+  o.sets = {"coupling.end_time=4e-3"};
+  ASSERT_EQ(runStudy(o), 0);
+  EXPECT_NE(fs::last_write_time(out / "variant-00" / "summary.json"), stamp);
+  // --rerun runs everything again.
+  const auto stamp2 = fs::last_write_time(out / "variant-00" / "summary.json");
+  o.rerun = true;
+  ASSERT_EQ(runStudy(o), 0);
+  EXPECT_NE(fs::last_write_time(out / "variant-00" / "summary.json"), stamp2);
+}
