@@ -5,20 +5,20 @@
 #include <cmath>
 #include <fstream>
 #include <iomanip>
-#include <limits>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <set>
 #include <sstream>
 #include <thread>
 
 #include "case_files.h"
-#include "coupling_terms.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/analysis/summary.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
+#include "coupling_terms.h"
 #include "progress.h"
 #include "stability.h"
 
@@ -115,12 +115,15 @@ void Coupler::startParticipants() {
       auto exe = findExecutable(spec.command);
       if (!exe) {
         throw RunFailure(name, "cannot find the executable '" + spec.command + "' of adapter '" +
-                                   spec.adapter + "' (looked next to cosim and in PATH; was it built?)");
+                                   spec.adapter +
+                                   "' (looked next to cosim and in PATH; was it built?)");
       }
       std::vector<std::string> argv;
       if (spec.mpi > 1) {
         auto mpirun = findExecutable("mpirun");
-        if (!mpirun) throw RunFailure(name, "mpi: " + std::to_string(spec.mpi) + " needs mpirun (apt-get install openmpi-bin)");
+        if (!mpirun)
+          throw RunFailure(name, "mpi: " + std::to_string(spec.mpi) +
+                                     " needs mpirun (apt-get install openmpi-bin)");
         argv = {mpirun->string(), "-np", std::to_string(spec.mpi)};
         if (geteuid() == 0) argv.push_back("--allow-run-as-root");
         argv.push_back("--oversubscribe");
@@ -141,7 +144,8 @@ void Coupler::startParticipants() {
       } catch (const std::exception& e) {
         throw RunFailure(name, e.what());
       }
-      std::ofstream(folder_ / "cosim.log", std::ios::app) << "started " << name << ": " << join(argv) << "\n";
+      std::ofstream(folder_ / "cosim.log", std::ios::app)
+          << "started " << name << ": " << join(argv) << "\n";
     }
     peers_[name] = std::move(peer);
   }
@@ -152,7 +156,8 @@ void Coupler::startParticipants() {
     bool first = true;
     for (const auto& [n, p] : peers_) {
       std::cout << (first ? "" : ", ") << n << " (" << p->spec.adapter
-                << (p->spec.mpi > 1 ? ", " + std::to_string(p->spec.mpi) + " MPI ranks" : "") << ")";
+                << (p->spec.mpi > 1 ? ", " + std::to_string(p->spec.mpi) + " MPI ranks" : "")
+                << ")";
       first = false;
     }
     std::cout << std::endl;
@@ -173,7 +178,8 @@ void Coupler::send(const std::string& peer, wire::Envelope& env) {
     auto it = peers_.find(peer);
     if (it != peers_.end() && it->second->process) {
       auto& proc = *it->second->process;
-      for (int i = 0; i < 40 && proc.running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      for (int i = 0; i < 40 && proc.running(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
       if (!proc.running()) {
         throw RunFailure(peer, "the " + peer + " process (" + it->second->spec.adapter + ") " +
                                    proc.exitDescription() + " at step " + std::to_string(step_));
@@ -188,7 +194,8 @@ std::map<std::string, wire::Envelope> Coupler::await(
   std::map<std::string, wire::Envelope> got;
   const auto start = Clock::now();
   while (got.size() < expected.size()) {
-    if (g_stop_signal) throw RunFailure("", "interrupted (signal " + std::to_string(g_stop_signal.load()) + ")");
+    if (g_stop_signal)
+      throw RunFailure("", "interrupted (signal " + std::to_string(g_stop_signal.load()) + ")");
     auto in = hub_->receive(link::Millis(100));
     const auto now = Clock::now();
     if (in) {
@@ -198,7 +205,8 @@ std::map<std::string, wire::Envelope> Coupler::await(
       auto pit = peers_.find(who);
       if (pit == peers_.end()) {
         // Unknown sender: not part of this run. Ignore but keep a trace.
-        std::ofstream(folder_ / "cosim.log", std::ios::app) << "ignored a message from unknown peer '" << in->peer << "'\n";
+        std::ofstream(folder_ / "cosim.log", std::ios::app)
+            << "ignored a message from unknown peer '" << in->peer << "'\n";
         continue;
       }
       pit->second->last_seen = now;
@@ -208,27 +216,33 @@ std::map<std::string, wire::Envelope> Coupler::await(
       const auto& env = *in->envelope;
       if (env.has_heartbeat()) continue;
       if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
-        throw RunFailure(who, "speaks protocol version " + std::to_string(env.header().protocol_version()) +
+        throw RunFailure(who, "speaks protocol version " +
+                                  std::to_string(env.header().protocol_version()) +
                                   ", the orchestrator " + std::to_string(wire::PROTOCOL_VERSION));
       }
       if (env.has_error()) {
-        throw RunFailure(who, "reported an error: " + env.error().message() +
-                                  (env.error().where().empty() ? "" : " (at " + env.error().where() + ")"));
+        throw RunFailure(
+            who, "reported an error: " + env.error().message() +
+                     (env.error().where().empty() ? "" : " (at " + env.error().where() + ")"));
       }
       auto eit = expected.find(who);
       if (eit == expected.end() || got.count(who)) {
         throw RunFailure(who, "sent an unexpected message at step " + std::to_string(step_));
       }
       if (env.body_case() != eit->second) {
-        throw RunFailure(who, "sent the wrong message type (body " + std::to_string(env.body_case()) +
-                                  ", expected " + std::to_string(eit->second) + ") at step " + std::to_string(step_));
+        throw RunFailure(who, "sent the wrong message type (body " +
+                                  std::to_string(env.body_case()) + ", expected " +
+                                  std::to_string(eit->second) + ") at step " +
+                                  std::to_string(step_));
       }
       if (env.header().run_id() != run_id_) {
-        throw RunFailure(who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'");
+        throw RunFailure(
+            who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'");
       }
       if (env.header().step() != step_) {
         throw RunFailure(who, "answered for step " + std::to_string(env.header().step()) +
-                                  " while the run is at step " + std::to_string(step_) + " (out-of-order step)");
+                                  " while the run is at step " + std::to_string(step_) +
+                                  " (out-of-order step)");
       }
       got[who] = env;
       continue;
@@ -239,7 +253,8 @@ std::map<std::string, wire::Envelope> Coupler::await(
       Peer& p = *peers_.at(name);
       if (p.process && !p.process->running()) {
         throw RunFailure(name, "the " + name + " process (" + p.spec.adapter + ") " +
-                                   p.process->exitDescription() + " at step " + std::to_string(step_));
+                                   p.process->exitDescription() + " at step " +
+                                   std::to_string(step_));
       }
       const double silent = std::chrono::duration<double>(now - p.last_seen).count();
       if (p.connected && silent > sc_.heartbeat_timeout) {
@@ -247,9 +262,10 @@ std::map<std::string, wire::Envelope> Coupler::await(
                                    " s (no heartbeat; hung, or its host is gone)");
       }
       if (std::chrono::duration<double>(now - start).count() > timeout) {
-        throw RunFailure(name, "did not answer within " + std::to_string(static_cast<int>(timeout)) +
-                                   " s at step " + std::to_string(step_) +
-                                   " (participants." + name + ".timeout; raise it if a step is legitimately slow)");
+        throw RunFailure(name, "did not answer within " +
+                                   std::to_string(static_cast<int>(timeout)) + " s at step " +
+                                   std::to_string(step_) + " (participants." + name +
+                                   ".timeout; raise it if a step is legitimately slow)");
       }
     }
   }
@@ -267,11 +283,13 @@ void Coupler::handshake() {
       std::string who = in->peer;
       if (who.size() > 3 && who.compare(who.size() - 3, 3, "#hb") == 0) continue;
       if (!peers_.count(who)) {
-        std::ofstream(folder_ / "cosim.log", std::ios::app) << "ignored a connection from unknown participant '" << who << "'\n";
+        std::ofstream(folder_ / "cosim.log", std::ios::app)
+            << "ignored a connection from unknown participant '" << who << "'\n";
         continue;
       }
       Peer& p = *peers_.at(who);
-      if (!in->envelope) throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
+      if (!in->envelope)
+        throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
       const auto& env = *in->envelope;
       auto refuse = [&](const std::string& reason) {
         wire::Envelope r;
@@ -297,15 +315,18 @@ void Coupler::handshake() {
       const std::set<std::string> accepts(h.accepts().begin(), h.accepts().end());
       for (const auto& f : p.send) {
         if (!provides.count(f)) {
-          refuse("this scene needs field '" + f + "' from the " + who + " participant, but adapter '" +
-                 h.adapter() + "' cannot provide it (it provides: " +
-                 join({h.provides().begin(), h.provides().end()}) + "); choose models that do not need it or another adapter");
+          refuse("this scene needs field '" + f + "' from the " + who +
+                 " participant, but adapter '" + h.adapter() +
+                 "' cannot provide it (it provides: " +
+                 join({h.provides().begin(), h.provides().end()}) +
+                 "); choose models that do not need it or another adapter");
         }
       }
       for (const auto& f : p.receive) {
         if (!accepts.count(f)) {
-          refuse("this scene sends field '" + f + "' to the " + who + " participant, but adapter '" +
-                 h.adapter() + "' does not accept it (it accepts: " +
+          refuse("this scene sends field '" + f + "' to the " + who +
+                 " participant, but adapter '" + h.adapter() +
+                 "' does not accept it (it accepts: " +
                  join({h.accepts().begin(), h.accepts().end()}) + ")");
         }
       }
@@ -328,25 +349,28 @@ void Coupler::handshake() {
       p.last_seen = Clock::now();
       waiting.erase(who);
       std::ofstream(folder_ / "cosim.log", std::ios::app)
-          << who << " connected: adapter " << h.adapter() << ", pid " << h.pid() << " on " << h.host()
-          << "; sends " << join(p.send) << "; receives " << join(p.receive) << "\n";
+          << who << " connected: adapter " << h.adapter() << ", pid " << h.pid() << " on "
+          << h.host() << "; sends " << join(p.send) << "; receives " << join(p.receive) << "\n";
       continue;
     }
     for (const auto& n : waiting) {
       Peer& p = *peers_.at(n);
       if (p.process && !p.process->running()) {
-        throw RunFailure(n, "the " + n + " process (" + p.spec.adapter + ") " + p.process->exitDescription() +
-                                " before connecting");
+        throw RunFailure(n, "the " + n + " process (" + p.spec.adapter + ") " +
+                                p.process->exitDescription() + " before connecting");
       }
     }
     if (std::chrono::duration<double>(Clock::now() - start).count() > sc_.handshake_timeout) {
       std::string who = *waiting.begin();
-      throw RunFailure(who, "did not connect within " + std::to_string(static_cast<int>(sc_.handshake_timeout)) +
-                                " s (transport.handshake_timeout)" +
-                                (peers_.at(who)->spec.launch == "external"
-                                     ? "; start it with --endpoint " + (sc_.connect_endpoint.empty() ? hub_->endpoint() : sc_.connect_endpoint) +
-                                           " --name " + who + " --run-id " + run_id_
-                                     : ""));
+      throw RunFailure(
+          who,
+          "did not connect within " + std::to_string(static_cast<int>(sc_.handshake_timeout)) +
+              " s (transport.handshake_timeout)" +
+              (peers_.at(who)->spec.launch == "external"
+                   ? "; start it with --endpoint " +
+                         (sc_.connect_endpoint.empty() ? hub_->endpoint() : sc_.connect_endpoint) +
+                         " --name " + who + " --run-id " + run_id_
+                   : ""));
     }
   }
 }
@@ -368,12 +392,15 @@ void Coupler::checkState(const link::ParticleData& s, const std::string& where) 
   if (s.has(field::velocity)) {
     const auto& v = s.get(field::velocity);
     for (std::size_t p = 0; p < s.size(); ++p) {
-      const double speed = std::sqrt(v[3 * p] * v[3 * p] + v[3 * p + 1] * v[3 * p + 1] + v[3 * p + 2] * v[3 * p + 2]);
+      const double speed = std::sqrt(v[3 * p] * v[3 * p] + v[3 * p + 1] * v[3 * p + 1] +
+                                     v[3 * p + 2] * v[3 * p + 2]);
       if (speed > sc_.max_particle_speed) {
         std::ostringstream os;
-        os << where << ": particle " << s.ids[p] << " moves at " << speed << " m/s at step " << step_
-           << " (t = " << time_ << " s), above checks.max_particle_speed = " << sc_.max_particle_speed
-           << " m/s: the run is unstable (DEM dt too large, or drag too stiff for the coupling interval?)";
+        os << where << ": particle " << s.ids[p] << " moves at " << speed << " m/s at step "
+           << step_ << " (t = " << time_
+           << " s), above checks.max_particle_speed = " << sc_.max_particle_speed
+           << " m/s: the run is unstable (DEM dt too large, or drag too stiff for the coupling "
+              "interval?)";
         throw RunFailure(where, os.str());
       }
     }
@@ -422,8 +449,10 @@ void Coupler::writeSummary(const RunResult& r, const std::string& status) {
   analysis::Json obs = analysis::Json::object();
   for (const auto& o : observables_) {
     analysis::Json j = analysis::Json::object();
-    if (o.undefined.empty()) j["value"] = o.value;
-    else j["undefined"] = o.undefined;
+    if (o.undefined.empty())
+      j["value"] = o.value;
+    else
+      j["undefined"] = o.undefined;
     if (o.reference) j["reference"] = *o.reference;
     if (o.relative_error) j["relative_error"] = *o.relative_error;
     obs[o.name] = j;
@@ -486,7 +515,8 @@ RunResult Coupler::run() {
   next_output_ = sc_.start_time;
   prepareFolder();
   result.folder = folder_;
-  const auto nsteps = static_cast<std::uint64_t>(std::llround((sc_.end_time - sc_.start_time) / sc_.dt));
+  const auto nsteps =
+      static_cast<std::uint64_t>(std::llround((sc_.end_time - sc_.start_time) / sc_.dt));
   Progress progress(sc_.start_time, sc_.end_time, opt_.quiet);
   std::string status = "completed";
   try {
@@ -502,7 +532,8 @@ RunResult Coupler::run() {
       }
     }
     if (plan_.fluid) rec_->columns.push_back("pressure_drop");
-    rec_->series = std::make_unique<analysis::TimeSeriesRecorder>(folder_ / analysis::kTimeSeriesFile, rec_->columns);
+    rec_->series = std::make_unique<analysis::TimeSeriesRecorder>(
+        folder_ / analysis::kTimeSeriesFile, rec_->columns);
 
     startParticipants();
     handshake();
@@ -513,7 +544,8 @@ RunResult Coupler::run() {
       wire::Envelope e;
       e.mutable_advance()->set_dt(0.0);
       send("particles", e);
-      auto r = await({{"particles", wire::Envelope::kAdvanced}}, peers_.at("particles")->spec.timeout);
+      auto r =
+          await({{"particles", wire::Envelope::kAdvanced}}, peers_.at("particles")->spec.timeout);
       state_ = link::ParticleData::fromWire(r.at("particles").advanced().state());
       checkState(state_, "particles");
     }
@@ -559,7 +591,8 @@ RunResult Coupler::run() {
       }
       flush.toWire(*a->mutable_terms());
       send("particles", e);
-      auto r = await({{"particles", wire::Envelope::kAdvanced}}, peers_.at("particles")->spec.timeout);
+      auto r =
+          await({{"particles", wire::Envelope::kAdvanced}}, peers_.at("particles")->spec.timeout);
       state_ = link::ParticleData::fromWire(r.at("particles").advanced().state());
       checkState(state_, "particles");
     };
@@ -584,7 +617,8 @@ RunResult Coupler::run() {
         const auto& sm = r.at("fluid").samples();
         samples = link::ParticleData::fromWire(sm.at_particles());
         if (samples.ids != state_.ids) {
-          throw RunFailure("fluid", "returned samples for other particles than it was sent (ids differ)");
+          throw RunFailure("fluid",
+                           "returned samples for other particles than it was sent (ids differ)");
         }
         if (sm.lost_ids_size() > 0) {
           auto idx = state_.index();
@@ -643,8 +677,9 @@ RunResult Coupler::run() {
         std::vector<std::int64_t> before = state_.ids;
         state_ = link::ParticleData::fromWire(pa.state());
         try {
-          monitor.checkParticleLedger(before, state_.ids, {pa.inserted_ids().begin(), pa.inserted_ids().end()},
-                                      {pa.deleted_ids().begin(), pa.deleted_ids().end()}, step_, time_);
+          monitor.checkParticleLedger(
+              before, state_.ids, {pa.inserted_ids().begin(), pa.inserted_ids().end()},
+              {pa.deleted_ids().begin(), pa.deleted_ids().end()}, step_, time_);
         } catch (const std::exception& e) {
           throw RunFailure("particles", e.what());
         }
@@ -672,7 +707,8 @@ RunResult Coupler::run() {
           in += scalar("precursor_in");
           out += scalar("precursor_out");
           held = scalar("precursor_held");
-          if (auto hs = fa.scalars().find("precursor_held_start"); k == 0 && hs != fa.scalars().end()) {
+          if (auto hs = fa.scalars().find("precursor_held_start");
+              k == 0 && hs != fa.scalars().end()) {
             held_start = hs->second;
             monitor.setHeldAtStart(held_start);
           }
@@ -703,7 +739,8 @@ RunResult Coupler::run() {
           pending_credit_.erase(it);
         }
       }
-      if (auto it = pa.scalars().find("deleted_coating_mass"); it != pa.scalars().end()) deleted_coating += it->second;
+      if (auto it = pa.scalars().find("deleted_coating_mass"); it != pa.scalars().end())
+        deleted_coating += it->second;
       if (plan_.coating && k + 1 == nsteps) flushCredit();
       if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
       if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
@@ -713,10 +750,14 @@ RunResult Coupler::run() {
         // holds at the start. Quantities that only exist over a step (pressure drop) are NaN.
         std::vector<double> row0;
         for (const auto& c : rec_->columns) {
-          if (c == "particle_count") row0.push_back(static_cast<double>(initial_count));
-          else if (c == analysis::column::precursor_held) row0.push_back(held_start);
-          else if (c == "pressure_drop") row0.push_back(std::numeric_limits<double>::quiet_NaN());
-          else row0.push_back(0.0);
+          if (c == "particle_count")
+            row0.push_back(static_cast<double>(initial_count));
+          else if (c == analysis::column::precursor_held)
+            row0.push_back(held_start);
+          else if (c == "pressure_drop")
+            row0.push_back(std::numeric_limits<double>::quiet_NaN());
+          else
+            row0.push_back(0.0);
         }
         rec_->series->write(sc_.start_time, row0);
         series_time_.push_back(sc_.start_time);
@@ -725,18 +766,26 @@ RunResult Coupler::run() {
       }
       std::vector<double> row;
       for (const auto& c : rec_->columns) {
-        if (c == "particle_count") row.push_back(static_cast<double>(state_.size()));
-        else if (c == "wall_seconds") row.push_back(std::chrono::duration<double>(Clock::now() - wall0).count());
-        else if (c == analysis::column::precursor_in) row.push_back(in);
-        else if (c == analysis::column::precursor_out) row.push_back(out);
-        else if (c == analysis::column::precursor_held) row.push_back(held);
-        else if (c == analysis::column::precursor_removed) row.push_back(removed);
-        else if (c == analysis::column::coated_mass) row.push_back(credited);
+        if (c == "particle_count")
+          row.push_back(static_cast<double>(state_.size()));
+        else if (c == "wall_seconds")
+          row.push_back(std::chrono::duration<double>(Clock::now() - wall0).count());
+        else if (c == analysis::column::precursor_in)
+          row.push_back(in);
+        else if (c == analysis::column::precursor_out)
+          row.push_back(out);
+        else if (c == analysis::column::precursor_held)
+          row.push_back(held);
+        else if (c == analysis::column::precursor_removed)
+          row.push_back(removed);
+        else if (c == analysis::column::coated_mass)
+          row.push_back(credited);
         else if (c == "pressure_drop") {
           const auto& sc = replies.at("fluid").advanced().scalars();
           auto it = sc.find("pressure_drop");
           row.push_back(it == sc.end() ? 0.0 : it->second);
-        } else row.push_back(0.0);
+        } else
+          row.push_back(0.0);
       }
       rec_->series->write(time_, row);
       series_time_.push_back(time_);
@@ -766,10 +815,12 @@ RunResult Coupler::run() {
   } catch (const RunFailure& f) {
     status = g_stop_signal ? "interrupted" : "failed";
     std::ostringstream os;
-    os << (f.participant.empty() ? std::string("cosim") : "participant '" + f.participant + "'") << ": " << f.what();
+    os << (f.participant.empty() ? std::string("cosim") : "participant '" + f.participant + "'")
+       << ": " << f.what();
     auto pit = peers_.find(f.participant);
     if (pit != peers_.end()) {
-      os << "\n  last lines of " << pit->second->log.string() << ":\n" << tailOfFile(pit->second->log, 15);
+      os << "\n  last lines of " << pit->second->log.string() << ":\n"
+         << tailOfFile(pit->second->log, 15);
     }
     result.message = os.str();
     result.exit_code = g_stop_signal ? 130 : 2;
@@ -790,7 +841,8 @@ RunResult Coupler::run() {
       ObservableValue v;
       v.name = spec.name;
       try {
-        v.value = evaluateQuantity(spec.quantity, state_, series_time_, series_, totals_, spec.after);
+        v.value =
+            evaluateQuantity(spec.quantity, state_, series_time_, series_, totals_, spec.after);
       } catch (const UndefinedQuantity& e) {
         v.value = std::numeric_limits<double>::quiet_NaN();
         v.undefined = e.what();

@@ -40,9 +40,12 @@ class Parser {
   double sum() {
     double v = product();
     while (true) {
-      if (eat('+')) v += product();
-      else if (eat('-')) v -= product();
-      else return v;
+      if (eat('+'))
+        v += product();
+      else if (eat('-'))
+        v -= product();
+      else
+        return v;
     }
   }
   double product() {
@@ -77,14 +80,16 @@ class Parser {
       if (!eat(')')) fail("missing ')'");
       return v;
     }
-    if (pos_ < s_.size() && (std::isdigit(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '.')) {
+    if (pos_ < s_.size() &&
+        (std::isdigit(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '.')) {
       const char* start = s_.c_str() + pos_;
       char* end = nullptr;
       double v = std::strtod(start, &end);
       pos_ += static_cast<std::size_t>(end - start);
       return v;
     }
-    if (pos_ < s_.size() && (std::isalpha(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) {
+    if (pos_ < s_.size() &&
+        (std::isalpha(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) {
       std::size_t b = pos_;
       while (pos_ < s_.size() &&
              (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) {
@@ -114,19 +119,60 @@ class Parser {
     auto need = [&](std::size_t n) {
       if (args.size() != n) fail(f + " takes " + std::to_string(n) + " argument(s)");
     };
-    if (f == "sqrt") { need(1); if (args[0] < 0) fail("sqrt of a negative number"); return std::sqrt(args[0]); }
-    if (f == "exp") { need(1); return std::exp(args[0]); }
-    if (f == "log") { need(1); if (args[0] <= 0) fail("log of a non-positive number"); return std::log(args[0]); }
-    if (f == "sin") { need(1); return std::sin(args[0]); }
-    if (f == "cos") { need(1); return std::cos(args[0]); }
-    if (f == "tan") { need(1); return std::tan(args[0]); }
-    if (f == "abs") { need(1); return std::fabs(args[0]); }
-    if (f == "min") { need(2); return std::min(args[0], args[1]); }
-    if (f == "max") { need(2); return std::max(args[0], args[1]); }
-    if (f == "pow") { need(2); return std::pow(args[0], args[1]); }
-    if (f == "round") { need(1); return std::round(args[0]); }
-    if (f == "ceil") { need(1); return std::ceil(args[0]); }
-    if (f == "floor") { need(1); return std::floor(args[0]); }
+    if (f == "sqrt") {
+      need(1);
+      if (args[0] < 0) fail("sqrt of a negative number");
+      return std::sqrt(args[0]);
+    }
+    if (f == "exp") {
+      need(1);
+      return std::exp(args[0]);
+    }
+    if (f == "log") {
+      need(1);
+      if (args[0] <= 0) fail("log of a non-positive number");
+      return std::log(args[0]);
+    }
+    if (f == "sin") {
+      need(1);
+      return std::sin(args[0]);
+    }
+    if (f == "cos") {
+      need(1);
+      return std::cos(args[0]);
+    }
+    if (f == "tan") {
+      need(1);
+      return std::tan(args[0]);
+    }
+    if (f == "abs") {
+      need(1);
+      return std::fabs(args[0]);
+    }
+    if (f == "min") {
+      need(2);
+      return std::min(args[0], args[1]);
+    }
+    if (f == "max") {
+      need(2);
+      return std::max(args[0], args[1]);
+    }
+    if (f == "pow") {
+      need(2);
+      return std::pow(args[0], args[1]);
+    }
+    if (f == "round") {
+      need(1);
+      return std::round(args[0]);
+    }
+    if (f == "ceil") {
+      need(1);
+      return std::ceil(args[0]);
+    }
+    if (f == "floor") {
+      need(1);
+      return std::floor(args[0]);
+    }
     fail("unknown function '" + f + "'");
   }
 
@@ -175,7 +221,8 @@ std::string substitute(const std::string& text, const Variables& vars) {
       throw ExpressionError("unclosed '${' in '" + text.substr(b, 40) + "'");
     }
     if (b > 0 && text[b - 1] == '$') {
-      // $${...} is the escape for a literal ${...} (e.g. a shell or LIGGGHTS variable in a case file)
+      // $${...} is the escape for a literal ${...} (e.g. a shell or LIGGGHTS variable in a case
+      // file)
       out.append(text, pos, b - 1 - pos);
       out.append(text, b, e + 1 - b);
       pos = e + 1;
@@ -191,7 +238,8 @@ bool isSingleExpression(const std::string& text) {
   std::size_t b = text.find_first_not_of(" \t");
   std::size_t e = text.find_last_not_of(" \t");
   if (b == std::string::npos) return false;
-  return text.compare(b, 2, "${") == 0 && text[e] == '}' && text.find("${", b + 2) == std::string::npos;
+  return text.compare(b, 2, "${") == 0 && text[e] == '}' &&
+         text.find("${", b + 2) == std::string::npos;
 }
 
 }  // namespace cosim::orchestrator

@@ -3,8 +3,8 @@
 #include <csignal>
 #include <iostream>
 
-#include "coupler.h"
 #include "cosim/models/registry.h"
+#include "coupler.h"
 #include "plan.h"
 #include "scenario.h"
 #include "study.h"
@@ -31,18 +31,20 @@ int validate(const std::string& file, const std::vector<std::string>& sets) {
   SceneModels m = makeModels(sc);
   Plan p = makePlan(sc, m);
   std::cout << "scenario '" << sc.name << "' is valid (" << sc.file.string() << ")\n";
-  std::cout << "  coupling: dt " << sc.dt << " s x " << sc.dem_steps << " DEM steps, t = "
-            << sc.start_time << " .. " << sc.end_time << " s ("
-            << static_cast<long long>(std::llround((sc.end_time - sc.start_time) / sc.dt)) << " steps)\n";
-  std::cout << "  particles: " << sc.participants.at("particles").adapter << "; sends " << join(p.particles_send)
-            << "; receives " << join(p.particles_receive) << "\n";
+  std::cout << "  coupling: dt " << sc.dt << " s x " << sc.dem_steps
+            << " DEM steps, t = " << sc.start_time << " .. " << sc.end_time << " s ("
+            << static_cast<long long>(std::llround((sc.end_time - sc.start_time) / sc.dt))
+            << " steps)\n";
+  std::cout << "  particles: " << sc.participants.at("particles").adapter << "; sends "
+            << join(p.particles_send) << "; receives " << join(p.particles_receive) << "\n";
   if (p.fluid) {
-    std::cout << "  fluid: " << sc.participants.at("fluid").adapter << "; sends " << join(p.fluid_send)
-              << "; receives " << join(p.fluid_receive) << "\n";
+    std::cout << "  fluid: " << sc.participants.at("fluid").adapter << "; sends "
+              << join(p.fluid_send) << "; receives " << join(p.fluid_receive) << "\n";
   }
   std::cout << "  models: drag " << (sc.drag ? sc.drag->law : "none") << ", forces "
-            << sc.forces.size() << ", mass transfer " << (sc.mass_transfer ? sc.mass_transfer->law : "none")
-            << ", coating zone " << (sc.coating_zone ? sc.coating_zone->law : "none") << "\n";
+            << sc.forces.size() << ", mass transfer "
+            << (sc.mass_transfer ? sc.mass_transfer->law : "none") << ", coating zone "
+            << (sc.coating_zone ? sc.coating_zone->law : "none") << "\n";
   for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
   std::cout << "  output: " << sc.output_folder.string() << "\n";
   return 0;
@@ -64,57 +66,83 @@ int main(int argc, char** argv) {
   std::vector<std::string> sets;
   std::string scenario;
 
-  auto* run = app.add_subcommand("run", "Run a scenario (a scenario.yaml, or a folder holding one)");
+  auto* run =
+      app.add_subcommand("run", "Run a scenario (a scenario.yaml, or a folder holding one)");
   run->add_option("scenario", scenario, "scenario file or folder")->required();
-  run->add_option("--set", sets,
-                  "override a value: key.path=value (e.g. coupling.end_time=0.5); a bare name sets a "
-                  "scenario parameter (e.g. flow_lpm=50)")->take_all();
+  run->add_option(
+         "--set", sets,
+         "override a value: key.path=value (e.g. coupling.end_time=0.5); a bare name sets a "
+         "scenario parameter (e.g. flow_lpm=50)")
+      ->take_all();
   RunOptions ropt;
   std::string output;
-  run->add_option("-o,--output", output, "run folder (default: the scenario's output.folder, never overwritten)");
+  run->add_option("-o,--output", output,
+                  "run folder (default: the scenario's output.folder, never overwritten)");
   run->add_flag("--overwrite", ropt.overwrite, "reuse the run folder even if it exists");
   run->add_flag("-q,--quiet", ropt.quiet, "no progress line");
 
-  auto* val = app.add_subcommand("validate", "Check a scenario and show what it would start and send, without running");
+  auto* val = app.add_subcommand(
+      "validate", "Check a scenario and show what it would start and send, without running");
   val->add_option("scenario", scenario, "scenario file or folder")->required();
   val->add_option("--set", sets, "override a value (as for run)")->take_all();
 
-  auto* study = app.add_subcommand("study",
+  auto* study = app.add_subcommand(
+      "study",
       "Error against run time: run variants of a scenario, compare its observables with their "
       "analytic reference (or the finest variant), time each run, mark the Pareto front");
   StudyOptions sopt;
   std::vector<std::string> vary;
   study->add_option("scenario", sopt.scenario, "scenario file or folder")->required();
-  study->add_option("--vary", vary, "key=v1,v2,... (repeat for a grid), e.g. --vary coupling.dem_steps=5,10,20")
-      ->required()->take_all();
+  study
+      ->add_option("--vary", vary,
+                   "key=v1,v2,... (repeat for a grid), e.g. --vary coupling.dem_steps=5,10,20")
+      ->required()
+      ->take_all();
   study->add_option("--set", sopt.sets, "fixed override for every variant")->take_all();
   study->add_option("-o,--output", sopt.output, "study folder (default runs/<name>-study)");
-  study->add_option("--finest", sopt.finest, "index (0-based, in --vary order) of the variant taken as reference where no analytic one exists (default: the slowest)");
-  study->add_flag("--no-plots", [&](std::int64_t) { sopt.plots = false; }, "tables only");
-  study->add_flag("--rerun", sopt.rerun,
-                  "run every variant again (default: a variant whose folder holds a completed run of the same "
-                  "resolved scene is read back, so an interrupted study resumes and --finest can be changed for free)");
+  study->add_option("--finest", sopt.finest,
+                    "index (0-based, in --vary order) of the variant taken as reference where no "
+                    "analytic one exists (default: the slowest)");
+  study->add_flag(
+      "--no-plots", [&](std::int64_t) { sopt.plots = false; }, "tables only");
+  study->add_flag(
+      "--rerun", sopt.rerun,
+      "run every variant again (default: a variant whose folder holds a completed run of the same "
+      "resolved scene is read back, so an interrupted study resumes and --finest can be changed "
+      "for free)");
 
   auto* models = app.add_subcommand("models", "List the coupling models this build knows");
 
 #ifdef COSIM_HAVE_REPORT
   cosim::analysis::ReportOptions rep_opt;
-  auto* rep = app.add_subcommand("report", "Analyse run folders: coating statistics, fits, extrapolation, plots, HTML");
-  rep->add_option("runs", rep_opt.runs, "run folders (several: one comparison report, e.g. a flow sweep)")
+  auto* rep = app.add_subcommand(
+      "report", "Analyse run folders: coating statistics, fits, extrapolation, plots, HTML");
+  rep->add_option("runs", rep_opt.runs,
+                  "run folders (several: one comparison report, e.g. a flow sweep)")
       ->required();
   rep->add_option("-o,--output", rep_opt.output,
-                  "report folder (default: RUN/report for one run, report-comparison beside the runs for several)");
-  rep->add_option("--fit-start", rep_opt.fit_start, "start of the fit window [s] (default: first snapshot)");
-  rep->add_option("--fit-end", rep_opt.fit_end, "end of the fit window [s] (default: last snapshot)");
-  rep->add_option("--coating-start", rep_opt.coating_start, "time coating starts [s], origin of mu = a1 t");
-  rep->add_option("--histograms", rep_opt.histogram_times, "times of the histograms [s]")->delimiter(',');
-  rep->add_option("--predict", rep_opt.predict_times, "times of the extrapolated distributions [s]")->delimiter(',');
-  rep->add_option("--predict-until", rep_opt.predict_until, "horizon of the CV prediction [s] (default 3600)");
-  rep->add_option("--band", rep_opt.band, "relative band on a2 drawn around the CV prediction (default 0.2)");
-  rep->add_option("--bootstrap", rep_opt.bootstrap_resamples,
-                  "particle-bootstrap resamples for the errors of a1, a2 (default 100; 0 = HC3 errors only)");
-  rep->add_option("--uncoated-threshold", rep_opt.uncoated_relative,
-                  "a particle counts as never coated below this fraction of the mean coating (default 1e-6)");
+                  "report folder (default: RUN/report for one run, report-comparison beside the "
+                  "runs for several)");
+  rep->add_option("--fit-start", rep_opt.fit_start,
+                  "start of the fit window [s] (default: first snapshot)");
+  rep->add_option("--fit-end", rep_opt.fit_end,
+                  "end of the fit window [s] (default: last snapshot)");
+  rep->add_option("--coating-start", rep_opt.coating_start,
+                  "time coating starts [s], origin of mu = a1 t");
+  rep->add_option("--histograms", rep_opt.histogram_times, "times of the histograms [s]")
+      ->delimiter(',');
+  rep->add_option("--predict", rep_opt.predict_times, "times of the extrapolated distributions [s]")
+      ->delimiter(',');
+  rep->add_option("--predict-until", rep_opt.predict_until,
+                  "horizon of the CV prediction [s] (default 3600)");
+  rep->add_option("--band", rep_opt.band,
+                  "relative band on a2 drawn around the CV prediction (default 0.2)");
+  rep->add_option(
+      "--bootstrap", rep_opt.bootstrap_resamples,
+      "particle-bootstrap resamples for the errors of a1, a2 (default 100; 0 = HC3 errors only)");
+  rep->add_option(
+      "--uncoated-threshold", rep_opt.uncoated_relative,
+      "a particle counts as never coated below this fraction of the mean coating (default 1e-6)");
   rep->add_option("--check-mass-balance", rep_opt.mass_balance_limit_percent,
                   "exit 3 if a run's mass-balance error exceeds this many percent (e.g. 0.01)");
   bool no_plots = false;
@@ -131,7 +159,8 @@ int main(int argc, char** argv) {
     }
     if (*models) {
       auto& r = cosim::models::Registry::instance();
-      std::cout << "drag laws: " << join(r.dragNames()) << "\nforce models: " << join(r.forceNames())
+      std::cout << "drag laws: " << join(r.dragNames())
+                << "\nforce models: " << join(r.forceNames())
                 << "\nmass transfer laws: " << join(r.massTransferNames())
                 << "\ncoating zone shapes: " << join(r.zoneNames()) << "\n";
       return 0;
@@ -158,7 +187,9 @@ int main(int argc, char** argv) {
           continue;
         }
         std::cout << "cosim: " << o.name << " = " << o.value;
-        if (o.reference) std::cout << " (reference " << *o.reference << ", relative error " << *o.relative_error << ")";
+        if (o.reference)
+          std::cout << " (reference " << *o.reference << ", relative error " << *o.relative_error
+                    << ")";
         std::cout << "\n";
       }
       std::cout << "cosim: results in " << r.folder.string() << "\n";

@@ -60,16 +60,21 @@ void checkQuantity(const std::string& q) {
   auto p = split(q);
   if (p.empty()) bad(q, "empty");
   if (p[0] == "particles") {
-    if (p.size() < 3 || p.size() > 4) bad(q, "expected particles.<field>[.<component>].<statistic>");
+    if (p.size() < 3 || p.size() > 4)
+      bad(q, "expected particles.<field>[.<component>].<statistic>");
     if (field::components(p[1]) == 0) bad(q, "unknown particle field '" + p[1] + "'");
-    if (p.size() == 4 && p[2] != "x" && p[2] != "y" && p[2] != "z") bad(q, "component must be x, y or z");
-    if (p.size() == 3 && field::components(p[1]) != 1) bad(q, "field '" + p[1] + "' is a vector: give a component x, y or z");
+    if (p.size() == 4 && p[2] != "x" && p[2] != "y" && p[2] != "z")
+      bad(q, "component must be x, y or z");
+    if (p.size() == 3 && field::components(p[1]) != 1)
+      bad(q, "field '" + p[1] + "' is a vector: give a component x, y or z");
     static const std::vector<std::string> stats = {"mean", "min", "max", "std", "cv", "sum"};
-    if (std::find(stats.begin(), stats.end(), p.back()) == stats.end()) bad(q, "unknown statistic '" + p.back() + "'");
+    if (std::find(stats.begin(), stats.end(), p.back()) == stats.end())
+      bad(q, "unknown statistic '" + p.back() + "'");
   } else if (p[0] == "series") {
     if (p.size() != 3) bad(q, "expected series.<column>.<statistic>");
     static const std::vector<std::string> stats = {"mean", "final", "min", "max"};
-    if (std::find(stats.begin(), stats.end(), p[2]) == stats.end()) bad(q, "unknown statistic '" + p[2] + "'");
+    if (std::find(stats.begin(), stats.end(), p[2]) == stats.end())
+      bad(q, "unknown statistic '" + p[2] + "'");
   } else if (p[0] == "totals") {
     if (p.size() != 2) bad(q, "expected totals.<name>");
   } else {

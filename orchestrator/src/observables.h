@@ -3,8 +3,9 @@
 // and are what `cosim study` compares across variants.
 //
 //   observables:
-//     v_terminal: { quantity: particles.velocity.z.mean, reference: "${-(rho_p-rho_f)*9.81*d^2/(18*mu)}" }
-//     dp_bed:     { quantity: series.pressure_drop.mean, after: 0.2 }
+//     v_terminal: { quantity: particles.velocity.z.mean, reference:
+//     "${-(rho_p-rho_f)*9.81*d^2/(18*mu)}" } dp_bed:     { quantity: series.pressure_drop.mean,
+//     after: 0.2 }
 //
 // quantity grammar:
 //   particles.<field>[.x|.y|.z].<mean|min|max|std|cv|sum>   over the final particle state
@@ -38,7 +39,7 @@ class UndefinedQuantity : public std::runtime_error {
 
 struct ObservableValue {
   std::string name;
-  double value = 0.0;  // NaN when undefined
+  double value = 0.0;     // NaN when undefined
   std::string undefined;  // why there is no value (empty when there is one)
   std::optional<double> reference;
   // |value - reference| / |reference| (absolute error if the reference is 0).

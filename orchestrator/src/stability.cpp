@@ -26,13 +26,15 @@ std::string g(double v) {
 }
 }  // namespace
 
-StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/, const Plan& /*plan*/,
-                               const link::ParticleData& s) {
+StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/,
+                               const Plan& /*plan*/, const link::ParticleData& s) {
   StabilityReport r;
   const double dem_dt = sc.dt / sc.dem_steps;
   r.lines.push_back("coupling interval " + g(sc.dt) + " s = " + std::to_string(sc.dem_steps) +
-                    " DEM steps of " + g(dem_dt) + " s; " + std::to_string(s.size()) + " particles at start");
-  if (s.size() == 0) r.lines.push_back("warning: the particle participant reports no particles at start");
+                    " DEM steps of " + g(dem_dt) + " s; " + std::to_string(s.size()) +
+                    " particles at start");
+  if (s.size() == 0)
+    r.lines.push_back("warning: the particle participant reports no particles at start");
   if (s.has(field::radius) && s.size() > 0 && sc.material.particle_density > 0 &&
       sc.material.youngs_modulus > 0) {
     const auto& rad = s.get(field::radius);
@@ -40,7 +42,8 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/
     const double tR = rayleighTime(rmin, sc.material.particle_density, sc.material.youngs_modulus,
                                    sc.material.poisson_ratio);
     const double ratio = dem_dt / tR;
-    std::string line = "DEM dt / Rayleigh time = " + g(ratio) + " (t_R = " + g(tR) + " s for r = " + g(rmin) + " m)";
+    std::string line = "DEM dt / Rayleigh time = " + g(ratio) + " (t_R = " + g(tR) +
+                       " s for r = " + g(rmin) + " m)";
     if (ratio > 0.3) {
       r.refusals.push_back(line + ": unstable contacts; use coupling.dem_steps >= " +
                            std::to_string(static_cast<long long>(std::ceil(sc.dt / (0.2 * tR)))) +
@@ -57,16 +60,19 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/
 }
 
 StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& state,
-                               const link::ParticleData& samples, const link::ParticleData& forcing) {
+                               const link::ParticleData& samples,
+                               const link::ParticleData& forcing) {
   StabilityReport r;
   const double dem_dt = sc.dt / sc.dem_steps;
-  if (forcing.has(field::drag_coefficient) && state.has(field::radius) && sc.material.particle_density > 0) {
+  if (forcing.has(field::drag_coefficient) && state.has(field::radius) &&
+      sc.material.particle_density > 0) {
     const auto& K = forcing.get(field::drag_coefficient);
     const auto& rad = state.get(field::radius);
     double tmin = INFINITY;
     std::int64_t who = -1;
     for (std::size_t i = 0; i < state.size(); ++i) {
-      const double m = sc.material.particle_density * 4.0 / 3.0 * std::numbers::pi * std::pow(rad[i], 3);
+      const double m =
+          sc.material.particle_density * 4.0 / 3.0 * std::numbers::pi * std::pow(rad[i], 3);
       const double t = relaxationTime(m, K[i]);
       if (t < tmin) {
         tmin = t;
@@ -78,9 +84,10 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
                          std::to_string(who) + "): coupling interval = " + g(sc.dt / tmin) +
                          " tau_p, DEM dt = " + g(dem_dt / tmin) + " tau_p";
       if (sc.dt > tmin) {
-        line += "; drag is stiff: it stays stable because the particle adapter relaxes the velocity "
-                "exactly over each DEM step and the fluid treats K implicitly, but the fluid velocity "
-                "seen by the particles is frozen over the coupling interval";
+        line +=
+            "; drag is stiff: it stays stable because the particle adapter relaxes the velocity "
+            "exactly over each DEM step and the fluid treats K implicitly, but the fluid velocity "
+            "seen by the particles is frozen over the coupling interval";
       } else {
         line += " ok";
       }
@@ -101,10 +108,15 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
       std::string line = "cell size / parcel diameter = " + g(ratio_min) + " .. " + g(ratio_max);
       if (ratio_min < 1.0) {
         const double dmax = 2.0 * *std::max_element(rad.begin(), rad.end());
-        r.refusals.push_back(line + ": cells smaller than a parcel make the voidage meaningless; use cells of at least 2 parcel diameters (>= " + g(2 * dmax) + " m) or a smaller coarse-graining factor");
+        r.refusals.push_back(line +
+                             ": cells smaller than a parcel make the voidage meaningless; use "
+                             "cells of at least 2 parcel diameters (>= " +
+                             g(2 * dmax) + " m) or a smaller coarse-graining factor");
         line += " REFUSED";
       } else if (ratio_min < 2.0 || ratio_max > 4.4) {
-        line += " warning: outside 2 - 4.4 diameters, where unresolved CFD-DEM is mesh-independent (paper 4.1)";
+        line +=
+            " warning: outside 2 - 4.4 diameters, where unresolved CFD-DEM is mesh-independent "
+            "(paper 4.1)";
       } else {
         line += " ok";
       }
@@ -114,23 +126,29 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
   return r;
 }
 
-void StepMonitor::checkParticleLedger(const std::vector<std::int64_t>& before, const std::vector<std::int64_t>& after,
-                                      const std::vector<std::int64_t>& inserted, const std::vector<std::int64_t>& deleted,
-                                      std::uint64_t step, double time) {
+void StepMonitor::checkParticleLedger(const std::vector<std::int64_t>& before,
+                                      const std::vector<std::int64_t>& after,
+                                      const std::vector<std::int64_t>& inserted,
+                                      const std::vector<std::int64_t>& deleted, std::uint64_t step,
+                                      double time) {
   std::set<std::int64_t> expect(before.begin(), before.end());
   for (auto id : deleted) expect.erase(id);
   for (auto id : inserted) expect.insert(id);
   std::set<std::int64_t> now(after.begin(), after.end());
   if (now.size() != after.size()) {
-    throw std::runtime_error("particles: the state lists a particle id twice at step " + std::to_string(step));
+    throw std::runtime_error("particles: the state lists a particle id twice at step " +
+                             std::to_string(step));
   }
   std::vector<std::int64_t> vanished, appeared;
-  std::set_difference(expect.begin(), expect.end(), now.begin(), now.end(), std::back_inserter(vanished));
-  std::set_difference(now.begin(), now.end(), expect.begin(), expect.end(), std::back_inserter(appeared));
+  std::set_difference(expect.begin(), expect.end(), now.begin(), now.end(),
+                      std::back_inserter(vanished));
+  std::set_difference(now.begin(), now.end(), expect.begin(), expect.end(),
+                      std::back_inserter(appeared));
   if (!vanished.empty() || !appeared.empty()) {
     std::ostringstream os;
     os << "particles: " << vanished.size() << " particle(s) vanished and " << appeared.size()
-       << " appeared without being reported deleted/inserted at step " << step << " (t = " << time << " s)";
+       << " appeared without being reported deleted/inserted at step " << step << " (t = " << time
+       << " s)";
     if (!vanished.empty()) os << "; first vanished id " << vanished.front();
     if (!appeared.empty()) os << "; first new id " << appeared.front();
     throw std::runtime_error(os.str());
@@ -140,8 +158,9 @@ void StepMonitor::checkParticleLedger(const std::vector<std::int64_t>& before, c
 std::optional<std::string> StepMonitor::checkCourant(double co, std::uint64_t step, double time) {
   if (co > sc_.max_courant) {
     std::ostringstream os;
-    os << "fluid: Courant number " << co << " at step " << step << " (t = " << time << " s) exceeds checks.max_courant = "
-       << sc_.max_courant << ": reduce coupling.dt to about " << sc_.dt * 0.5 / co << " s (Courant 0.5)";
+    os << "fluid: Courant number " << co << " at step " << step << " (t = " << time
+       << " s) exceeds checks.max_courant = " << sc_.max_courant << ": reduce coupling.dt to about "
+       << sc_.dt * 0.5 / co << " s (Courant 0.5)";
     throw std::runtime_error(os.str());
   }
   if (co > 1.0 && !courant_warned_) {
@@ -156,7 +175,8 @@ std::optional<std::string> StepMonitor::checkCourant(double co, std::uint64_t st
 
 void StepMonitor::setHeldAtStart(double held) { baseline_ = {0.0, 0.0, held, 0.0}; }
 
-void StepMonitor::checkMassBalance(double in, double out, double held, double removed, std::uint64_t step, double time) {
+void StepMonitor::checkMassBalance(double in, double out, double held, double removed,
+                                   std::uint64_t step, double time) {
   // Balance from the end of the first step on, so precursor already in the gas at the start
   // (unknown to the orchestrator) does not count as an error.
   if (!baseline_) {
@@ -172,9 +192,10 @@ void StepMonitor::checkMassBalance(double in, double out, double held, double re
   const double err = (in - out - held - removed) / scale;
   if (std::fabs(err) > sc_.mass_balance_tolerance) {
     std::ostringstream os;
-    os << "precursor mass balance drifts at step " << step << " (t = " << time << " s): in " << in << " kg - out " << out
-       << " kg - change held " << held << " kg - removed by particles " << removed << " kg = " << in - out - held - removed
-       << " kg, relative " << err << " > checks.mass_balance_tolerance = " << sc_.mass_balance_tolerance;
+    os << "precursor mass balance drifts at step " << step << " (t = " << time << " s): in " << in
+       << " kg - out " << out << " kg - change held " << held << " kg - removed by particles "
+       << removed << " kg = " << in - out - held - removed << " kg, relative " << err
+       << " > checks.mass_balance_tolerance = " << sc_.mass_balance_tolerance;
     throw std::runtime_error(os.str());
   }
 }

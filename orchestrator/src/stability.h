@@ -37,16 +37,19 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& models, co
 // Checks that need the first fluid samples and drag coefficients: relaxation time against the
 // coupling interval and DEM step, cell size against parcel size.
 StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& state,
-                               const link::ParticleData& samples, const link::ParticleData& forcing);
+                               const link::ParticleData& samples,
+                               const link::ParticleData& forcing);
 
 // Per-step monitors that need memory across steps.
 class StepMonitor {
  public:
   explicit StepMonitor(const Scenario& sc) : sc_(sc) {}
   // Ids that vanished without being reported deleted; throws std::runtime_error with the ids.
-  void checkParticleLedger(const std::vector<std::int64_t>& before, const std::vector<std::int64_t>& after,
-                           const std::vector<std::int64_t>& inserted, const std::vector<std::int64_t>& deleted,
-                           std::uint64_t step, double time);
+  void checkParticleLedger(const std::vector<std::int64_t>& before,
+                           const std::vector<std::int64_t>& after,
+                           const std::vector<std::int64_t>& inserted,
+                           const std::vector<std::int64_t>& deleted, std::uint64_t step,
+                           double time);
   // Courant number reported by the fluid: warning once above 1, stop above checks.max_courant.
   // Returns a warning to show (once) or nullopt.
   std::optional<std::string> checkCourant(double courant, std::uint64_t step, double time);
@@ -55,7 +58,8 @@ class StepMonitor {
   // Precursor the gas held at the start (the fluid's precursor_held_start): the balance then
   // counts from the start instead of from the end of the first step.
   void setHeldAtStart(double held);
-  void checkMassBalance(double in, double out, double held, double removed, std::uint64_t step, double time);
+  void checkMassBalance(double in, double out, double held, double removed, std::uint64_t step,
+                        double time);
 
  private:
   const Scenario& sc_;

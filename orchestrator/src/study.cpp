@@ -8,9 +8,9 @@
 #include <limits>
 #include <sstream>
 
-#include "coupler.h"
 #include "cosim/analysis/json.h"
 #include "cosim/analysis/report.h"
+#include "coupler.h"
 #include "scenario.h"
 
 namespace cosim::orchestrator {
@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 std::pair<std::string, std::vector<std::string>> parseVary(const std::string& text) {
   auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 >= text.size()) {
-    throw std::runtime_error("--vary " + text + ": expected key=v1,v2,... (e.g. --vary coupling.dem_steps=5,10,20)");
+    throw std::runtime_error("--vary " + text +
+                             ": expected key=v1,v2,... (e.g. --vary coupling.dem_steps=5,10,20)");
   }
   std::vector<std::string> values;
   std::stringstream ss(text.substr(eq + 1));
@@ -80,7 +81,8 @@ bool reuseCompleted(const fs::path& folder, const Scenario& sc, Variant& v) {
   const auto* status = j.find("status");
   const auto* timings = j.find("timings_s");
   const auto* extra = j.find("extra");
-  if (!status || !status->string() || *status->string() != "completed" || !timings || !extra) return false;
+  if (!status || !status->string() || *status->string() != "completed" || !timings || !extra)
+    return false;
   const auto* total = timings->find("total");
   const auto* obs = extra->find("observables");
   if (!total || !total->number() || !obs) return false;
@@ -116,15 +118,18 @@ std::string fmt(double v) {
 }  // namespace
 
 int runStudy(const StudyOptions& opt) {
-  if (opt.vary.empty()) throw std::runtime_error("cosim study needs at least one --vary key=v1,v2,...");
+  if (opt.vary.empty())
+    throw std::runtime_error("cosim study needs at least one --vary key=v1,v2,...");
   // Validate the base scenario first (clear errors before any run starts).
   Scenario base = loadScenario(opt.scenario, opt.sets);
   if (base.observables.empty()) {
-    throw std::runtime_error(base.file.string() +
-                             ": observables: the scenario defines no observables, so a study has nothing to measure; "
-                             "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
+    throw std::runtime_error(
+        base.file.string() +
+        ": observables: the scenario defines no observables, so a study has nothing to measure; "
+        "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
   }
-  fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study") : fs::absolute(opt.output);
+  fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study")
+                                       : fs::absolute(opt.output);
   fs::create_directories(folder);
 
   // Cartesian product of the varied values.
@@ -148,11 +153,13 @@ int runStudy(const StudyOptions& opt) {
     v.folder = folder / name.str();
     std::vector<std::string> sets = opt.sets;
     sets.insert(sets.end(), v.sets.begin(), v.sets.end());
-    if (!opt.quiet) std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
+    if (!opt.quiet)
+      std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
     Scenario sc = loadScenario(opt.scenario, sets);
     if (!opt.rerun && reuseCompleted(v.folder, sc, v)) {
       if (!opt.quiet) {
-        std::cout << "study:   done before (" << v.folder.string() << "): wall " << fmt(v.wall) << " s";
+        std::cout << "study:   done before (" << v.folder.string() << "): wall " << fmt(v.wall)
+                  << " s";
         for (const auto& o : v.observables) std::cout << ", " << o.name << " = " << fmt(o.value);
         std::cout << std::endl;
       }
@@ -187,7 +194,8 @@ int runStudy(const StudyOptions& opt) {
       }
     }
   }
-  if (finest >= static_cast<int>(variants.size())) throw std::runtime_error("--finest is larger than the number of variants");
+  if (finest >= static_cast<int>(variants.size()))
+    throw std::runtime_error("--finest is larger than the number of variants");
   const std::size_t nobs = base.observables.size();
   std::vector<std::string> ref_kind(nobs);
   std::vector<double> ref(nobs, std::numeric_limits<double>::quiet_NaN());
@@ -202,7 +210,8 @@ int runStudy(const StudyOptions& opt) {
     }
   }
   // errors[v][k]
-  std::vector<std::vector<double>> err(variants.size(), std::vector<double>(nobs, std::numeric_limits<double>::quiet_NaN()));
+  std::vector<std::vector<double>> err(
+      variants.size(), std::vector<double>(nobs, std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < variants.size(); ++i) {
     if (variants[i].exit_code != 0) continue;
     for (std::size_t k = 0; k < nobs; ++k) {
@@ -233,7 +242,8 @@ int runStudy(const StudyOptions& opt) {
     csv << "variant";
     for (const auto& [key, values] : opt.vary) csv << "," << key;
     csv << ",wall_s,status";
-    for (const auto& o : base.observables) csv << "," << o.name << "," << o.name << "_reference," << o.name << "_error";
+    for (const auto& o : base.observables)
+      csv << "," << o.name << "," << o.name << "_reference," << o.name << "_error";
     csv << ",pareto\n";
     for (std::size_t i = 0; i < variants.size(); ++i) {
       const auto& v = variants[i];
@@ -298,13 +308,16 @@ int runStudy(const StudyOptions& opt) {
           md << " failed | |";
           continue;
         }
-        md << " " << fmt(v.observables[k].value) << " | " << (std::isnan(err[i][k]) ? std::string("-") : fmt(err[i][k])) << " |";
+        md << " " << fmt(v.observables[k].value) << " | "
+           << (std::isnan(err[i][k]) ? std::string("-") : fmt(err[i][k])) << " |";
       }
       md << (front[i] ? " yes |" : " |") << "\n";
     }
     md << "\nReferences: ";
-    for (std::size_t k = 0; k < nobs; ++k) md << (k ? "; " : "") << base.observables[k].name << ": " << ref_kind[k];
-    md << ". Error = |value - reference| / |reference|; Pareto = no other variant is both faster and more accurate (worst error over the observables).\n";
+    for (std::size_t k = 0; k < nobs; ++k)
+      md << (k ? "; " : "") << base.observables[k].name << ": " << ref_kind[k];
+    md << ". Error = |value - reference| / |reference|; Pareto = no other variant is both faster "
+          "and more accurate (worst error over the observables).\n";
   }
   if (!opt.quiet) {
     std::cout << "study: written " << (folder / "study.csv").string() << ", study.json, study.md\n";
@@ -313,10 +326,13 @@ int runStudy(const StudyOptions& opt) {
   }
   if (opt.plots) {
     const char* env = std::getenv("COSIM_SCRIPTS");
-    fs::path script = env ? fs::path(env) / "plot_study.py" : fs::path(COSIM_SCRIPTS_DIR) / "plot_study.py";
+    fs::path script =
+        env ? fs::path(env) / "plot_study.py" : fs::path(COSIM_SCRIPTS_DIR) / "plot_study.py";
     std::string why;
     auto python = analysis::findPython(why);
-    const std::string cmd = python ? "MPLBACKEND=Agg '" + *python + "' '" + script.string() + "' '" + folder.string() + "'" : "";
+    const std::string cmd = python ? "MPLBACKEND=Agg '" + *python + "' '" + script.string() +
+                                         "' '" + folder.string() + "'"
+                                   : "";
     if (!python) {
       std::cerr << "study: the plot was not drawn: " << why << "; the tables are complete\n";
     } else if (std::system(cmd.c_str()) != 0) {

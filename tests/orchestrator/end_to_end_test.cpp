@@ -10,8 +10,8 @@
 #include <fstream>
 #include <thread>
 
-#include "coupler.h"
 #include "cosim/link/fields.h"
+#include "coupler.h"
 #include "scenario.h"
 
 using namespace cosim;
@@ -46,7 +46,8 @@ std::vector<pid_t> childrenNamed(const std::string& prefix) {
     char state;
     pid_t ppid;
     rest >> state >> ppid;
-    if (ppid == getpid() && state != 'Z' && comm.rfind(prefix, 0) == 0) out.push_back(std::stoi(name));
+    if (ppid == getpid() && state != 'Z' && comm.rfind(prefix, 0) == 0)
+      out.push_back(std::stoi(name));
   }
   return out;
 }
@@ -124,7 +125,8 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
     }
   };
   RunResult r = c.run();
-  const double detect = std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
+  const double detect =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
   ASSERT_TRUE(killed);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_LT(detect, 5.0);
@@ -143,7 +145,8 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
   const auto at = ss.str().find("\"run_id\": \"");
   ASSERT_NE(at, std::string::npos);
   const std::string id = ss.str().substr(at + 11, ss.str().find('"', at + 11) - at - 11);
-  EXPECT_FALSE(fs::exists("/tmp/cosim-" + id + ".ipc")) << "/tmp/cosim-" << id << ".ipc left behind";
+  EXPECT_FALSE(fs::exists("/tmp/cosim-" + id + ".ipc"))
+      << "/tmp/cosim-" << id << ".ipc left behind";
 }
 
 TEST(EndToEnd, UnusedFluidIsNotStarted) {
@@ -165,7 +168,9 @@ coupling: { dt: 1.0e-3, dem_steps: 1, end_time: 0.1 }
   o.output = freshFolder("nofluid");
   Coupler c(std::move(sc), o);
   std::size_t fluid_seen = 0;
-  c.on_step = [&](double, const link::ParticleData&) { fluid_seen += childrenNamed("cosim-analytic").size(); };
+  c.on_step = [&](double, const link::ParticleData&) {
+    fluid_seen += childrenNamed("cosim-analytic").size();
+  };
   RunResult r = c.run();
   ASSERT_EQ(r.exit_code, 0) << r.message;
   EXPECT_EQ(fluid_seen, 0u);
@@ -189,5 +194,6 @@ coupling: { dt: 1.0e-3, end_time: 0.1 }
   Coupler c(loadScenario(dir), o);
   RunResult r = c.run();
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.message.find("cannot find the executable 'cosim-no-such-adapter'"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("cannot find the executable 'cosim-no-such-adapter'"), std::string::npos)
+      << r.message;
 }

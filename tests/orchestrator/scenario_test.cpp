@@ -1,4 +1,6 @@
 // Scenario files: templating, overrides, and one specific error per kind of mistake.
+#include "scenario.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -6,7 +8,6 @@
 
 #include "expression.h"
 #include "plan.h"
-#include "scenario.h"
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
@@ -62,7 +63,8 @@ TEST(Scenario, GoodScenarioParsesWithParametersAndExpressions) {
   EXPECT_DOUBLE_EQ(sc.dt, 1e-4);
   EXPECT_EQ(sc.dem_steps, 10u);
   EXPECT_NEAR(sc.parameters.at("u"), 50.0 / 60000.0 / 0.01, 1e-15);
-  EXPECT_NEAR(sc.participants.at("fluid").options["velocity"][2].as<double>(), 50.0 / 60000.0 / 0.01, 1e-12);
+  EXPECT_NEAR(sc.participants.at("fluid").options["velocity"][2].as<double>(),
+              50.0 / 60000.0 / 0.01, 1e-12);
 }
 
 TEST(Scenario, SetOverridesParametersAndKeys) {
@@ -78,7 +80,8 @@ TEST(Scenario, PlanLeavesOutWhatTheSceneDoesNotNeed) {
   Plan p = makePlan(sc, m);
   EXPECT_TRUE(p.fluid);
   EXPECT_FALSE(p.coating);
-  for (const auto* list : {&p.fluid_send, &p.fluid_receive, &p.particles_send, &p.particles_receive}) {
+  for (const auto* list :
+       {&p.fluid_send, &p.fluid_receive, &p.particles_send, &p.particles_receive}) {
     for (const auto& f : *list) {
       EXPECT_EQ(f.find("precursor"), std::string::npos) << f;
       EXPECT_EQ(f.find("coating"), std::string::npos) << f;
@@ -96,7 +99,8 @@ TEST(Scenario, PlanLeavesOutWhatTheSceneDoesNotNeed) {
   EXPECT_NE(p2.notes.front().find("not started"), std::string::npos);
 }
 
-// ---- malformed scenarios: one specific message each ----------------------------------------------
+// ---- malformed scenarios: one specific message each
+// ----------------------------------------------
 
 TEST(ScenarioErrors, NotYaml) { expectError("name: [unclosed\n", {"not valid YAML"}); }
 
@@ -105,7 +109,8 @@ TEST(ScenarioErrors, UnknownTopLevelKeyIsATypo) {
 }
 
 TEST(ScenarioErrors, MissingCouplingSection) {
-  expectError(mutate("coupling: { dt: 1.0e-4, dem_steps: 10, end_time: 0.01 }", ""), {"coupling", "missing section"});
+  expectError(mutate("coupling: { dt: 1.0e-4, dem_steps: 10, end_time: 0.01 }", ""),
+              {"coupling", "missing section"});
 }
 
 TEST(ScenarioErrors, NegativeTimeStep) {
@@ -121,15 +126,18 @@ TEST(ScenarioErrors, FractionalDemSteps) {
 }
 
 TEST(ScenarioErrors, UnknownAdapter) {
-  expectError(mutate("adapter: analytic-fluid", "adapter: ansys"), {"participants.fluid.adapter", "unknown adapter 'ansys'", "openfoam"});
+  expectError(mutate("adapter: analytic-fluid", "adapter: ansys"),
+              {"participants.fluid.adapter", "unknown adapter 'ansys'", "openfoam"});
 }
 
 TEST(ScenarioErrors, AdapterInTheWrongRole) {
-  expectError(mutate("adapter: free-particles", "adapter: openfoam"), {"participants.particles.adapter", "cannot be the 'particles' participant"});
+  expectError(mutate("adapter: free-particles", "adapter: openfoam"),
+              {"participants.particles.adapter", "cannot be the 'particles' participant"});
 }
 
 TEST(ScenarioErrors, UnknownDragLaw) {
-  expectError(mutate("law: stokes", "law: stoke"), {"models.drag", "unknown drag law 'stoke'", "stokes"});
+  expectError(mutate("law: stokes", "law: stoke"),
+              {"models.drag", "unknown drag law 'stoke'", "stokes"});
 }
 
 TEST(ScenarioErrors, CoarseGrainingBelowOne) {
@@ -137,16 +145,19 @@ TEST(ScenarioErrors, CoarseGrainingBelowOne) {
 }
 
 TEST(ScenarioErrors, VoidageBoundOutsideUnitInterval) {
-  expectError(std::string(kGood) + "constants: { min_voidage: 1.5 }\n", {"constants.min_voidage", "(0, 1)"});
+  expectError(std::string(kGood) + "constants: { min_voidage: 1.5 }\n",
+              {"constants.min_voidage", "(0, 1)"});
 }
 
 TEST(ScenarioErrors, UnknownParameterInExpression) {
-  expectError(mutate("${flow_lpm / 60000 / 0.01}", "${flow / 60000}"), {"parameters.u", "unknown parameter 'flow'", "flow_lpm"});
+  expectError(mutate("${flow_lpm / 60000 / 0.01}", "${flow / 60000}"),
+              {"parameters.u", "unknown parameter 'flow'", "flow_lpm"});
 }
 
 TEST(ScenarioErrors, DragWithoutFluidParticipant) {
-  expectError(mutate("  fluid: { adapter: analytic-fluid, options: { velocity: [0, 0, \"${u}\"] } }\n", ""),
-              {"participants.fluid", "missing", "drag"});
+  expectError(
+      mutate("  fluid: { adapter: analytic-fluid, options: { velocity: [0, 0, \"${u}\"] } }\n", ""),
+      {"participants.fluid", "missing", "drag"});
 }
 
 TEST(ScenarioErrors, MissingFilesFolder) {
@@ -159,16 +170,19 @@ TEST(ScenarioErrors, SetOfUnknownParameter) {
 }
 
 TEST(ScenarioErrors, EndTimeBeforeStart) {
-  expectError(mutate("end_time: 0.01", "end_time: 0.01, start_time: 0.02"), {"coupling.end_time", "later than start_time"});
+  expectError(mutate("end_time: 0.01", "end_time: 0.01, start_time: 0.02"),
+              {"coupling.end_time", "later than start_time"});
 }
 
 TEST(ScenarioErrors, CoatingZoneWithoutMassTransfer) {
-  expectError(std::string(kGood) + "  coating_zone: { shape: sphere, centre: [0, 0, 0], radius: 0.01 }\n",
-              {"models.coating_zone", "mass_transfer"});
+  expectError(
+      std::string(kGood) + "  coating_zone: { shape: sphere, centre: [0, 0, 0], radius: 0.01 }\n",
+      {"models.coating_zone", "mass_transfer"});
 }
 
 TEST(ScenarioErrors, BadMpiRankCount) {
-  expectError(mutate("adapter: free-particles,", "adapter: free-particles, mpi: 0,"), {"participants.particles.mpi", ">= 1"});
+  expectError(mutate("adapter: free-particles,", "adapter: free-particles, mpi: 0,"),
+              {"participants.particles.mpi", ">= 1"});
 }
 
 TEST(ScenarioErrors, MissingFileIsNamed) {
@@ -180,7 +194,8 @@ TEST(ScenarioErrors, MissingFileIsNamed) {
   }
 }
 
-// ---- expressions ----------------------------------------------------------------------------------
+// ---- expressions
+// ----------------------------------------------------------------------------------
 
 TEST(Expression, ArithmeticAndFunctions) {
   Variables v{{"a", 2.0}, {"flow_lpm", 50.0}};
@@ -189,7 +204,8 @@ TEST(Expression, ArithmeticAndFunctions) {
   EXPECT_DOUBLE_EQ(evaluate("2 ^ 3 ^ 2", v), 512.0);
   EXPECT_DOUBLE_EQ(evaluate("-a^2", v), -4.0);
   EXPECT_DOUBLE_EQ(evaluate("sqrt(16) + max(a, 3)", v), 7.0);
-  EXPECT_NEAR(evaluate("flow_lpm / 60000 / (pi * 0.05^2)", v), 50.0 / 60000.0 / (M_PI * 0.0025), 1e-15);
+  EXPECT_NEAR(evaluate("flow_lpm / 60000 / (pi * 0.05^2)", v), 50.0 / 60000.0 / (M_PI * 0.0025),
+              1e-15);
   EXPECT_THROW(evaluate("1 / 0", v), ExpressionError);
   EXPECT_THROW(evaluate("2 +", v), ExpressionError);
 }

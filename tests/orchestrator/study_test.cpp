@@ -1,4 +1,6 @@
 // cosim study: Pareto front, --vary parsing, and a real study on the analytic scene.
+#include "study.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,7 +10,6 @@
 #include <sstream>
 
 #include "observables.h"
-#include "study.h"
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
@@ -41,13 +42,17 @@ TEST(Observables, QuantitiesAgainstHandValues) {
   EXPECT_DOUBLE_EQ(evaluateQuantity("particles.velocity.z.mean", s, t, series, totals, -1), 3.0);
   EXPECT_DOUBLE_EQ(evaluateQuantity("particles.velocity.z.max", s, t, series, totals, -1), 6.0);
   // population std of {1,2,3,6}: mean 3, variance (4+1+0+9)/4 = 3.5
-  EXPECT_DOUBLE_EQ(evaluateQuantity("particles.coating_mass.std", s, t, series, totals, -1), std::sqrt(3.5));
-  EXPECT_DOUBLE_EQ(evaluateQuantity("particles.coating_mass.cv", s, t, series, totals, -1), std::sqrt(3.5) / 3.0);
+  EXPECT_DOUBLE_EQ(evaluateQuantity("particles.coating_mass.std", s, t, series, totals, -1),
+                   std::sqrt(3.5));
+  EXPECT_DOUBLE_EQ(evaluateQuantity("particles.coating_mass.cv", s, t, series, totals, -1),
+                   std::sqrt(3.5) / 3.0);
   EXPECT_DOUBLE_EQ(evaluateQuantity("series.pressure_drop.mean", s, t, series, totals, 0.25), 40.0);
   EXPECT_DOUBLE_EQ(evaluateQuantity("series.pressure_drop.final", s, t, series, totals, -1), 50.0);
   EXPECT_DOUBLE_EQ(evaluateQuantity("totals.precursor_in_kg", s, t, series, totals, -1), 2.5);
-  EXPECT_THROW(evaluateQuantity("particles.velocity.mean", s, t, series, totals, -1), std::runtime_error);
-  EXPECT_THROW(evaluateQuantity("series.nothing.mean", s, t, series, totals, -1), std::runtime_error);
+  EXPECT_THROW(evaluateQuantity("particles.velocity.mean", s, t, series, totals, -1),
+               std::runtime_error);
+  EXPECT_THROW(evaluateQuantity("series.nothing.mean", s, t, series, totals, -1),
+               std::runtime_error);
   EXPECT_NEAR(*relativeError(1.01, 1.0), 0.01, 1e-15);
   EXPECT_DOUBLE_EQ(*relativeError(0.5, 0.0), 0.5);
 }
@@ -83,7 +88,8 @@ TEST(Study, RunsVariantsAndWritesTables) {
 }
 
 TEST(Study, CompletedVariantsAreReadBackNotRunAgain) {
-  const fs::path out = fs::temp_directory_path() / ("cosim-study-reuse-" + std::to_string(getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("cosim-study-reuse-" + std::to_string(getpid()));
   fs::remove_all(out);
   StudyOptions o;
   o.scenario = fs::path(COSIM_SOURCE_DIR) / "scenarios" / "settling-sphere";

@@ -24,8 +24,8 @@ TEST(ZeroPrecursor, PlasmaBedWithoutPrecursorCoatsNothingAndStaysFinite) {
     if (o.name == "coating_cv") cv_undefined = std::isnan(o.value) && !o.undefined.empty();
   }
   EXPECT_TRUE(cv_undefined) << "coating_cv should be reported without a value";
-  for (const char* t : {"precursor_in_kg", "precursor_out_kg", "precursor_held_kg", "precursor_removed_kg",
-                        "coating_credited_kg", "coating_on_particles_kg"}) {
+  for (const char* t : {"precursor_in_kg", "precursor_out_kg", "precursor_held_kg",
+                        "precursor_removed_kg", "coating_credited_kg", "coating_on_particles_kg"}) {
     ASSERT_TRUE(r.totals.count(t)) << t;
     EXPECT_EQ(r.totals.at(t), 0.0) << t;
   }
