@@ -29,4 +29,4 @@ for f in $flows; do
 done
 echo "== comparison report"
 "$cosim" report "${runs[@]}" -o "$out/report"
-echo "sweep-flows: open $out/report/report.html"
+echo "sweep-flows: open $out/report/comparison.html (each flow: $out/report/flow-N/report.html)"

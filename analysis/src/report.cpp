@@ -104,7 +104,9 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
     Json ps = Json::object();
     for (const auto& n : varied) {
       ps[n] = parameter(a, n);
-      legend += " " + n + "=" + formatShortest(parameter(a, n));
+      char buf[32];  // 4 significant digits: a legend, not a record (parameters keep full precision)
+      std::snprintf(buf, sizeof buf, "%.4g", parameter(a, n));
+      legend += " " + n + "=" + buf;
     }
     r["parameters"] = ps;
     r["legend"] = legend;
