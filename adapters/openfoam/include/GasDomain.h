@@ -21,6 +21,9 @@ struct GasSettings {
   double min_voidage = 0.35;      // [-] lower bound of the voidage
   int voidage_divisions = 3;      // satellite points per parcel = divisions^3
   bool species = false;           // solve the precursor equation (scene has mass transfer)
+  // Start from the isothermal hydrostatic pressure p_out exp(psi g.(x - x_out)) instead of the
+  // p field of the start time (a uniform p makes the gas column fall and ring acoustically).
+  bool hydrostatic_start = false;
   std::vector<std::string> inlet_patches{"inlet"};    // for pressure_drop
   std::vector<std::string> outlet_patches{"outlet"};  // for pressure_drop
 };

@@ -59,14 +59,14 @@ AdapterSettings parseAdapterSettings(const std::string& yaml, bool species) {
 
   static const std::set<std::string> known{
       "temperature", "molar_mass",     "viscosity",      "schmidt", "min_voidage",
-      "voidage_divisions", "inlet_patches", "outlet_patches", "mesh"};
+      "voidage_divisions", "inlet_patches", "outlet_patches", "mesh", "hydrostatic_start"};
   for (const auto& kv : root) {
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       throw std::runtime_error(
           std::string(kWhere) + ": unknown key '" + key +
           "' (cosimFoam knows temperature, molar_mass, viscosity, schmidt, min_voidage, "
-          "voidage_divisions, inlet_patches, outlet_patches, mesh; see docs/openfoam.md)");
+          "voidage_divisions, inlet_patches, outlet_patches, mesh, hydrostatic_start; see docs/openfoam.md)");
     }
   }
   if (root["temperature"]) s.gas.temperature = number(root["temperature"], "temperature", 1, 1e4);
@@ -82,6 +82,12 @@ AdapterSettings parseAdapterSettings(const std::string& yaml, bool species) {
   if (root["inlet_patches"]) s.gas.inlet_patches = names(root["inlet_patches"], "inlet_patches");
   if (root["outlet_patches"]) {
     s.gas.outlet_patches = names(root["outlet_patches"], "outlet_patches");
+  }
+  if (root["hydrostatic_start"]) {
+    const auto& n = root["hydrostatic_start"];
+    bool v = false;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) throw bad("hydrostatic_start", "true or false");
+    s.gas.hydrostatic_start = v;
   }
   if (root["mesh"]) {
     s.mesh = root["mesh"].as<std::string>();
