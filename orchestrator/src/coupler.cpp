@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -25,6 +27,19 @@
 namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+// Time at the end of step k: start + k dt, rounded to 12 significant digits so that 2453 steps
+// of 1e-4 s are recorded as 0.2453 s and not as 0.24530000000000002 (the product's round-off).
+double stepTime(double start, double dt, std::uint64_t k) {
+  const double t = start + static_cast<double>(k) * dt;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.12g", t);
+  return std::strtod(buf, nullptr);
+}
+
+}  // namespace
 using Clock = std::chrono::steady_clock;
 
 std::atomic<int> g_stop_signal{0};
@@ -600,7 +615,7 @@ RunResult Coupler::run() {
     std::vector<char> lost;
     for (std::uint64_t k = 0; k < nsteps; ++k) {
       step_ = k + 1;
-      time_ = sc_.start_time + static_cast<double>(k) * sc_.dt;
+      time_ = stepTime(sc_.start_time, sc_.dt, k);
       link::ParticleData samples;
       lost.assign(state_.size(), 0);
       auto tick = Clock::now();
@@ -670,7 +685,7 @@ RunResult Coupler::run() {
       }
       auto replies = await(wait, timeout);
       lap("advance");
-      time_ = sc_.start_time + static_cast<double>(k + 1) * sc_.dt;
+      time_ = stepTime(sc_.start_time, sc_.dt, k + 1);
       const auto& pa = replies.at("particles").advanced();
       peers_.at("particles")->wall += pa.wall_seconds();
       {
