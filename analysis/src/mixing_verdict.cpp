@@ -14,6 +14,11 @@ std::string num(const char* fmt, double v) {
 }  // namespace
 
 std::string MixingVerdict::summary() const {
+  if (well_mixed && !relaxed.empty()) {
+    std::string s = "well mixed under non-default criteria (";
+    for (std::size_t i = 0; i < relaxed.size(); ++i) s += (i ? ", " : "") + relaxed[i];
+    return s + "): extrapolation allowed at the user's risk";
+  }
   if (well_mixed) return "well mixed: extrapolation allowed";
   std::string s = "poorly mixed, extrapolation refused: ";
   for (std::size_t i = 0; i < reasons.size(); ++i) s += (i ? "; " : "") + reasons[i];
@@ -23,6 +28,17 @@ std::string MixingVerdict::summary() const {
 MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
                           const std::vector<double>& last_values, const MixingCriteria& c) {
   MixingVerdict v;
+  const MixingCriteria d;
+  auto note = [&](const char* name, double value, double def) {
+    if (value != def) v.relaxed.push_back(std::string(name) + " " + num("%g", value) + " (default " + num("%g", def) + ")");
+  };
+  note("max_uncoated_share", c.max_uncoated_share, d.max_uncoated_share);
+  note("max_mean_relative_rms", c.max_mean_relative_rms, d.max_mean_relative_rms);
+  note("max_variance_relative_rms", c.max_variance_relative_rms, d.max_variance_relative_rms);
+  note("normality_alpha", c.normality_alpha, d.normality_alpha);
+  note("max_abs_skewness", c.max_abs_skewness, d.max_abs_skewness);
+  note("max_abs_excess_kurtosis", c.max_abs_excess_kurtosis, d.max_abs_excess_kurtosis);
+  note("runs_alpha", c.runs_alpha, d.runs_alpha);
   v.last_time = last.time;
   v.uncoated_share = last.uncoated_share;
   if (last.count > 0 && last.uncoated_share > c.max_uncoated_share) {

@@ -81,6 +81,11 @@ void verdictBlock(std::ostringstream& h, const MixingVerdict& v) {
   h << "<p class=\"" << (v.well_mixed ? "ok" : "bad") << "\">" << htmlEscape(v.well_mixed ? "Well mixed: extrapolation allowed."
                                                                                       : "Poorly mixed: extrapolation refused.")
     << "</p>\n";
+  if (!v.relaxed.empty()) {
+    h << "<p class=bad>Judged with non-default mixing criteria (cosim report --mixing):</p><ul>";
+    for (const auto& r : v.relaxed) h << "<li>" << htmlEscape(r) << "</li>";
+    h << "</ul>\n";
+  }
   if (!v.reasons.empty()) {
     h << "<ul>";
     for (const auto& r : v.reasons) h << "<li>" << htmlEscape(r) << "</li>";

@@ -171,6 +171,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   vj["summary"] = v.summary();
   vj["reasons"] = strings(v.reasons);
   vj["warnings"] = strings(v.warnings);
+  vj["relaxed_criteria"] = strings(v.relaxed);
   vj["last_time"] = v.last_time;
   vj["uncoated_share"] = v.uncoated_share;
   Json& nj = vj["normality"] = Json::object();

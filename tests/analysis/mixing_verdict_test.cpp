@@ -96,3 +96,32 @@ TEST(MixingVerdict, NoFitIsRefused) {
   EXPECT_FALSE(v.well_mixed);
   EXPECT_TRUE(anyContains(v.reasons, "no fit"));
 }
+
+TEST(MixingVerdict, RelaxedCriteriaAllowAndAreNamed) {
+  // The skewed run above, judged with the skewness/kurtosis/normality checks opened up: allowed,
+  // and the verdict names every criterion that differs from its default.
+  std::mt19937_64 rng(9);
+  std::vector<CoatingStatistics> stats;
+  std::vector<double> last;
+  for (int i = 1; i <= 20; ++i) {
+    const double t = i;
+    std::gamma_distribution<double> g(1.0, kA2 * std::sqrt(t));
+    std::vector<double> m(3000);
+    for (auto& x : m) x = kA1 * t - kA2 * std::sqrt(t) + g(rng);
+    stats.push_back(coatingStatistics(t, m));
+    if (i == 20) last = m;
+  }
+  const auto fit = fitGrowth(stats, 0.0, 20.0);
+  ASSERT_TRUE(fit.ok);
+  MixingCriteria c;
+  c.max_abs_skewness = 3;
+  c.max_abs_excess_kurtosis = 10;
+  c.normality_alpha = 0;
+  const auto v = judgeMixing(fit, stats.back(), last, c);
+  EXPECT_TRUE(v.well_mixed) << v.summary();
+  ASSERT_EQ(v.relaxed.size(), 3u);
+  EXPECT_TRUE(anyContains(v.relaxed, "max_abs_skewness 3 (default 0.5)"));
+  EXPECT_NE(v.summary().find("non-default criteria"), std::string::npos) << v.summary();
+  // Defaults name nothing.
+  EXPECT_TRUE(judgeMixing(fit, stats.back(), last).relaxed.empty());
+}

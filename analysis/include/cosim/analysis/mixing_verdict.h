@@ -35,6 +35,7 @@ struct MixingVerdict {
   bool well_mixed = false;            // true: extrapolation allowed
   std::vector<std::string> reasons;   // why refused (empty when well mixed)
   std::vector<std::string> warnings;  // worth knowing, not refusing
+  std::vector<std::string> relaxed;   // criteria set away from their defaults ("name v (default d)")
   RunsTest mean_runs, variance_runs;
   NormalityTest normality;            // on the last snapshot
   double uncoated_share = 0;          // at the last snapshot
