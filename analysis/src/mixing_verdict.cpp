@@ -29,21 +29,18 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
                           const std::vector<double>& last_values, const MixingCriteria& c) {
   MixingVerdict v;
   const MixingCriteria d;
-  auto note = [&](const char* name, double value, double def) {
-    if (value != def) v.relaxed.push_back(std::string(name) + " " + num("%g", value) + " (default " + num("%g", def) + ")");
-  };
-  note("max_uncoated_share", c.max_uncoated_share, d.max_uncoated_share);
-  note("max_mean_relative_rms", c.max_mean_relative_rms, d.max_mean_relative_rms);
-  note("max_variance_relative_rms", c.max_variance_relative_rms, d.max_variance_relative_rms);
-  note("normality_alpha", c.normality_alpha, d.normality_alpha);
-  note("max_abs_skewness", c.max_abs_skewness, d.max_abs_skewness);
-  note("max_abs_excess_kurtosis", c.max_abs_excess_kurtosis, d.max_abs_excess_kurtosis);
-  note("runs_alpha", c.runs_alpha, d.runs_alpha);
+  for (const auto& k : kMixingCriteria) {
+    if (c.*k.value != d.*k.value) {
+      v.relaxed.push_back(std::string(k.name) + " " + num("%g", c.*k.value) + " (default " +
+                          num("%g", d.*k.value) + ")");
+    }
+  }
   v.last_time = last.time;
   v.uncoated_share = last.uncoated_share;
   if (last.count > 0 && last.uncoated_share > c.max_uncoated_share) {
-    v.reasons.push_back(num("%.1f %%", 100 * last.uncoated_share) + " of the parcels were never coated by t = " +
-                        num("%g", last.time) + " s (limit " + num("%.1f %%", 100 * c.max_uncoated_share) +
+    v.reasons.push_back(num("%.1f %%", 100 * last.uncoated_share) +
+                        " of the parcels were never coated by t = " + num("%g", last.time) +
+                        " s (limit " + num("%.1f %%", 100 * c.max_uncoated_share) +
                         "): some particles do not reach the coating zone");
   }
   if (!fit.ok) {
@@ -56,21 +53,23 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
     }
     if (fit.variance_relative_rms > c.max_variance_relative_rms) {
       v.reasons.push_back("the variance of the coating mass is not linear in time: RMS residual " +
-                          num("%.1f %%", 100 * fit.variance_relative_rms) + " of the mean variance (limit " +
+                          num("%.1f %%", 100 * fit.variance_relative_rms) +
+                          " of the mean variance (limit " +
                           num("%.0f %%", 100 * c.max_variance_relative_rms) + ")");
     }
     v.mean_runs = runsTest(fit.mean_fit.residuals);
     v.variance_runs = runsTest(fit.variance_fit.residuals);
     if (v.mean_runs.valid && v.mean_runs.p_too_few < c.runs_alpha) {
-      v.warnings.push_back("residuals of the mean fit are structured (" + std::to_string(v.mean_runs.runs) +
-                           " sign runs, " + num("%.1f", v.mean_runs.expected_runs) + " expected, p = " +
-                           num("%.2g", v.mean_runs.p_too_few) + ")");
+      v.warnings.push_back("residuals of the mean fit are structured (" +
+                           std::to_string(v.mean_runs.runs) + " sign runs, " +
+                           num("%.1f", v.mean_runs.expected_runs) +
+                           " expected, p = " + num("%.2g", v.mean_runs.p_too_few) + ")");
     }
     if (v.variance_runs.valid && v.variance_runs.p_too_few < c.runs_alpha) {
       v.warnings.push_back("residuals of the variance fit are structured (" +
                            std::to_string(v.variance_runs.runs) + " sign runs, " +
-                           num("%.1f", v.variance_runs.expected_runs) + " expected, p = " +
-                           num("%.2g", v.variance_runs.p_too_few) + ")");
+                           num("%.1f", v.variance_runs.expected_runs) +
+                           " expected, p = " + num("%.2g", v.variance_runs.p_too_few) + ")");
     }
   }
   v.normality = dagostinoPearson(last_values);
@@ -78,15 +77,17 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
     v.warnings.push_back(v.normality.problem);
   } else if (v.normality.p_value < c.normality_alpha) {
     const double excess = v.normality.kurtosis - 3.0;
-    if (std::abs(v.normality.skewness) > c.max_abs_skewness || std::abs(excess) > c.max_abs_excess_kurtosis) {
+    if (std::abs(v.normality.skewness) > c.max_abs_skewness ||
+        std::abs(excess) > c.max_abs_excess_kurtosis) {
       v.reasons.push_back("the coating distribution at t = " + num("%g", last.time) +
                           " s is far from normal (skewness " + num("%.2f", v.normality.skewness) +
-                          ", excess kurtosis " + num("%.2f", excess) + ", D'Agostino-Pearson p = " +
-                          num("%.2g", v.normality.p_value) + ")");
+                          ", excess kurtosis " + num("%.2f", excess) +
+                          ", D'Agostino-Pearson p = " + num("%.2g", v.normality.p_value) + ")");
     } else {
       v.warnings.push_back("the normality test rejects at p = " + num("%.2g", v.normality.p_value) +
-                           " but the departure is small (skewness " + num("%.2f", v.normality.skewness) +
-                           ", excess kurtosis " + num("%.2f", excess) + ")");
+                           " but the departure is small (skewness " +
+                           num("%.2f", v.normality.skewness) + ", excess kurtosis " +
+                           num("%.2f", excess) + ")");
     }
   }
   v.well_mixed = v.reasons.empty();

@@ -74,9 +74,7 @@ class Csv {
     f_ << '\n';
     first_ = true;
   }
-  ~Csv() {
-    f_.flush();
-  }
+  ~Csv() { f_.flush(); }
 
  private:
   std::filesystem::path path_;
@@ -101,13 +99,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   opt["band"] = o.band;
   opt["uncoated_relative"] = o.uncoated_relative;
   Json& cr = opt["criteria"] = Json::object();
-  cr["max_uncoated_share"] = o.criteria.max_uncoated_share;
-  cr["max_mean_relative_rms"] = o.criteria.max_mean_relative_rms;
-  cr["max_variance_relative_rms"] = o.criteria.max_variance_relative_rms;
-  cr["normality_alpha"] = o.criteria.normality_alpha;
-  cr["max_abs_skewness"] = o.criteria.max_abs_skewness;
-  cr["max_abs_excess_kurtosis"] = o.criteria.max_abs_excess_kurtosis;
-  cr["runs_alpha"] = o.criteria.runs_alpha;
+  for (const auto& k : kMixingCriteria) cr[k.name] = o.criteria.*k.value;
 
   Json& s = j["snapshots"] = Json::object();
   s["time"] = series(a.snapshots, &CoatingStatistics::time);
@@ -278,7 +270,8 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
 void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
   {
     Csv c(dir / "statistics.csv",
-          "time_s,count,mean_kg,std_kg,variance_kg2,cv,uncoated_share,min_kg,max_kg,total_kg,skewness,excess_kurtosis");
+          "time_s,count,mean_kg,std_kg,variance_kg2,cv,uncoated_share,min_kg,max_kg,total_kg,"
+          "skewness,excess_kurtosis");
     for (const auto& s : a.snapshots) {
       c << s.time << static_cast<double>(s.count) << s.mean << s.std_dev << s.variance << s.cv
         << s.uncoated_share << s.min << s.max << s.total << s.skewness << s.excess_kurtosis;
@@ -297,8 +290,9 @@ void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
   }
   {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    Csv c(dir / "fit.csv",
-          "parameter,value,standard_error_bootstrap,standard_error_hc3,standard_error_classic,unit");
+    Csv c(
+        dir / "fit.csv",
+        "parameter,value,standard_error_bootstrap,standard_error_hc3,standard_error_classic,unit");
     c << std::string("a1") << a.fit.a1 << (a.bootstrap.ok ? a.bootstrap.a1_se : nan) << a.fit.a1_se
       << a.fit.a1_se_classic << std::string("kg/s");
     c.end();
@@ -308,7 +302,8 @@ void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
   }
   {
     Csv c(dir / "fit_residuals.csv",
-          "time_s,tau_s,mean_kg,mean_fit_kg,mean_residual_kg,variance_kg2,variance_fit_kg2,variance_residual_kg2");
+          "time_s,tau_s,mean_kg,mean_fit_kg,mean_residual_kg,variance_kg2,variance_fit_kg2,"
+          "variance_residual_kg2");
     for (std::size_t i = 0; i < a.fit.tau.size() && a.fit.ok; ++i) {
       const double tau = a.fit.tau[i];
       c << a.fit.time[i] << tau << a.fit.mean[i] << a.fit.a1 * tau << a.fit.mean_fit.residuals[i]
@@ -333,21 +328,23 @@ void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
   }
   {
     Csv c(dir / "prediction_check.csv",
-          "time_s,simulated_mean_kg,predicted_mean_kg,mean_error,simulated_std_kg,predicted_std_kg,std_error,"
+          "time_s,simulated_mean_kg,predicted_mean_kg,mean_error,simulated_std_kg,predicted_std_kg,"
+          "std_error,"
           "simulated_cv,predicted_cv,cv_error");
     for (const auto& p : a.prediction_check.points) {
-      c << p.time << p.simulated_mean << p.predicted_mean << p.mean_error << p.simulated_std << p.predicted_std
-        << p.std_error << p.simulated_cv << p.predicted_cv << p.cv_error;
+      c << p.time << p.simulated_mean << p.predicted_mean << p.mean_error << p.simulated_std
+        << p.predicted_std << p.std_error << p.simulated_cv << p.predicted_cv << p.cv_error;
       c.end();
     }
   }
   {
     Csv c(dir / "window_study.csv",
-          "fit_end_s,wall_seconds,a1_kg_per_s,a1_se,a2_kg_per_sqrt_s,a2_se,cv_at_horizon,cv_at_run_end,"
+          "fit_end_s,wall_seconds,a1_kg_per_s,a1_se,a2_kg_per_sqrt_s,a2_se,cv_at_horizon,cv_at_run_"
+          "end,"
           "cv_error_at_run_end");
     for (const auto& p : a.window_study.points) {
-      c << p.t_end << p.wall_seconds << p.a1 << p.a1_se << p.a2 << p.a2_se << p.cv_horizon << p.cv_run_end
-        << p.cv_run_end_error;
+      c << p.t_end << p.wall_seconds << p.a1 << p.a1_se << p.a2 << p.a2_se << p.cv_horizon
+        << p.cv_run_end << p.cv_run_end_error;
       c.end();
     }
   }

@@ -433,6 +433,12 @@ void Coupler::checkState(const link::ParticleData& s, const std::string& where) 
   }
 }
 
+void Coupler::appendRow(double time, const std::vector<double>& row) {
+  rec_->series->write(time, row);
+  series_time_.push_back(time);
+  for (std::size_t c = 0; c < row.size(); ++c) series_[rec_->columns[c]].push_back(row[c]);
+}
+
 void Coupler::record(double time, bool force) {
   if (!force && time + 1e-12 * std::max(1.0, std::fabs(time)) < next_output_) return;
   rec_->particles->write(time, state_);
@@ -774,9 +780,7 @@ RunResult Coupler::run() {
           else
             row0.push_back(0.0);
         }
-        rec_->series->write(sc_.start_time, row0);
-        series_time_.push_back(sc_.start_time);
-        for (std::size_t c = 0; c < row0.size(); ++c) series_[rec_->columns[c]].push_back(row0[c]);
+        appendRow(sc_.start_time, row0);
         initial_row_written = true;
       }
       std::vector<double> row;
@@ -802,9 +806,7 @@ RunResult Coupler::run() {
         } else
           row.push_back(0.0);
       }
-      rec_->series->write(time_, row);
-      series_time_.push_back(time_);
-      for (std::size_t c = 0; c < row.size(); ++c) series_[rec_->columns[c]].push_back(row[c]);
+      appendRow(time_, row);
       record(time_, k + 1 == nsteps);
       if (on_step) on_step(time_, state_);
       lap("bookkeeping");

@@ -32,9 +32,9 @@ class RunFailure : public std::runtime_error {
 };
 
 struct RunOptions {
-  bool quiet = false;             // no progress line
-  std::filesystem::path output;   // overrides scenario output.folder
-  bool overwrite = false;         // reuse an existing run folder
+  bool quiet = false;            // no progress line
+  std::filesystem::path output;  // overrides scenario output.folder
+  bool overwrite = false;        // reuse an existing run folder
 };
 
 struct RunResult {
@@ -70,6 +70,8 @@ class Coupler {
   void send(const std::string& peer, wire::Envelope& env);
   void checkState(const link::ParticleData& state, const std::string& where);
   void shutdown(bool clean);
+  // One time-series row: to timeseries.csv and to the in-memory series the observables read.
+  void appendRow(double time, const std::vector<double>& row);
   void record(double time, bool force);
   void writeSummary(const RunResult& r, const std::string& status);
 
@@ -90,7 +92,8 @@ class Coupler {
   std::map<std::string, double> phase_;  // wall seconds per phase of the coupling step
   std::vector<ObservableValue> observables_;
   std::vector<double> series_time_;
-  std::map<std::string, std::vector<double>> series_;  // compute seconds per participant (kept after shutdown)
+  std::map<std::string, std::vector<double>>
+      series_;  // compute seconds per participant (kept after shutdown)
   double next_output_ = 0.0;
   struct Recorders;
   std::unique_ptr<Recorders> rec_;

@@ -2,8 +2,9 @@
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdlib>
-#include <map>
+#include <cstring>
 #include <iostream>
+#include <map>
 
 #include "cosim/models/registry.h"
 #include "coupler.h"
@@ -148,10 +149,10 @@ int main(int argc, char** argv) {
   rep->add_option("--check-mass-balance", rep_opt.mass_balance_limit_percent,
                   "exit 3 if a run's mass-balance error exceeds this many percent (e.g. 0.01)");
   std::vector<std::string> mixing;
-  rep->add_option("--mixing", mixing,
-                  "override a mixing criterion, NAME=VALUE (max_uncoated_share, max_mean_relative_rms, "
-                  "max_variance_relative_rms, normality_alpha, max_abs_skewness, max_abs_excess_kurtosis, "
-                  "runs_alpha; docs/analysis.md); the report then says it was judged with non-default criteria");
+  rep->add_option(
+      "--mixing", mixing,
+      "override a mixing criterion, NAME=VALUE (names in docs/analysis.md, e.g. "
+      "max_uncoated_share=0.3); the report then says it was judged with non-default criteria");
   bool no_plots = false;
   rep->add_flag("--no-plots", no_plots, "numbers and HTML only, no matplotlib");
 #endif
@@ -175,27 +176,23 @@ int main(int argc, char** argv) {
 #ifdef COSIM_HAVE_REPORT
     if (no_plots) rep_opt.plots = false;
     for (const auto& m : mixing) {
-      auto& c = rep_opt.criteria;
-      const std::map<std::string, double*> known = {
-          {"max_uncoated_share", &c.max_uncoated_share},
-          {"max_mean_relative_rms", &c.max_mean_relative_rms},
-          {"max_variance_relative_rms", &c.max_variance_relative_rms},
-          {"normality_alpha", &c.normality_alpha},
-          {"max_abs_skewness", &c.max_abs_skewness},
-          {"max_abs_excess_kurtosis", &c.max_abs_excess_kurtosis},
-          {"runs_alpha", &c.runs_alpha}};
+      std::string names;
+      for (const auto& k : cosim::analysis::kMixingCriteria)
+        names += (names.empty() ? "" : ", ") + std::string(k.name);
       const auto eq = m.find('=');
-      const auto it = eq == std::string::npos ? known.end() : known.find(m.substr(0, eq));
+      const cosim::analysis::MixingCriterion* criterion = nullptr;
+      for (const auto& k : cosim::analysis::kMixingCriteria) {
+        if (eq != std::string::npos && m.compare(0, eq, k.name) == 0 && eq == std::strlen(k.name))
+          criterion = &k;
+      }
       char* end = nullptr;
-      const double value = it == known.end() ? 0.0 : std::strtod(m.c_str() + eq + 1, &end);
-      if (it == known.end() || end == m.c_str() + eq + 1 || *end != '\0' || !(value >= 0)) {
+      const double value = criterion ? std::strtod(m.c_str() + eq + 1, &end) : 0.0;
+      if (!criterion || end == m.c_str() + eq + 1 || *end != '\0' || !(value >= 0)) {
         std::cerr << "cosim report: --mixing " << m
-                  << ": expected NAME=VALUE with VALUE >= 0 and NAME one of max_uncoated_share, max_mean_relative_rms, "
-                     "max_variance_relative_rms, normality_alpha, max_abs_skewness, max_abs_excess_kurtosis, "
-                     "runs_alpha\n";
+                  << ": expected NAME=VALUE with VALUE >= 0 and NAME one of " << names << "\n";
         return 2;
       }
-      *it->second = value;
+      rep_opt.criteria.*criterion->value = value;
     }
     if (*rep) return cosim::analysis::runReport(rep_opt);
 #endif

@@ -28,6 +28,23 @@ SyntheticRun trackedRun(std::uint64_t seed, double uncoated_share) {
   return r;
 }
 
+// Every parcel coated, mean and variance linear in t, but coating masses exponential-like:
+// a1 t - theta + Exponential(theta), theta = a2 sqrt(t): mean a1 t, variance a2^2 t, skewness 2,
+// excess kurtosis 6.
+SyntheticRun skewedRun() {
+  std::mt19937_64 rng(9);
+  SyntheticRun r;
+  for (int i = 1; i <= 20; ++i) {
+    const double t = i;
+    std::gamma_distribution<double> g(1.0, kA2 * std::sqrt(t));
+    std::vector<double> m(3000);
+    for (auto& x : m) x = kA1 * t - kA2 * std::sqrt(t) + g(rng);
+    r.stats.push_back(coatingStatistics(t, m));
+    r.last = m;
+  }
+  return r;
+}
+
 bool anyContains(const std::vector<std::string>& v, const std::string& what) {
   for (const auto& s : v) {
     if (s.find(what) != std::string::npos) return true;
@@ -63,24 +80,11 @@ TEST(MixingVerdict, TwentyPercentNeverCoatedIsRefusedWithReasons) {
 }
 
 TEST(MixingVerdict, SkewedDistributionAloneIsRefused) {
-  // Every parcel coated, mean and variance linear in t, but coating masses exponential-like
-  // (skewness 2): the normal reconstruction of Fig. 12 would be wrong.
-  std::mt19937_64 rng(9);
-  std::vector<CoatingStatistics> stats;
-  std::vector<double> last;
-  for (int i = 1; i <= 20; ++i) {
-    const double t = i;
-    // a1 t - theta + Exponential(theta), theta = a2 sqrt(t): mean a1 t, variance a2^2 t,
-    // skewness 2, excess kurtosis 6.
-    std::gamma_distribution<double> g(1.0, kA2 * std::sqrt(t));
-    std::vector<double> m(3000);
-    for (auto& x : m) x = kA1 * t - kA2 * std::sqrt(t) + g(rng);
-    stats.push_back(coatingStatistics(t, m));
-    if (i == 20) last = m;
-  }
-  const auto fit = fitGrowth(stats, 0.0, 20.0);
+  // skewness 2: the normal reconstruction of Fig. 12 would be wrong.
+  const SyntheticRun r = skewedRun();
+  const auto fit = fitGrowth(r.stats, 0.0, 20.0);
   ASSERT_TRUE(fit.ok);
-  const auto v = judgeMixing(fit, stats.back(), last);
+  const auto v = judgeMixing(fit, r.stats.back(), r.last);
   EXPECT_FALSE(v.well_mixed);
   ASSERT_EQ(v.reasons.size(), 1u) << v.summary();
   EXPECT_TRUE(anyContains(v.reasons, "far from normal"));
@@ -100,28 +104,18 @@ TEST(MixingVerdict, NoFitIsRefused) {
 TEST(MixingVerdict, RelaxedCriteriaAllowAndAreNamed) {
   // The skewed run above, judged with the skewness/kurtosis/normality checks opened up: allowed,
   // and the verdict names every criterion that differs from its default.
-  std::mt19937_64 rng(9);
-  std::vector<CoatingStatistics> stats;
-  std::vector<double> last;
-  for (int i = 1; i <= 20; ++i) {
-    const double t = i;
-    std::gamma_distribution<double> g(1.0, kA2 * std::sqrt(t));
-    std::vector<double> m(3000);
-    for (auto& x : m) x = kA1 * t - kA2 * std::sqrt(t) + g(rng);
-    stats.push_back(coatingStatistics(t, m));
-    if (i == 20) last = m;
-  }
-  const auto fit = fitGrowth(stats, 0.0, 20.0);
+  const SyntheticRun r = skewedRun();
+  const auto fit = fitGrowth(r.stats, 0.0, 20.0);
   ASSERT_TRUE(fit.ok);
   MixingCriteria c;
   c.max_abs_skewness = 3;
   c.max_abs_excess_kurtosis = 10;
   c.normality_alpha = 0;
-  const auto v = judgeMixing(fit, stats.back(), last, c);
+  const auto v = judgeMixing(fit, r.stats.back(), r.last, c);
   EXPECT_TRUE(v.well_mixed) << v.summary();
   ASSERT_EQ(v.relaxed.size(), 3u);
   EXPECT_TRUE(anyContains(v.relaxed, "max_abs_skewness 3 (default 0.5)"));
   EXPECT_NE(v.summary().find("non-default criteria"), std::string::npos) << v.summary();
   // Defaults name nothing.
-  EXPECT_TRUE(judgeMixing(fit, stats.back(), last).relaxed.empty());
+  EXPECT_TRUE(judgeMixing(fit, r.stats.back(), r.last).relaxed.empty());
 }

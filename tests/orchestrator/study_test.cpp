@@ -57,15 +57,21 @@ TEST(Observables, QuantitiesAgainstHandValues) {
   EXPECT_DOUBLE_EQ(*relativeError(0.5, 0.0), 0.5);
 }
 
-TEST(Study, RunsVariantsAndWritesTables) {
-  const fs::path out = fs::temp_directory_path() / ("cosim-study-" + std::to_string(getpid()));
-  fs::remove_all(out);
+// Two coupling intervals of the analytic settling sphere, into a fresh folder, quiet, no plots.
+StudyOptions settlingSphereStudy(const std::string& tag) {
   StudyOptions o;
+  o.output = fs::temp_directory_path() / (tag + std::to_string(getpid()));
+  fs::remove_all(o.output);
   o.scenario = fs::path(COSIM_SOURCE_DIR) / "scenarios" / "settling-sphere";
   o.vary = {parseVary("coupling.dt=1e-4,2e-4")};
-  o.output = out;
   o.quiet = true;
   o.plots = false;
+  return o;
+}
+
+TEST(Study, RunsVariantsAndWritesTables) {
+  StudyOptions o = settlingSphereStudy("cosim-study-");
+  const fs::path out = o.output;
   ASSERT_EQ(runStudy(o), 0);
   ASSERT_TRUE(fs::exists(out / "study.csv"));
   ASSERT_TRUE(fs::exists(out / "study.md"));
@@ -88,15 +94,8 @@ TEST(Study, RunsVariantsAndWritesTables) {
 }
 
 TEST(Study, CompletedVariantsAreReadBackNotRunAgain) {
-  const fs::path out =
-      fs::temp_directory_path() / ("cosim-study-reuse-" + std::to_string(getpid()));
-  fs::remove_all(out);
-  StudyOptions o;
-  o.scenario = fs::path(COSIM_SOURCE_DIR) / "scenarios" / "settling-sphere";
-  o.vary = {parseVary("coupling.dt=1e-4,2e-4")};
-  o.output = out;
-  o.quiet = true;
-  o.plots = false;
+  StudyOptions o = settlingSphereStudy("cosim-study-reuse-");
+  const fs::path out = o.output;
   ASSERT_EQ(runStudy(o), 0);
   auto read = [&](const fs::path& f) {
     std::ifstream is(f);

@@ -31,20 +31,35 @@ struct MixingCriteria {
   double runs_alpha = 1e-3;
 };
 
+// Every criterion by its name (the names of `cosim report --mixing NAME=VALUE` and report.json).
+struct MixingCriterion {
+  const char* name;
+  double MixingCriteria::*value;
+};
+inline constexpr MixingCriterion kMixingCriteria[] = {
+    {"max_uncoated_share", &MixingCriteria::max_uncoated_share},
+    {"max_mean_relative_rms", &MixingCriteria::max_mean_relative_rms},
+    {"max_variance_relative_rms", &MixingCriteria::max_variance_relative_rms},
+    {"normality_alpha", &MixingCriteria::normality_alpha},
+    {"max_abs_skewness", &MixingCriteria::max_abs_skewness},
+    {"max_abs_excess_kurtosis", &MixingCriteria::max_abs_excess_kurtosis},
+    {"runs_alpha", &MixingCriteria::runs_alpha}};
+
 struct MixingVerdict {
   bool well_mixed = false;            // true: extrapolation allowed
   std::vector<std::string> reasons;   // why refused (empty when well mixed)
   std::vector<std::string> warnings;  // worth knowing, not refusing
-  std::vector<std::string> relaxed;   // criteria set away from their defaults ("name v (default d)")
+  std::vector<std::string> relaxed;  // criteria set away from their defaults ("name v (default d)")
   RunsTest mean_runs, variance_runs;
-  NormalityTest normality;            // on the last snapshot
-  double uncoated_share = 0;          // at the last snapshot
+  NormalityTest normality;    // on the last snapshot
+  double uncoated_share = 0;  // at the last snapshot
   double last_time = 0;
-  std::string summary() const;        // one line: "well mixed" or "poorly mixed: ..."
+  std::string summary() const;  // one line: "well mixed" or "poorly mixed: ..."
 };
 
 // last: statistics of the last snapshot; last_values: its coating masses (for the normality test).
 MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
-                          const std::vector<double>& last_values, const MixingCriteria& criteria = {});
+                          const std::vector<double>& last_values,
+                          const MixingCriteria& criteria = {});
 
 }  // namespace cosim::analysis
