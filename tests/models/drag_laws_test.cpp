@@ -218,5 +218,31 @@ TEST(DragLaws, GidaspowSwitchVoidageIsAParameter) {
   EXPECT_TRUE(close(K[0], 125.0 * std::numbers::pi * kD * kD * kD / 6.0 * bphi, 1e-12));
 }
 
+
+// The parcel-size factor exp(k (1 - cg)) is its own opt-in (parcel_size_factor: true, or k
+// given), not part of filtered: true. Hand value at cg = 5, k = 0.05: exp(-0.2) = 0.8187307531.
+TEST(DragLaws, ParcelSizeFactorIsItsOwnOptIn) {
+  auto make = [](bool filtered, const char* factor, double k) {
+    Parameters p("beetstra");
+    if (filtered) {
+      p.setText("filtered", "true");
+      p.set("particle_density", kRhoP);
+    }
+    if (factor) p.setText("parcel_size_factor", factor);
+    if (k >= 0) p.set("k", k);
+    return Registry::instance().makeDrag("beetstra", p);
+  };
+  const auto batch = pointsBatch(5.0);
+  for (bool filtered : {false, true}) {
+    const auto plain = evaluate(*make(filtered, nullptr, -1), batch, constants(5.0));
+    const auto with = evaluate(*make(filtered, "true", -1), batch, constants(5.0));
+    const auto withK = evaluate(*make(filtered, nullptr, 0.1), batch, constants(5.0));
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      EXPECT_TRUE(close(with[i] / plain[i], 0.8187307531, 1e-9)) << "filtered " << filtered << " point " << i;
+      EXPECT_TRUE(close(withK[i] / plain[i], std::exp(0.1 * (1.0 - 5.0)), 1e-12)) << "point " << i;
+    }
+  }
+  EXPECT_THROW(make(true, "false", 0.05), ModelError);
+}
 }  // namespace
 }  // namespace cosim::models::test

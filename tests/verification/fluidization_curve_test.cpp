@@ -10,16 +10,24 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
+#include "bed_resistance.h"
 #include "run_scene.h"
 
 using cosim::verification::runScene;
 
 namespace {
+std::vector<double> g_fixed_bed_voidage;  // cell voidages of the slowest run (the fixed bed)
+
 double pressureDrop(double u0) {
   const std::string u = std::to_string(u0);
   auto r = runScene("fluidized-bed", {"u0=" + u, "end_time=0.2", "average_after=0.1"}, "fluidization-" + u);
   EXPECT_EQ(r.exit_code, 0) << r.message;
+  if (g_fixed_bed_voidage.empty() && r.exit_code == 0) {
+    g_fixed_bed_voidage = cosim::verification::readFoamScalarField(
+        cosim::verification::latestTime(r.folder / "fluid") / "voidage", 4 * 4 * 16);
+  }
   for (const auto& o : r.observables) {
     if (o.name == "bed_pressure_drop") return o.value;
   }
@@ -45,4 +53,21 @@ TEST(FluidizationCurve, RisesLinearlyThenFlatAtBedWeight) {
   std::printf("u_mf from the curve %.4g m/s, Wen-Yu %.4g m/s (ratio %.3g)\n", u_mf, kWenYu, u_mf / kWenYu);
   EXPECT_GT(u_mf, 0.04);  // above the fixed-bed points
   EXPECT_LT(u_mf, 0.15);  // below the fluidized point
+  // Independent: the superficial velocity at which Beetstra's law on the fixed bed's own cell
+  // voidages (bed_resistance.h) carries the bed weight less buoyancy.
+  ASSERT_EQ(g_fixed_bed_voidage.size(), 256u);
+  const cosim::verification::Gas gas{1.123079, 1.8e-5};
+  auto bedDrop = [&](double u) {
+    return cosim::verification::bedPressureDrop(g_fixed_bed_voidage, 16, 0.004, u, 300e-6, gas,
+                                                cosim::verification::beetstraDimensionless);
+  };
+  double lo = 0.001, hi = 1.0;
+  for (int it = 0; it < 100; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (bedDrop(mid) < 118.43 ? lo : hi) = mid;
+  }
+  const double u_mf_law = 0.5 * (lo + hi);
+  std::printf("u_mf from Beetstra on the fixed bed's cell voidages %.4g m/s; curve/law %.4f\n", u_mf_law,
+              u_mf / u_mf_law);
+  EXPECT_NEAR(u_mf / u_mf_law, 1.0, 0.03);
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "cosim/link/fields.h"
+#include "bed_resistance.h"
 #include "run_scene.h"
 
 using cosim::verification::runScene;
@@ -38,4 +39,43 @@ TEST(PackedBed, BedAtTheVoidageBoundStaysStableAndBounded) {
   ASSERT_TRUE(std::isfinite(dp));
   EXPECT_GT(dp, 0.705);
   EXPECT_LT(dp, 118.43 + 0.705);
+}
+
+// Verification 1 of the physics review (the cell at the distributor): a resting bed's pressure
+// drop must be the drag law integrated over the bed, including the half cell between the plate
+// and the first cell centre. Reference: bed_resistance.h evaluates the scene's drag law on the
+// voidage cosimFoam wrote for each cell at the end (the profile the gas saw; the bed is at rest,
+// so it is the same over the averaging window), layer by layer with the layer's cells in
+// parallel, plus the gas column rho g H = 1.1231 * 9.81 * 0.064 = 0.705 Pa.
+namespace {
+void expectBedDropMatchesLaw(const char* law, const std::function<double(double, double)>& f,
+                             double tolerance) {
+  namespace fs = std::filesystem;
+  using namespace cosim::verification;
+  constexpr double u0 = 0.02, d = 300e-6, cell = 0.004;
+  constexpr Gas gas{1.123079, 1.8e-5};
+  auto r = runScene("fluidized-bed",
+                    {"u0=0.02", "end_time=0.05", "average_after=0.02",
+                     std::string("models.drag.law=") + law},
+                    std::string("packed-") + law);
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  double dp = NAN;
+  for (const auto& o : r.observables) {
+    if (o.name == "bed_pressure_drop") dp = o.value;
+  }
+  const fs::path last = latestTime(r.folder / "fluid");
+  const auto eps = readFoamScalarField(last / "voidage", 4 * 4 * 16);
+  const double ref = bedPressureDrop(eps, 16, cell, u0, d, gas, f) + gas.rho * 9.81 * 0.064;
+  std::printf("packed bed (%s): pressure drop %.5g Pa, drag law over the cell voidages (%s) %.5g Pa: %+.3f %%\n",
+              law, dp, last.filename().c_str(), ref, 100 * (dp / ref - 1));
+  EXPECT_NEAR(dp / ref, 1.0, tolerance);
+}
+}  // namespace
+
+TEST(PackedBed, PressureDropIsBeetstraOverTheCellVoidages) {
+  expectBedDropMatchesLaw("beetstra", cosim::verification::beetstraDimensionless, 0.02);
+}
+
+TEST(PackedBed, PressureDropIsErgunOverTheCellVoidages) {
+  expectBedDropMatchesLaw("gidaspow", cosim::verification::ergunWenYuDimensionless, 0.02);
 }

@@ -18,6 +18,8 @@
 #include "wallPolyPatch.H"
 #include "physicoChemicalConstants.H"
 #include "ParcelDeposition.H"
+#include "cellValuesOnBoundary.H"
+#include "bedConsistentGradient.H"
 
 #include <chrono>
 #include <stdexcept>
@@ -95,6 +97,7 @@ class FoamGasDomain : public GasDomain
     autoPtr<surfaceScalarField> phi_;
     autoPtr<volScalarField> Kexchange_;
     autoPtr<volVectorField> KUp_;
+    autoPtr<volScalarField> resistance_;  // A/eps^2 of the last pressure solve (pEqn.H)
     autoPtr<volScalarField> Y_;
     autoPtr<volScalarField> epsRhoY_;
     autoPtr<volScalarField> sinkCoeff_;
@@ -277,7 +280,10 @@ public:
                     }
                     else
                     {
-                        const volVectorField gradp(fvc::grad(p_()));
+                        const volVectorField gradp
+                        (
+                            Foam::cosim::bedConsistentGradient(p_(), resistance_())
+                        );
                         parcels.gatherAverage(gradp.primitiveField(), perParticle);
                     }
                     values.setSize(3*n, 0.0);
@@ -397,6 +403,7 @@ public:
         surfaceScalarField& phi = phi_();
         volScalarField& Kexchange = Kexchange_();
         volVectorField& KUp = KUp_();
+        volScalarField& resistance = resistance_();
         const dimensionedScalar& psi = psi_();
         const dimensionedScalar& mu = mu_();
         const meshObjects::gravity& g = meshObjects::gravity::New(runTime);

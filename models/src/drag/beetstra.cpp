@@ -22,11 +22,17 @@ double beetstraF(double eps, double Re) {
 }
 
 BeetstraDrag::BeetstraDrag(const Parameters& p) {
-  p.rejectUnknown({"filtered", "k", "particle_density", "reference_fluid_density",
-                   "reference_fluid_viscosity"});
+  p.rejectUnknown({"filtered", "parcel_size_factor", "k", "particle_density",
+                   "reference_fluid_density", "reference_fluid_viscosity"});
   filtered_ = p.flag("filtered", false);
-  parcel_factor_ = filtered_ || p.has("k");
+  // The parcel-size factor exp(k (1 - cg)) is its own choice, off unless asked for (as in
+  // CFDEMcoupling-PFM): giving k alone also switches it on.
+  parcel_factor_ = p.flag("parcel_size_factor", p.has("k"));
   k_ = p.has("k") ? p.number("k", 0.0, 10.0) : 0.05;
+  if (p.has("k") && !parcel_factor_) {
+    throw ModelError(p.owner() + ": parameter 'k' is the exponent of the parcel-size factor; "
+                     "remove it or set parcel_size_factor: true");
+  }
   if (filtered_) {
     if (!p.has("particle_density")) {
       throw ModelError(p.owner() + ": parameter 'particle_density' [kg/m3] is required with "
