@@ -29,7 +29,7 @@ TEST(ZeroPrecursor, PlasmaBedWithoutPrecursorCoatsNothingAndStaysFinite) {
     ASSERT_TRUE(r.totals.count(t)) << t;
     EXPECT_EQ(r.totals.at(t), 0.0) << t;
   }
-  ASSERT_EQ(r.final_state.size(), 1000u);
+  ASSERT_EQ(r.final_state.size(), 1500u);
   for (double m : r.final_state.get(field::coating_mass)) EXPECT_EQ(m, 0.0);
   for (double v : r.final_state.get(field::velocity)) EXPECT_TRUE(std::isfinite(v));
 }
