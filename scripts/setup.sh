@@ -21,7 +21,7 @@ packages=(
   libprotobuf-dev protobuf-compiler
   libhdf5-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev
+  libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   python3 python3-numpy python3-scipy python3-matplotlib python3-h5py
   dpkg-dev
 )

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cosim/analysis/json.h"
+#include "cosim/analysis/files.h"
 #include "cosim/link/fields.h"
 #include "hdf5_handle.h"
 

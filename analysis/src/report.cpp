@@ -49,7 +49,7 @@ void validate(const ReportOptions& o) {
 std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOptions& o,
                                         const std::filesystem::path& dir, std::string& plot_message) {
   prepare(dir);
-  writeFileAtomically(dir / "report.json", toJson(a, o).dump(1) + "\n");
+  writeJsonFile(dir / "report.json", toJson(a, o), 1);
   writeRunTables(a, dir);
   plot_message.clear();
   if (o.plots) drawPlots(dir, plot_message);
@@ -92,7 +92,7 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
   j["version"] = 1;
   const auto varied = variedParameters(runs);
   Json v = Json::array();
-  for (const auto& n : varied) v.push(n);
+  for (const auto& n : varied) v.push_back(n);
   j["varied_parameters"] = v;
   Json& rs = j["runs"] = Json::array();
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -126,7 +126,7 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
     r["verdict"] = a.verdict.summary();
     r["mass_balance_error_percent"] = a.mass_balance ? a.mass_balance->error_percent : std::nan("");
     r["wall_seconds"] = a.wall_seconds;
-    rs.push(r);
+    rs.push_back(r);
   }
   return j;
 }
@@ -185,7 +185,7 @@ int runReport(const ReportOptions& o) {
     }
     if (several) {
       prepare(out);
-      writeFileAtomically(out / "comparison.json", comparisonJson(analyses, folders).dump(1) + "\n");
+      writeJsonFile(out / "comparison.json", comparisonJson(analyses, folders), 1);
       writeComparisonTables(analyses, out);
       std::string plotMessage;
       if (o.plots) drawPlots(out, plotMessage);

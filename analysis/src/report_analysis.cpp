@@ -34,22 +34,13 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   }
   if (std::filesystem::exists(run / kSummaryFile)) {
     // Status and scenario parameters of the run (a sweep's comparison shows what differs).
-    std::ifstream in(run / kSummaryFile);
-    std::stringstream text;
-    text << in.rdbuf();
     try {
-      const Json summary = Json::parse(text.str());
-      if (const Json* st = summary.find("status"); st != nullptr && st->string() != nullptr) a.run_status = *st->string();
-      const Json* extra = summary.find("extra");
-      const Json* params = extra != nullptr ? extra->find("parameters") : nullptr;
-      if (params != nullptr && params->members() != nullptr) {
-        for (const auto& [k, v] : *params->members()) {
-          if (v.number() != nullptr) a.parameters.emplace_back(k, *v.number());
-        }
-      }
+      const Summary summary = readSummary(run / kSummaryFile);
+      a.run_status = summary.status;
+      a.parameters = summary.parameters;
     } catch (const std::exception& e) {
-      throw std::runtime_error((run / kSummaryFile).string() + " is not valid JSON (" + e.what() +
-                               "); move it away to report the run without it");
+      throw std::runtime_error(std::string(e.what()) +
+                               "; move it away to report the run without it");
     }
   }
   ParticleFile file(run / kParticlesFile);

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <sstream>
 
-#include "cosim/analysis/json.h"
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/report.h"
 #include "report_internal.h"
 

@@ -12,7 +12,7 @@ namespace cosim::analysis {
 namespace {
 Json series(const std::vector<CoatingStatistics>& s, double CoatingStatistics::*member) {
   Json a = Json::array();
-  for (const auto& x : s) a.push(x.*member);
+  for (const auto& x : s) a.push_back(x.*member);
   return a;
 }
 
@@ -48,7 +48,7 @@ Json toJson(const RunsTest& r) {
 
 Json strings(const std::vector<std::string>& v) {
   Json a = Json::array();
-  for (const auto& s : v) a.push(s);
+  for (const auto& s : v) a.push_back(s);
   return a;
 }
 
@@ -104,7 +104,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   Json& s = j["snapshots"] = Json::object();
   s["time"] = series(a.snapshots, &CoatingStatistics::time);
   Json counts = Json::array();
-  for (const auto& x : a.snapshots) counts.push(static_cast<unsigned long long>(x.count));
+  for (const auto& x : a.snapshots) counts.push_back(static_cast<unsigned long long>(x.count));
   s["count"] = counts;
   s["mean"] = series(a.snapshots, &CoatingStatistics::mean);
   s["std"] = series(a.snapshots, &CoatingStatistics::std_dev);
@@ -121,10 +121,10 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
     x["requested"] = h.requested;
     x["edges"] = Json(h.histogram.edges);
     Json c = Json::array();
-    for (auto n : h.histogram.counts) c.push(static_cast<unsigned long long>(n));
+    for (auto n : h.histogram.counts) c.push_back(static_cast<unsigned long long>(n));
     x["counts"] = c;
     x["rule"] = h.histogram.rule;
-    hs.push(x);
+    hs.push_back(x);
   }
 
   const GrowthFit& f = a.fit;
@@ -195,7 +195,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
     x["cv"] = d.cv;
     x["sigma_low"] = d.sigma_low;
     x["sigma_high"] = d.sigma_high;
-    ds.push(x);
+    ds.push_back(x);
   }
 
   Json& pc = j["prediction_check"] = Json::object();
@@ -212,7 +212,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
     x["simulated_cv"] = p.simulated_cv;
     x["predicted_cv"] = p.predicted_cv;
     x["cv_error"] = p.cv_error;
-    pts.push(x);
+    pts.push_back(x);
   }
   pc["points"] = pts;
   pc["max_abs_mean_error"] = a.prediction_check.max_abs_mean_error;
@@ -236,7 +236,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
     x["cv_horizon"] = p.cv_horizon;
     x["cv_run_end"] = p.cv_run_end;
     x["cv_run_end_error"] = p.cv_run_end_error;
-    wpts.push(x);
+    wpts.push_back(x);
   }
   ws["points"] = wpts;
 

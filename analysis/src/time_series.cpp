@@ -1,13 +1,13 @@
 #include "cosim/analysis/time_series.h"
 
-#include "cosim/analysis/json.h"
-
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "cosim/analysis/files.h"
 
 namespace cosim::analysis {
 

@@ -459,27 +459,12 @@ void Coupler::writeSummary(const RunResult& r, const std::string& status) {
   s.timings.emplace_back("total", r.wall_seconds);
   for (const auto& [n, w] : wall_) s.timings.emplace_back(n + "_compute", w);
   for (const auto& [n, w] : phase_) s.timings.emplace_back("step_" + n, w);
-  analysis::Json extra = analysis::Json::object();
-  analysis::Json params = analysis::Json::object();
-  for (const auto& [k, v] : sc_.parameters) params[k] = v;
-  extra["parameters"] = params;
-  extra["coupling_dt"] = sc_.dt;
-  extra["dem_steps"] = static_cast<double>(sc_.dem_steps);
-  extra["cg"] = sc_.constants.cg;
-  extra["coating"] = plan_.coating;
-  analysis::Json obs = analysis::Json::object();
-  for (const auto& o : observables_) {
-    analysis::Json j = analysis::Json::object();
-    if (o.undefined.empty())
-      j["value"] = o.value;
-    else
-      j["undefined"] = o.undefined;
-    if (o.reference) j["reference"] = *o.reference;
-    if (o.relative_error) j["relative_error"] = *o.relative_error;
-    obs[o.name] = j;
-  }
-  extra["observables"] = obs;
-  s.extra = extra;
+  s.parameters.assign(sc_.parameters.begin(), sc_.parameters.end());
+  s.coupling_dt = sc_.dt;
+  s.dem_steps = static_cast<std::int64_t>(sc_.dem_steps);
+  s.cg = sc_.constants.cg;
+  s.coating = plan_.coating;
+  s.observables = observables_;
   try {
     analysis::writeSummary(folder_ / analysis::kSummaryFile, s);
   } catch (const std::exception& e) {

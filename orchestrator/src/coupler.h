@@ -1,7 +1,7 @@
 // The run: prepares the run folder, starts the participants the scene needs, does the
-// handshake, runs the coupling loop (DESIGN.md steps 1-5, particles and fluid advancing at the
-// same time), watches for crashes, silence, Ctrl-C and unphysical states, records, and stops
-// everything cleanly whatever happens.
+// handshake, runs the coupling loop (docs/design.md section 2, steps 1-5, particles and fluid
+// advancing at the same time), watches for crashes, silence, Ctrl-C and unphysical states,
+// records, and stops everything cleanly whatever happens.
 #pragma once
 
 #include <atomic>

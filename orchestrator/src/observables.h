@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/analysis/summary.h"
 #include "cosim/link/particle_data.h"
 
 namespace cosim::orchestrator {
@@ -37,14 +38,8 @@ class UndefinedQuantity : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-struct ObservableValue {
-  std::string name;
-  double value = 0.0;     // NaN when undefined
-  std::string undefined;  // why there is no value (empty when there is one)
-  std::optional<double> reference;
-  // |value - reference| / |reference| (absolute error if the reference is 0).
-  std::optional<double> relative_error;
-};
+// One observable's value as measured at the end of a run (as summary.json records it).
+using analysis::ObservableValue;
 
 // Throws std::runtime_error naming the quantity when it cannot be evaluated, UndefinedQuantity
 // when the run's outcome leaves it without a value.

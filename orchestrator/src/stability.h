@@ -25,7 +25,8 @@ struct StabilityReport {
   std::vector<std::string> refusals;  // unstable: what is wrong and what would work
 };
 
-// Rayleigh time of a Hertzian sphere (PHYSICS.md 7): t_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766)
+// Rayleigh time of a Hertzian sphere (docs/physics.md section 7):
+//   t_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766)
 double rayleighTime(double radius, double density, double youngs_modulus, double poisson);
 // Particle relaxation time under a drag coefficient K [kg/s]: tau = m / K.
 double relaxationTime(double mass, double drag_coefficient);

@@ -1,15 +1,17 @@
 #include "study.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "cosim/analysis/json.h"
 #include "cosim/analysis/report.h"
+#include "cosim/analysis/summary.h"
 #include "coupler.h"
 #include "scenario.h"
 
@@ -62,48 +64,41 @@ struct Variant {
 // re-analysed study (another --finest) costs nothing for what is done.
 bool reuseCompleted(const fs::path& folder, const Scenario& sc, Variant& v) {
   std::ifstream ry(folder / "scenario.resolved.yaml");
-  std::ifstream sj(folder / "summary.json");
-  if (!ry || !sj) return false;
-  std::stringstream a, b;
+  if (!ry || !fs::exists(folder / analysis::kSummaryFile)) return false;
+  std::stringstream a;
   a << ry.rdbuf();
-  b << sj.rdbuf();
   const std::string resolved = a.str();
   const auto nl = resolved.find('\n');
   std::ostringstream expected;  // written the way the coupler writes it
   expected << sc.resolved << "\n";
   if (nl == std::string::npos || resolved.substr(nl + 1) != expected.str()) return false;
-  analysis::Json j;
+  analysis::Summary summary;
   try {
-    j = analysis::Json::parse(b.str());
+    summary = analysis::readSummary(folder / analysis::kSummaryFile);
   } catch (const std::exception&) {
     return false;
   }
-  const auto* status = j.find("status");
-  const auto* timings = j.find("timings_s");
-  const auto* extra = j.find("extra");
-  if (!status || !status->string() || *status->string() != "completed" || !timings || !extra)
-    return false;
-  const auto* total = timings->find("total");
-  const auto* obs = extra->find("observables");
-  if (!total || !total->number() || !obs) return false;
+  if (summary.status != "completed") return false;
+  const auto total = std::find_if(summary.timings.begin(), summary.timings.end(),
+                                  [](const auto& t) { return t.first == "total"; });
+  if (total == summary.timings.end()) return false;
   std::vector<ObservableValue> values;
   for (const auto& spec : sc.observables) {
-    const auto* o = obs->find(spec.name);
-    if (!o) return false;
+    const auto o = std::find_if(summary.observables.begin(), summary.observables.end(),
+                                [&](const auto& x) { return x.name == spec.name; });
+    if (o == summary.observables.end()) return false;
     ObservableValue ov;
     ov.name = spec.name;
     ov.reference = spec.reference;
-    if (const auto* val = o->find("value"); val && val->number()) {
-      ov.value = *val->number();
+    ov.value = o->value;
+    if (o->undefined.empty() && !std::isnan(o->value)) {
       ov.relative_error = relativeError(ov.value, ov.reference);
     } else {
-      const auto* why = o->find("undefined");
-      ov.value = std::numeric_limits<double>::quiet_NaN();
-      ov.undefined = why && why->string() ? *why->string() : "no value";
+      ov.undefined = o->undefined.empty() ? "no value" : o->undefined;
     }
     values.push_back(ov);
   }
-  v.wall = *total->number();
+  v.wall = total->second;
   v.observables = values;
   v.exit_code = 0;
   return true;
@@ -116,6 +111,54 @@ std::string fmt(double v) {
 }
 
 }  // namespace
+
+void to_json(analysis::Json& j, const StudyRecord& s) {
+  j = analysis::Json::object();
+  j["scenario"] = s.scenario;
+  j["vary"] = s.vary;
+  analysis::Json& refs = j["references"] = analysis::Json::object();
+  for (const auto& [name, kind] : s.references) refs[name] = kind;
+  analysis::Json& rows = j["variants"] = analysis::Json::array();
+  for (const auto& v : s.variants) {
+    analysis::Json& r = rows.emplace_back(analysis::Json::object());
+    r["label"] = v.label;
+    r["folder"] = v.folder;
+    r["wall_s"] = v.wall_s;
+    r["ok"] = v.ok;
+    if (!v.ok) r["message"] = v.message;
+    r["pareto"] = v.pareto;
+    analysis::Json& obs = r["observables"] = analysis::Json::object();
+    for (const auto& o : v.observables) {
+      analysis::Json& x = obs[o.name] = analysis::Json::object();
+      x["value"] = o.value;
+      if (o.error) x["error"] = *o.error;
+    }
+  }
+}
+
+void from_json(const analysis::Json& j, StudyRecord& s) {
+  s = StudyRecord{};
+  j.at("scenario").get_to(s.scenario);
+  j.at("vary").get_to(s.vary);
+  for (const auto& [name, kind] : j.at("references").items())
+    s.references.emplace_back(name, kind.get<std::string>());
+  for (const auto& r : j.at("variants")) {
+    StudyRecord::Variant& v = s.variants.emplace_back();
+    r.at("label").get_to(v.label);
+    r.at("folder").get_to(v.folder);
+    r.at("wall_s").get_to(v.wall_s);
+    r.at("ok").get_to(v.ok);
+    v.message = r.value("message", std::string());
+    r.at("pareto").get_to(v.pareto);
+    for (const auto& [name, o] : r.at("observables").items()) {
+      StudyRecord::Observable& x = v.observables.emplace_back();
+      x.name = name;
+      const auto& value = o.at("value");
+      x.value = value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
+      if (const auto e = o.find("error"); e != o.end()) x.error = e->get<double>();
+    }
+  }
+}
 
 int runStudy(const StudyOptions& opt) {
   if (opt.vary.empty())
@@ -263,35 +306,26 @@ int runStudy(const StudyOptions& opt) {
     }
   }
   // study.json
-  analysis::Json j = analysis::Json::object();
-  j["scenario"] = base.file.string();
-  analysis::Json vary = analysis::Json::array();
-  for (const auto& [key, values] : opt.vary) vary.push(key);
-  j["vary"] = vary;
-  analysis::Json refs = analysis::Json::object();
-  for (std::size_t k = 0; k < nobs; ++k) refs[base.observables[k].name] = ref_kind[k];
-  j["references"] = refs;
-  analysis::Json rows = analysis::Json::array();
+  StudyRecord record;
+  record.scenario = base.file.string();
+  for (const auto& [key, values] : opt.vary) record.vary.push_back(key);
+  for (std::size_t k = 0; k < nobs; ++k)
+    record.references.emplace_back(base.observables[k].name, ref_kind[k]);
   for (std::size_t i = 0; i < variants.size(); ++i) {
-    analysis::Json r = analysis::Json::object();
-    r["label"] = variants[i].label;
-    r["folder"] = variants[i].folder.string();
-    r["wall_s"] = variants[i].wall;
-    r["ok"] = variants[i].exit_code == 0;
-    if (variants[i].exit_code != 0) r["message"] = variants[i].message;
-    r["pareto"] = static_cast<bool>(front[i]);
-    analysis::Json obs = analysis::Json::object();
-    for (std::size_t k = 0; k < nobs && variants[i].exit_code == 0; ++k) {
-      analysis::Json o = analysis::Json::object();
-      o["value"] = variants[i].observables[k].value;
-      if (!std::isnan(err[i][k])) o["error"] = err[i][k];
-      obs[base.observables[k].name] = o;
+    const auto& v = variants[i];
+    StudyRecord::Variant& r = record.variants.emplace_back();
+    r.label = v.label;
+    r.folder = v.folder.string();
+    r.wall_s = v.wall;
+    r.ok = v.exit_code == 0;
+    if (!r.ok) r.message = v.message;
+    r.pareto = front[i];
+    for (std::size_t k = 0; k < nobs && r.ok; ++k) {
+      r.observables.push_back({base.observables[k].name, v.observables[k].value,
+                               std::isnan(err[i][k]) ? std::nullopt : std::optional(err[i][k])});
     }
-    r["observables"] = obs;
-    rows.push(r);
   }
-  j["variants"] = rows;
-  analysis::writeFileAtomically(folder / "study.json", j.dump());
+  analysis::writeJsonFile(folder / "study.json", analysis::Json(record), 2);
   // study.md: the table for docs/
   {
     std::ofstream md(folder / "study.md");

@@ -157,8 +157,7 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   for (const auto& [run, flow] : {std::pair{good, 100.0}, std::pair{poor, 1.0}}) {
     Summary s;
     s.status = "completed";
-    s.extra["parameters"]["flow_lpm"] = flow;
-    s.extra["parameters"]["cg"] = 5;  // same in both runs: not a comparison column
+    s.parameters = {{"flow_lpm", flow}, {"cg", 5.0}};  // cg: same in both runs, not a column
     writeSummary(run / kSummaryFile, s);
   }
   ReportOptions o;

@@ -12,7 +12,7 @@ using namespace cosim::liggghts;
 // Paper grain: r = 0.75 mm, E = 5e6 Pa, nu = 0.3, rho = 1750 kg/m3.
 // By hand: G = 5e6/2.6 = 1.9231e6 Pa; sqrt(1750/1.9231e6) = 0.030166 s/m;
 // pi * 7.5e-4 * 0.030166 = 7.1077e-5; / (0.1631*0.3 + 0.8766 = 0.92553) = 7.680e-5 s
-// (PHYSICS.md section 7 quotes ~7.7e-5 s).
+// (docs/physics.md section 7 quotes ~7.7e-5 s).
 TEST(RayleighTime, PaperGrain) {
   EXPECT_NEAR(rayleighTime(0.75e-3, 1750, 5e6, 0.3), 7.680e-5, 0.002e-5);
 }

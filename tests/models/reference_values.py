@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-# Independent reference values for tests/models, written from the published formulas (papers /
-# PHYSICS.md), not from the C++ code. Run: python3 tests/models/reference_values.py
+# Independent reference values for tests/models, written from the published formulas (papers, as
+# collected in docs/physics.md and docs/models.md), not from the C++ code. Run: python3 tests/models/reference_values.py
 # The printed numbers are pasted as literals into the tests.
 import math
 def brentq(f,a,b,**kw):

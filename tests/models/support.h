@@ -9,7 +9,7 @@
 
 namespace cosim::models::test {
 
-// The paper's gas and particles (PHYSICS.md section 6).
+// The paper's gas and particles (docs/physics.md section 6).
 inline constexpr double kMu = 1.8e-5;     // Pa s
 inline constexpr double kRho = 1.12;      // kg/m3
 inline constexpr double kD = 300e-6;      // m, real diameter

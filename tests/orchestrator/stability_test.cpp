@@ -15,7 +15,7 @@ using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
 
 TEST(Stability, RayleighTimeOfThePapersGrains) {
-  // PHYSICS.md 7: r = 0.75 mm, E = 5e6 Pa, nu = 0.3, rho = 1750 -> t_R ~ 7.7e-5 s.
+  // docs/physics.md section 7: r = 0.75 mm, E = 5e6 Pa, nu = 0.3, rho = 1750 -> t_R ~ 7.7e-5 s.
   // By hand: G = 5e6/2.6 = 1.9231e6; pi * 7.5e-4 * sqrt(1750/1.9231e6) / 0.92553 = 7.681e-5.
   EXPECT_NEAR(rayleighTime(0.75e-3, 1750, 5e6, 0.3), 7.681e-5, 0.005e-5);
 }

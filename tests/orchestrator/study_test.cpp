@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "observables.h"
@@ -91,6 +92,24 @@ TEST(Study, RunsVariantsAndWritesTables) {
     EXPECT_NEAR(err, std::exp(-5e-3 / (2500 * 50e-6 * 50e-6 / 18e-3)), 1e-8);
   }
   EXPECT_EQ(rows, 2);
+  // study.json reads back through the same struct it was written from (scripts/plot_study.py
+  // reads the same keys).
+  const auto study = cosim::analysis::readJsonFile(out / "study.json").get<StudyRecord>();
+  EXPECT_EQ(study.vary, (std::vector<std::string>{"coupling.dt"}));
+  ASSERT_EQ(study.references.size(), 1u);
+  EXPECT_EQ(study.references[0], (std::pair<std::string, std::string>{"v_terminal", "analytic"}));
+  ASSERT_EQ(study.variants.size(), 2u);
+  for (const auto& v : study.variants) {
+    EXPECT_TRUE(v.ok) << v.message;
+    EXPECT_GT(v.wall_s, 0.0);
+    ASSERT_EQ(v.observables.size(), 1u);
+    EXPECT_EQ(v.observables[0].name, "v_terminal");
+    ASSERT_TRUE(v.observables[0].error);
+    EXPECT_NEAR(*v.observables[0].error, std::exp(-5e-3 / (2500 * 50e-6 * 50e-6 / 18e-3)), 1e-8);
+  }
+  EXPECT_EQ(study.variants[0].label, "coupling.dt=1e-4");
+  EXPECT_EQ(cosim::analysis::Json(study).dump(),
+            cosim::analysis::readJsonFile(out / "study.json").dump());
 }
 
 TEST(Study, CompletedVariantsAreReadBackNotRunAgain) {

@@ -1,5 +1,5 @@
 // Mixing verdict: may the Eqs. 9-10 fit be extrapolated to long coating times? It refuses, with
-// each reason in words, when mixing is poor (paper section 2.3 and 4.5, PHYSICS.md section 5):
+// each reason in words, when mixing is poor (paper section 2.3 and 4.5, docs/physics.md section 5):
 //  1. never-coated share at the last snapshot above max_uncoated_share (the paper's 1 L/min
 //     case has 15 % uncoated after 20 s);
 //  2. large misfit: relative RMS residual of the mean or variance fit above its limit;

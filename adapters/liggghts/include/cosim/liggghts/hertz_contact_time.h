@@ -1,7 +1,7 @@
 // Duration of an elastic Hertz contact at impact speed v:
 //   t_H = 2.87 (m_eff^2 / (r_eff E_eff^2 v))^(1/5)
 // with 1/m_eff = 1/m1 + 1/m2, 1/r_eff = 1/r1 + 1/r2, 1/E_eff = (1-nu1^2)/E1 + (1-nu2^2)/E2
-// (PHYSICS.md section 7).
+// (docs/physics.md section 7).
 #pragma once
 
 namespace cosim::liggghts {

@@ -1,5 +1,5 @@
 // Start-up check of the DEM time step against the Rayleigh time and the Hertz contact time of
-// the smallest/softest particles (PHYSICS.md section 7).
+// the smallest/softest particles (docs/physics.md section 7).
 //   refuse: dt > 0.3 t_R  or  dt > t_H / 3
 //   warn:   dt > 0.2 t_R  or  dt > t_H / 5
 // A refusal names the dt that would work: min(0.2 t_R, t_H / 5).

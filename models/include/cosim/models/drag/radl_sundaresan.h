@@ -1,5 +1,5 @@
 // Radl & Sundaresan (2014), Chem. Eng. Sci. 117:416-425: filtered-drag correction for coarse
-// Euler-Lagrange meshes, coefficients as tabulated in PHYSICS.md section 2.
+// Euler-Lagrange meshes, coefficients as tabulated in docs/physics.md section 2.
 //   corr(phi, Delta) = 1 - h(phi) / (a(phi) L_c / Delta + 1)   (-> 1 as Delta -> 0)
 //   L_c = (u_t^2 / g) Fr_p^(-2/3),  Fr_p = u_t^2 / (g d)
 //   u_t: terminal velocity of one real particle, from (rho_p - rho) g d^2 / (18 mu) = u_t F(1, Re_t)

@@ -1,0 +1,28 @@
+// Writing the files of a run: atomic replacement, the shortest exact text of a number, and the
+// JSON files (summary.json, report.json, study.json, comparison.json) through nlohmann-json.
+// `Json` keeps the keys in insertion order, so the files read in the order they are written.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json_fwd.hpp>
+#include <string>
+
+namespace cosim::analysis {
+
+using Json = nlohmann::ordered_json;
+
+// Shortest decimal text ("%.15g" .. "%.17g") that reads back as exactly the same double.
+std::string formatShortest(double v);
+
+// Write text to path atomically (write path.tmp, then rename), so a reader never sees half a
+// file. Throws std::runtime_error naming the path on failure.
+void writeFileAtomically(const std::filesystem::path& path, const std::string& text);
+
+// Writes json (indented by indent spaces, then a newline) atomically. Non-finite numbers become
+// null; bytes that are not UTF-8 (e.g. in a participant's log tail) are replaced, not an error.
+void writeJsonFile(const std::filesystem::path& path, const Json& json, int indent);
+
+// Parses a JSON file. Throws std::runtime_error naming the path when it cannot be read or parsed.
+Json readJsonFile(const std::filesystem::path& path);
+
+}  // namespace cosim::analysis
