@@ -796,7 +796,7 @@ RunResult Coupler::run() {
       }
       // The row and the snapshot at time_ hold what the particles have at time_: the coating of
       // the step that ends at time_ is still pending (the particle participant receives it with
-      // the next Advance, or with the final flush), so it is added here as the ledger pays it.
+      // the next Advance, or with the final flush), so it is added here as the ledger will pay it.
       double credited_at_t = credited;
       for (const auto& [id, dm] : pending_credit_) credited_at_t += dm;
       std::vector<double> row;

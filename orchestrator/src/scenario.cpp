@@ -55,6 +55,11 @@ class Context {
     overrides_.emplace_back(path, shown);
   }
   [[noreturn]] void failTop(const std::string& key, const std::string& what) const {
+    for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
+      if (within(key, o->first)) {
+        throw ScenarioError(origin_.string() + ": " + o->second + ": " + key + ": " + what);
+      }
+    }
     throw ScenarioError(origin_.string() + ": " + key + ": " + what);
   }
 

@@ -268,6 +268,7 @@ TEST(ScenarioErrors, UnsetOfAMissingOrRequiredKey) {
   expectError(kZoned, {"--unset models.drag.law.x", "no 'models.drag.law' section"}, {},
               {"models.drag.law.x"});
   expectError(kGood, {"--unset coupling.dt", "coupling.dt", "missing"}, {}, {"coupling.dt"});
+  expectError(kGood, {"bad.yaml: --unset coupling: coupling: missing section"}, {}, {"coupling"});
 }
 
 TEST(ScenarioErrors, EndTimeBeforeStart) {
