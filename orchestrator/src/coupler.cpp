@@ -441,8 +441,19 @@ void Coupler::appendRow(double time, const std::vector<double>& row) {
 
 void Coupler::record(double time, bool force) {
   if (!force && time + 1e-12 * std::max(1.0, std::fabs(time)) < next_output_) return;
-  rec_->particles->write(time, state_);
+  rec_->particles->write(time, heldState());
   next_output_ = time + sc_.output_interval;
+}
+
+link::ParticleData Coupler::heldState() const {
+  if (pending_credit_.empty() || !state_.has(field::coating_mass)) return state_;
+  link::ParticleData held = state_;
+  auto& m = held.field(field::coating_mass);
+  for (std::size_t i = 0; i < held.size(); ++i) {
+    if (auto it = pending_credit_.find(held.ids[i]); it != pending_credit_.end())
+      m[i] += it->second;
+  }
+  return held;
 }
 
 void Coupler::writeSummary(const RunResult& r, const std::string& status) {
@@ -768,6 +779,11 @@ RunResult Coupler::run() {
         appendRow(sc_.start_time, row0);
         initial_row_written = true;
       }
+      // The row and the snapshot at time_ hold what the particles have at time_: the coating of
+      // the step that ends at time_ is still pending (the particle participant receives it with
+      // the next Advance, or with the final flush), so it is added here as the ledger will pay it.
+      double credited_at_t = credited;
+      for (const auto& [id, dm] : pending_credit_) credited_at_t += dm;
       std::vector<double> row;
       for (const auto& c : rec_->columns) {
         if (c == "particle_count")
@@ -783,7 +799,7 @@ RunResult Coupler::run() {
         else if (c == analysis::column::precursor_removed)
           row.push_back(removed);
         else if (c == analysis::column::coated_mass)
-          row.push_back(credited);
+          row.push_back(credited_at_t);
         else if (c == "pressure_drop") {
           const auto& sc = replies.at("fluid").advanced().scalars();
           auto it = sc.find("pressure_drop");
@@ -793,7 +809,7 @@ RunResult Coupler::run() {
       }
       appendRow(time_, row);
       record(time_, k + 1 == nsteps);
-      if (on_step) on_step(time_, state_);
+      if (on_step) on_step(time_, heldState());
       lap("bookkeeping");
       progress.update(time_, k + 1, state_.size());
       result.steps = k + 1;

@@ -57,7 +57,8 @@ class Coupler {
   ~Coupler();
   RunResult run();
 
-  // Called after each coupling step with the current state (tests and monitors).
+  // Called after each coupling step with the current state, coating of that step included
+  // (tests and monitors).
   std::function<void(double time, const link::ParticleData& state)> on_step;
 
  private:
@@ -72,7 +73,10 @@ class Coupler {
   void shutdown(bool clean);
   // One time-series row: to timeseries.csv and to the in-memory series the observables read.
   void appendRow(double time, const std::vector<double>& row);
+  // A particle snapshot of heldState(), every output.interval and when forced.
   void record(double time, bool force);
+  // state_ with the pending coating credit added: what the particles hold at time_.
+  link::ParticleData heldState() const;
   void writeSummary(const RunResult& r, const std::string& status);
 
   Scenario sc_;

@@ -29,8 +29,9 @@ std::string join(const std::vector<std::string>& v) {
   return s.empty() ? "(none)" : s;
 }
 
-int validate(const std::string& file, const std::vector<std::string>& sets) {
-  Scenario sc = loadScenario(file, sets);
+int validate(const std::string& file, const std::vector<std::string>& sets,
+             const std::vector<std::string>& unsets) {
+  Scenario sc = loadScenario(file, sets, unsets);
   SceneModels m = makeModels(sc);
   Plan p = makePlan(sc, m);
   std::cout << "scenario '" << sc.name << "' is valid (" << sc.file.string() << ")\n";
@@ -66,17 +67,21 @@ int main(int argc, char** argv) {
       "  cosim run scenarios/plasma-coating-bed --set flow_lpm=50\n"
       "  cosim report runs/plasma-coating-bed\n"};
   app.require_subcommand(1);
-  std::vector<std::string> sets;
+  std::vector<std::string> sets, unsets;
   std::string scenario;
+  const char* set_help =
+      "override a value: key.path=value (e.g. coupling.end_time=0.5); a bare name sets a "
+      "scenario parameter (e.g. flow_lpm=50); a YAML map or list replaces the whole node (e.g. "
+      "'models.coating_zone={shape: sphere, center: [0, 0, 0.01], radius: 0.005}')";
+  const char* unset_help =
+      "remove a node (and everything below it) before the --set overrides, e.g. "
+      "models.coating_zone";
 
   auto* run =
       app.add_subcommand("run", "Run a scenario (a scenario.yaml, or a folder holding one)");
   run->add_option("scenario", scenario, "scenario file or folder")->required();
-  run->add_option(
-         "--set", sets,
-         "override a value: key.path=value (e.g. coupling.end_time=0.5); a bare name sets a "
-         "scenario parameter (e.g. flow_lpm=50)")
-      ->take_all();
+  run->add_option("--set", sets, set_help)->take_all();
+  run->add_option("--unset", unsets, unset_help)->take_all();
   RunOptions ropt;
   std::string output;
   run->add_option("-o,--output", output,
@@ -88,6 +93,7 @@ int main(int argc, char** argv) {
       "validate", "Check a scenario and show what it would start and send, without running");
   val->add_option("scenario", scenario, "scenario file or folder")->required();
   val->add_option("--set", sets, "override a value (as for run)")->take_all();
+  val->add_option("--unset", unsets, "remove a node (as for run)")->take_all();
 
   auto* study = app.add_subcommand(
       "study",
@@ -101,7 +107,10 @@ int main(int argc, char** argv) {
                    "key=v1,v2,... (repeat for a grid), e.g. --vary coupling.dem_steps=5,10,20")
       ->required()
       ->take_all();
-  study->add_option("--set", sopt.sets, "fixed override for every variant")->take_all();
+  study->add_option("--set", sopt.sets, "fixed override for every variant (as for run)")
+      ->take_all();
+  study->add_option("--unset", sopt.unsets, "node removed in every variant (as for run)")
+      ->take_all();
   study->add_option("-o,--output", sopt.output, "study folder (default runs/<name>-study)");
   study->add_option("--finest", sopt.finest,
                     "index (0-based, in --vary order) of the variant taken as reference where no "
@@ -160,7 +169,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    if (*val) return validate(scenario, sets);
+    if (*val) return validate(scenario, sets, unsets);
     if (*study) {
       for (const auto& v : vary) sopt.vary.push_back(parseVary(v));
       return runStudy(sopt);
@@ -197,7 +206,7 @@ int main(int argc, char** argv) {
     if (*rep) return cosim::analysis::runReport(rep_opt);
 #endif
     if (*run) {
-      Scenario sc = loadScenario(scenario, sets);
+      Scenario sc = loadScenario(scenario, sets, unsets);
       if (!output.empty()) ropt.output = output;
       std::signal(SIGINT, onSignal);
       std::signal(SIGTERM, onSignal);

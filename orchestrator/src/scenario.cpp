@@ -33,11 +33,33 @@ class Context {
                          const std::string& what) const {
     std::ostringstream os;
     os << origin_.string();
+    // A value that came from the command line has no line in the file: name the override.
+    for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
+      if (within(key, o->first)) {
+        os << ": " << o->second << ": " << key << ": " << what;
+        throw ScenarioError(os.str());
+      }
+    }
     if (node.IsDefined() && node.Mark().line >= 0) os << ":" << node.Mark().line + 1;
     os << ": " << key << ": " << what;
+    for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
+      if (within(o->first, key)) {
+        os << " (" << o->first << " comes from the command line: " << o->second << ")";
+        break;
+      }
+    }
     throw ScenarioError(os.str());
   }
+  // An override of the command line ("--set KEY=VALUE", "--unset KEY") that changed `path`.
+  void addOverride(const std::string& path, const std::string& shown) {
+    overrides_.emplace_back(path, shown);
+  }
   [[noreturn]] void failTop(const std::string& key, const std::string& what) const {
+    for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
+      if (within(key, o->first)) {
+        throw ScenarioError(origin_.string() + ": " + o->second + ": " + key + ": " + what);
+      }
+    }
     throw ScenarioError(origin_.string() + ": " + key + ": " + what);
   }
 
@@ -79,7 +101,13 @@ class Context {
   const fs::path& origin() const { return origin_; }
 
  private:
+  // `key` is `path` or below it ("a.b" is within "a", "a[2]" within "a", "ab" not within "a").
+  static bool within(const std::string& key, const std::string& path) {
+    return key.rfind(path, 0) == 0 &&
+           (key.size() == path.size() || key[path.size()] == '.' || key[path.size()] == '[');
+  }
   fs::path origin_;
+  std::vector<std::pair<std::string, std::string>> overrides_;  // path, as given
 };
 
 // Applies ${expr} to every scalar of the tree.
@@ -95,8 +123,9 @@ void templateTree(YAML::Node node, const Variables& vars, const Context& ctx,
     }
   } else if (node.IsMap()) {
     for (auto kv : node) {
-      templateTree(kv.second, vars, ctx, path.empty() ? kv.first.as<std::string>()
-                                                      : path + "." + kv.first.as<std::string>());
+      templateTree(
+          kv.second, vars, ctx,
+          path.empty() ? kv.first.as<std::string>() : path + "." + kv.first.as<std::string>());
     }
   } else if (node.IsSequence()) {
     for (std::size_t i = 0; i < node.size(); ++i) {
@@ -105,47 +134,94 @@ void templateTree(YAML::Node node, const Variables& vars, const Context& ctx,
   }
 }
 
-// "a.b.c=value" -> node a/b/c = value (value parsed as YAML: numbers, lists, maps work).
-void applySet(YAML::Node root, const std::string& set, const Context& ctx) {
-  auto eq = set.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    ctx.failTop("--set " + set, "expected key=value, e.g. --set coupling.end_time=0.5");
-  }
-  std::string key = set.substr(0, eq);
-  const std::string value = set.substr(eq + 1);
+const std::set<std::string>& sectionNames() {
   static const std::set<std::string> sections = {
-      "name", "description", "parameters", "participants", "coupling", "constants",
-      "models", "output", "transport", "checks", "observables"};
+      "name",   "description", "parameters", "participants", "coupling",   "constants",
+      "models", "output",      "transport",  "checks",       "observables"};
+  return sections;
+}
+
+// "a.b.c" -> {"a", "b", "c"}; a bare name is a parameter: {"parameters", name}.
+std::vector<std::string> keyPath(const std::string& key, const std::string& shown,
+                                 const Context& ctx) {
   std::vector<std::string> parts;
   std::stringstream ss(key);
-  for (std::string p; std::getline(ss, p, '.');) parts.push_back(p);
-  if (!sections.count(parts.front())) {
+  for (std::string p; std::getline(ss, p, '.');) {
+    if (p.empty()) ctx.failTop(shown, "empty name in the key '" + key + "'");
+    parts.push_back(p);
+  }
+  if (parts.empty()) ctx.failTop(shown, "no key given");
+  if (!sectionNames().count(parts.front())) {
     if (parts.size() == 1) {
       parts.insert(parts.begin(), "parameters");  // bare name: a parameter
     } else {
-      ctx.failTop("--set " + set, "unknown section '" + parts.front() + "'");
+      ctx.failTop(shown, "unknown section '" + parts.front() + "'");
     }
   }
+  return parts;
+}
+
+std::string joinPath(const std::vector<std::string>& parts) {
+  std::string out;
+  for (const auto& p : parts) out += (out.empty() ? "" : ".") + p;
+  return out;
+}
+
+// "a.b.c=value" -> node a/b/c = value. The value is YAML: numbers, text, lists and maps work;
+// a list or map replaces the whole node (nothing of the old one is kept).
+void applySet(YAML::Node root, const std::string& set, Context& ctx) {
+  const std::string shown = "--set " + set;
+  auto eq = set.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    ctx.failTop(shown,
+                "expected key=value, e.g. --set coupling.end_time=0.5 (a whole node: --set "
+                "'models.coating_zone={shape: sphere, center: [0, 0, 0.01], radius: 0.005}')");
+  }
+  const std::string key = set.substr(0, eq);
+  const std::string value = set.substr(eq + 1);
+  std::vector<std::string> parts = keyPath(key, shown, ctx);
   if (parts.front() == "parameters" && parts.size() == 2 &&
       !(root["parameters"] && root["parameters"][parts[1]])) {
-    ctx.failTop("--set " + set, "the scenario has no parameter '" + parts[1] +
-                                    "' (see its parameters: section)");
+    ctx.failTop(shown,
+                "the scenario has no parameter '" + parts[1] + "' (see its parameters: section)");
   }
   YAML::Node parsed;
   try {
     parsed = YAML::Load(value);
   } catch (const YAML::Exception& e) {
-    ctx.failTop("--set " + set, std::string("value is not valid YAML: ") + e.what());
+    ctx.failTop(shown, "the value is not valid YAML: " + e.msg +
+                           " (a map is written {key: value, ...}, a list [a, b, ...]; quote the "
+                           "whole argument for the shell)");
   }
   std::vector<YAML::Node> chain{root};
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     YAML::Node next = chain.back()[parts[i]];
     if (next.IsDefined() && !next.IsMap() && !next.IsNull()) {
-      ctx.failTop("--set " + set, "'" + parts[i] + "' is not a section");
+      ctx.failTop(shown, "'" + parts[i] + "' is not a section");
     }
     chain.push_back(next);
   }
   chain.back()[parts.back()] = parsed;
+  ctx.addOverride(joinPath(parts), shown);
+}
+
+// "a.b.c" -> node a/b/c removed (with everything below it); an error if it does not exist.
+void applyUnset(YAML::Node root, const std::string& key, Context& ctx) {
+  const std::string shown = "--unset " + key;
+  std::vector<std::string> parts = keyPath(key, shown, ctx);
+  YAML::Node node = root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    node.reset(node[parts[i]]);
+    if (!node.IsMap()) {
+      ctx.failTop(
+          shown, "the scenario has no '" +
+                     joinPath({parts.begin(), parts.begin() + static_cast<std::ptrdiff_t>(i) + 1}) +
+                     "' section");
+    }
+  }
+  if (!node[parts.back()]) ctx.failTop(shown, "the scenario has no '" + joinPath(parts) + "'");
+  node.remove(parts.back());
+  ctx.addOverride(joinPath(parts), shown);
 }
 
 models::Parameters toParameters(const YAML::Node& map, const std::string& owner,
@@ -223,7 +299,8 @@ YAML::Node merge(const YAML::Node& base, const YAML::Node& over) {
 }  // namespace
 
 Scenario parseScenario(const std::string& text, const fs::path& origin,
-                       const std::vector<std::string>& sets) {
+                       const std::vector<std::string>& sets,
+                       const std::vector<std::string>& unsets) {
   Context ctx(origin);
   Scenario sc;
   sc.file = fs::absolute(origin);
@@ -236,7 +313,8 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
     throw ScenarioError(origin.string() + ":" + std::to_string(e.mark.line + 1) +
                         ": not valid YAML: " + e.msg);
   }
-  if (!root.IsMap()) ctx.failTop("(top level)", "expected a map with name, participants, coupling, models ...");
+  if (!root.IsMap())
+    ctx.failTop("(top level)", "expected a map with name, participants, coupling, models ...");
   // extends: another scenario file this one only changes (e.g. a size variant of a scene).
   if (root["extends"]) {
     const fs::path base = fs::absolute(origin).parent_path() / ctx.text(root["extends"], "extends");
@@ -246,19 +324,25 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
     try {
       b = YAML::LoadFile(base.string());
     } catch (const YAML::ParserException& e) {
-      throw ScenarioError(base.string() + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+      throw ScenarioError(base.string() + ":" + std::to_string(e.mark.line + 1) +
+                          ": not valid YAML: " + e.msg);
     }
-    if (b["extends"]) ctx.fail(root["extends"], "extends", "'" + base.string() + "' extends another file itself; one level only");
+    if (b["extends"])
+      ctx.fail(root["extends"], "extends",
+               "'" + base.string() + "' extends another file itself; one level only");
     root.remove("extends");
     root = merge(b, root);
   }
-  ctx.allowOnly(root, "", {"name", "description", "parameters", "participants", "coupling",
-                           "constants", "models", "output", "transport", "checks", "observables"});
+  ctx.allowOnly(root, "",
+                {"name", "description", "parameters", "participants", "coupling", "constants",
+                 "models", "output", "transport", "checks", "observables"});
+  for (const auto& u : unsets) applyUnset(root, u, ctx);
   for (const auto& s : sets) applySet(root, s, ctx);
 
   // Parameters first: each may use the ones before it.
   if (root["parameters"]) {
-    if (!root["parameters"].IsMap()) ctx.fail(root["parameters"], "parameters", "expected a map name: value");
+    if (!root["parameters"].IsMap())
+      ctx.fail(root["parameters"], "parameters", "expected a map name: value");
     for (auto kv : root["parameters"]) {
       const auto k = kv.first.as<std::string>();
       YAML::Node v = kv.second;
@@ -279,7 +363,8 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
       }
     }
   }
-  sc.name = root["name"] ? ctx.text(root["name"], "name") : origin.parent_path().filename().string();
+  sc.name =
+      root["name"] ? ctx.text(root["name"], "name") : origin.parent_path().filename().string();
   sc.parameters.erase("name");
   templateTree(root, sc.parameters, ctx, "");
   sc.resolved = root;
@@ -288,11 +373,15 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
 
   // ---- coupling --------------------------------------------------------------------------------
   const YAML::Node coupling = root["coupling"];
-  if (!coupling) ctx.failTop("coupling", "missing section; expected { dt: SECONDS, dem_steps: N, end_time: SECONDS }");
+  if (!coupling)
+    ctx.failTop("coupling",
+                "missing section; expected { dt: SECONDS, dem_steps: N, end_time: SECONDS }");
   ctx.allowOnly(coupling, "coupling", {"dt", "dem_steps", "end_time", "start_time"});
-  sc.dt = ctx.positive(coupling["dt"], "coupling.dt", "(coupling interval = CFD time step, seconds)");
+  sc.dt =
+      ctx.positive(coupling["dt"], "coupling.dt", "(coupling interval = CFD time step, seconds)");
   sc.end_time = ctx.positive(coupling["end_time"], "coupling.end_time", "(seconds)");
-  if (coupling["start_time"]) sc.start_time = ctx.number(coupling["start_time"], "coupling.start_time");
+  if (coupling["start_time"])
+    sc.start_time = ctx.number(coupling["start_time"], "coupling.start_time");
   if (coupling["dem_steps"]) {
     double n = ctx.number(coupling["dem_steps"], "coupling.dem_steps");
     if (n < 1 || n != std::floor(n) || n > 1e7) {
@@ -311,33 +400,43 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
 
   // ---- constants --------------------------------------------------------------------------------
   if (const YAML::Node c = root["constants"]) {
-    ctx.allowOnly(c, "constants", {"cg", "min_voidage", "gravity", "schmidt", "particle_density",
-                                   "youngs_modulus", "poisson_ratio"});
-    if (c["particle_density"]) sc.material.particle_density = ctx.positive(c["particle_density"], "constants.particle_density", "(kg/m3)");
-    if (c["youngs_modulus"]) sc.material.youngs_modulus = ctx.positive(c["youngs_modulus"], "constants.youngs_modulus", "(Pa)");
+    ctx.allowOnly(c, "constants",
+                  {"cg", "min_voidage", "gravity", "schmidt", "particle_density", "youngs_modulus",
+                   "poisson_ratio"});
+    if (c["particle_density"])
+      sc.material.particle_density =
+          ctx.positive(c["particle_density"], "constants.particle_density", "(kg/m3)");
+    if (c["youngs_modulus"])
+      sc.material.youngs_modulus =
+          ctx.positive(c["youngs_modulus"], "constants.youngs_modulus", "(Pa)");
     if (c["poisson_ratio"]) {
       sc.material.poisson_ratio = ctx.number(c["poisson_ratio"], "constants.poisson_ratio");
       if (sc.material.poisson_ratio <= -1 || sc.material.poisson_ratio >= 0.5) {
-        ctx.fail(c["poisson_ratio"], "constants.poisson_ratio", "expected a Poisson ratio in (-1, 0.5)");
+        ctx.fail(c["poisson_ratio"], "constants.poisson_ratio",
+                 "expected a Poisson ratio in (-1, 0.5)");
       }
     }
     if (c["cg"]) {
       sc.constants.cg = ctx.number(c["cg"], "constants.cg");
       if (sc.constants.cg < 1.0) {
-        ctx.fail(c["cg"], "constants.cg", "coarse-graining factor must be >= 1 (1 = real particles), got " + c["cg"].Scalar());
+        ctx.fail(
+            c["cg"], "constants.cg",
+            "coarse-graining factor must be >= 1 (1 = real particles), got " + c["cg"].Scalar());
       }
     }
     if (c["min_voidage"]) {
       sc.constants.min_voidage = ctx.number(c["min_voidage"], "constants.min_voidage");
       if (sc.constants.min_voidage <= 0.0 || sc.constants.min_voidage >= 1.0) {
-        ctx.fail(c["min_voidage"], "constants.min_voidage", "expected a voidage in (0, 1), e.g. 0.35");
+        ctx.fail(c["min_voidage"], "constants.min_voidage",
+                 "expected a voidage in (0, 1), e.g. 0.35");
       }
     }
     if (c["gravity"]) {
       if (!c["gravity"].IsSequence() || c["gravity"].size() != 3) {
         ctx.fail(c["gravity"], "constants.gravity", "expected three numbers [gx, gy, gz] in m/s2");
       }
-      for (int i = 0; i < 3; ++i) sc.constants.gravity[i] = ctx.number(c["gravity"][i], "constants.gravity");
+      for (int i = 0; i < 3; ++i)
+        sc.constants.gravity[i] = ctx.number(c["gravity"][i], "constants.gravity");
     }
     if (c["schmidt"]) sc.constants.schmidt = ctx.positive(c["schmidt"], "constants.schmidt", "");
   }
@@ -345,7 +444,9 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
   // ---- participants -----------------------------------------------------------------------------
   const YAML::Node parts = root["participants"];
   if (!parts || !parts.IsMap() || parts.size() == 0) {
-    ctx.failTop("participants", "missing; expected at least 'particles: { adapter: ... }' (and 'fluid:' for coupled scenes)");
+    ctx.failTop("participants",
+                "missing; expected at least 'particles: { adapter: ... }' (and 'fluid:' for "
+                "coupled scenes)");
   }
   for (const auto& kv : parts) {
     const std::string pname = kv.first.as<std::string>();
@@ -355,7 +456,8 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
       ctx.fail(kv.first, key, "unknown participant; a scene has 'fluid' and/or 'particles'");
     }
     if (!p.IsMap()) ctx.fail(p, key, "expected a map with at least 'adapter:'");
-    ctx.allowOnly(p, key, {"adapter", "command", "args", "launch", "mpi", "files", "timeout", "options"});
+    ctx.allowOnly(p, key,
+                  {"adapter", "command", "args", "launch", "mpi", "files", "timeout", "options"});
     ParticipantSpec ps;
     ps.name = pname;
     ps.adapter = ctx.text(p["adapter"], key + ".adapter");
@@ -379,37 +481,44 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
       ps.command = known->second.executable;
     }
     if (p["args"]) {
-      if (!p["args"].IsSequence()) ctx.fail(p["args"], key + ".args", "expected a list of arguments");
+      if (!p["args"].IsSequence())
+        ctx.fail(p["args"], key + ".args", "expected a list of arguments");
       for (const auto& a : p["args"]) ps.args.push_back(a.Scalar());
     }
     if (p["launch"]) {
       ps.launch = ctx.text(p["launch"], key + ".launch");
       if (ps.launch != "local" && ps.launch != "external") {
         ctx.fail(p["launch"], key + ".launch",
-                 "expected 'local' (cosim starts it) or 'external' (started elsewhere, connects to the orchestrator)");
+                 "expected 'local' (cosim starts it) or 'external' (started elsewhere, connects to "
+                 "the orchestrator)");
       }
     }
     if (p["mpi"]) {
       double n = ctx.number(p["mpi"], key + ".mpi");
       if (n < 1 || n != std::floor(n) || n > 4096) {
-        ctx.fail(p["mpi"], key + ".mpi", "expected a whole number of MPI ranks >= 1, got " + p["mpi"].Scalar());
+        ctx.fail(p["mpi"], key + ".mpi",
+                 "expected a whole number of MPI ranks >= 1, got " + p["mpi"].Scalar());
       }
       ps.mpi = static_cast<int>(n);
     }
-    if (p["timeout"]) ps.timeout = ctx.positive(p["timeout"], key + ".timeout", "(seconds one step may take)");
+    if (p["timeout"])
+      ps.timeout = ctx.positive(p["timeout"], key + ".timeout", "(seconds one step may take)");
     if (p["files"]) {
       ps.files = sc.dir / ctx.text(p["files"], key + ".files");
       if (!fs::is_directory(ps.files)) {
         ctx.fail(p["files"], key + ".files",
-                 "folder '" + ps.files.string() + "' does not exist (paths are relative to the scenario file)");
+                 "folder '" + ps.files.string() +
+                     "' does not exist (paths are relative to the scenario file)");
       }
     }
     ps.options = p["options"] ? YAML::Clone(p["options"]) : YAML::Node(YAML::NodeType::Map);
-    if (!ps.options.IsMap()) ctx.fail(p["options"], key + ".options", "expected a map of adapter settings");
+    if (!ps.options.IsMap())
+      ctx.fail(p["options"], key + ".options", "expected a map of adapter settings");
     sc.participants[pname] = ps;
   }
   if (!sc.participants.count("particles")) {
-    ctx.failTop("participants.particles", "missing; every scene has particles (adapter: liggghts or free-particles)");
+    ctx.failTop("participants.particles",
+                "missing; every scene has particles (adapter: liggghts or free-particles)");
   }
 
   // ---- models -----------------------------------------------------------------------------------
@@ -417,10 +526,12 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
   if (const YAML::Node m = root["models"]) {
     ctx.allowOnly(m, "models", {"drag", "forces", "mass_transfer", "coating_zone", "plugins"});
     if (m["plugins"]) {
-      if (!m["plugins"].IsSequence()) ctx.fail(m["plugins"], "models.plugins", "expected a list of shared-library paths");
+      if (!m["plugins"].IsSequence())
+        ctx.fail(m["plugins"], "models.plugins", "expected a list of shared-library paths");
       for (std::size_t i = 0; i < m["plugins"].size(); ++i) {
         fs::path pth = sc.dir / ctx.text(m["plugins"][i], "models.plugins");
-        if (!fs::exists(pth)) ctx.fail(m["plugins"][i], "models.plugins", "plugin '" + pth.string() + "' not found");
+        if (!fs::exists(pth))
+          ctx.fail(m["plugins"][i], "models.plugins", "plugin '" + pth.string() + "' not found");
         try {
           registry.loadPlugin(pth.string());
         } catch (const std::exception& e) {
@@ -441,24 +552,30 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
       check(m["drag"], "models.drag", [&] { registry.makeDrag(sc.drag->law, sc.drag->params); });
     }
     if (m["forces"]) {
-      if (!m["forces"].IsSequence()) ctx.fail(m["forces"], "models.forces", "expected a list like [ { law: pressure_gradient } ]");
+      if (!m["forces"].IsSequence())
+        ctx.fail(m["forces"], "models.forces",
+                 "expected a list like [ { law: pressure_gradient } ]");
       for (std::size_t i = 0; i < m["forces"].size(); ++i) {
         const std::string key = "models.forces[" + std::to_string(i) + "]";
         sc.forces.push_back(modelSpec(m["forces"][i], key, "force model", "law", ctx));
-        check(m["forces"][i], key, [&] { registry.makeForce(sc.forces.back().law, sc.forces.back().params); });
+        check(m["forces"][i], key,
+              [&] { registry.makeForce(sc.forces.back().law, sc.forces.back().params); });
       }
     }
     if (m["mass_transfer"]) {
-      sc.mass_transfer = modelSpec(m["mass_transfer"], "models.mass_transfer", "mass transfer law", "law", ctx);
+      sc.mass_transfer =
+          modelSpec(m["mass_transfer"], "models.mass_transfer", "mass transfer law", "law", ctx);
       check(m["mass_transfer"], "models.mass_transfer",
             [&] { registry.makeMassTransfer(sc.mass_transfer->law, sc.mass_transfer->params); });
     }
     if (m["coating_zone"]) {
       if (!sc.mass_transfer) {
         ctx.fail(m["coating_zone"], "models.coating_zone",
-                 "a coating zone without models.mass_transfer coats nothing; add a mass_transfer law or remove the zone");
+                 "a coating zone without models.mass_transfer coats nothing; add a mass_transfer "
+                 "law or remove the zone");
       }
-      sc.coating_zone = modelSpec(m["coating_zone"], "models.coating_zone", "coating zone", "shape", ctx);
+      sc.coating_zone =
+          modelSpec(m["coating_zone"], "models.coating_zone", "coating zone", "shape", ctx);
       check(m["coating_zone"], "models.coating_zone",
             [&] { registry.makeZone(sc.coating_zone->law, sc.coating_zone->params); });
     }
@@ -466,10 +583,12 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
   const bool needs_fluid = sc.drag || !sc.forces.empty() || sc.mass_transfer;
   if (needs_fluid && !sc.participants.count("fluid")) {
     ctx.failTop("participants.fluid",
-                "missing, but the models need fluid fields (drag, forces or mass transfer); add a fluid participant (adapter: openfoam or analytic-fluid)");
+                "missing, but the models need fluid fields (drag, forces or mass transfer); add a "
+                "fluid participant (adapter: openfoam or analytic-fluid)");
   }
 
-  // ---- output, transport, checks ------------------------------------------------------------------
+  // ---- output, transport, checks
+  // ------------------------------------------------------------------
   sc.output_folder = fs::current_path() / "runs" / sc.name;
   if (const YAML::Node o = root["output"]) {
     ctx.allowOnly(o, "output", {"folder", "interval"});
@@ -479,7 +598,9 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
     }
     if (o["interval"]) {
       sc.output_interval = ctx.number(o["interval"], "output.interval");
-      if (sc.output_interval < 0) ctx.fail(o["interval"], "output.interval", "must be >= 0 seconds (0 = every coupling step)");
+      if (sc.output_interval < 0)
+        ctx.fail(o["interval"], "output.interval",
+                 "must be >= 0 seconds (0 = every coupling step)");
     }
   }
   if (const YAML::Node t = root["transport"]) {
@@ -491,23 +612,34 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
         ctx.fail(t, "transport", "endpoint '" + ep + "' must start with ipc:// or tcp://");
       }
     }
-    if (t["heartbeat_timeout"]) sc.heartbeat_timeout = ctx.positive(t["heartbeat_timeout"], "transport.heartbeat_timeout", "(seconds)");
-    if (t["handshake_timeout"]) sc.handshake_timeout = ctx.positive(t["handshake_timeout"], "transport.handshake_timeout", "(seconds)");
+    if (t["heartbeat_timeout"])
+      sc.heartbeat_timeout =
+          ctx.positive(t["heartbeat_timeout"], "transport.heartbeat_timeout", "(seconds)");
+    if (t["handshake_timeout"])
+      sc.handshake_timeout =
+          ctx.positive(t["handshake_timeout"], "transport.handshake_timeout", "(seconds)");
   }
   if (const YAML::Node c = root["checks"]) {
-    ctx.allowOnly(c, "checks", {"stability", "max_particle_speed", "mass_balance_tolerance", "max_courant"});
+    ctx.allowOnly(c, "checks",
+                  {"stability", "max_particle_speed", "mass_balance_tolerance", "max_courant"});
     if (c["max_courant"]) sc.max_courant = ctx.positive(c["max_courant"], "checks.max_courant", "");
     if (c["stability"]) {
       sc.stability = ctx.text(c["stability"], "checks.stability");
       if (sc.stability != "refuse" && sc.stability != "warn") {
-        ctx.fail(c["stability"], "checks.stability", "expected 'refuse' (stop unstable settings) or 'warn'");
+        ctx.fail(c["stability"], "checks.stability",
+                 "expected 'refuse' (stop unstable settings) or 'warn'");
       }
     }
-    if (c["max_particle_speed"]) sc.max_particle_speed = ctx.positive(c["max_particle_speed"], "checks.max_particle_speed", "(m/s)");
-    if (c["mass_balance_tolerance"]) sc.mass_balance_tolerance = ctx.positive(c["mass_balance_tolerance"], "checks.mass_balance_tolerance", "");
+    if (c["max_particle_speed"])
+      sc.max_particle_speed =
+          ctx.positive(c["max_particle_speed"], "checks.max_particle_speed", "(m/s)");
+    if (c["mass_balance_tolerance"])
+      sc.mass_balance_tolerance =
+          ctx.positive(c["mass_balance_tolerance"], "checks.mass_balance_tolerance", "");
   }
   if (const YAML::Node obs = root["observables"]) {
-    if (!obs.IsMap()) ctx.fail(obs, "observables", "expected a map name: { quantity: ..., reference: ... }");
+    if (!obs.IsMap())
+      ctx.fail(obs, "observables", "expected a map name: { quantity: ..., reference: ... }");
     for (const auto& kv : obs) {
       const std::string name = kv.first.as<std::string>();
       const std::string key = "observables." + name;
@@ -529,16 +661,19 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
   return sc;
 }
 
-Scenario loadScenario(const fs::path& file, const std::vector<std::string>& sets) {
+Scenario loadScenario(const fs::path& file, const std::vector<std::string>& sets,
+                      const std::vector<std::string>& unsets) {
   fs::path path = file;
   if (fs::is_directory(path)) path /= "scenario.yaml";
   std::ifstream in(path);
   if (!in) {
-    throw ScenarioError(path.string() + ": cannot open the scenario file (does it exist? a scenario folder needs a scenario.yaml)");
+    throw ScenarioError(
+        path.string() +
+        ": cannot open the scenario file (does it exist? a scenario folder needs a scenario.yaml)");
   }
   std::stringstream ss;
   ss << in.rdbuf();
-  return parseScenario(ss.str(), path, sets);
+  return parseScenario(ss.str(), path, sets, unsets);
 }
 
 }  // namespace cosim::orchestrator

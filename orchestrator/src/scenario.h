@@ -26,16 +26,16 @@ class ScenarioError : public std::runtime_error {
 };
 
 struct ParticipantSpec {
-  std::string name;                 // key under participants: "fluid" or "particles"
+  std::string name;  // key under participants: "fluid" or "particles"
   wire::Role role = wire::ROLE_UNSPECIFIED;
-  std::string adapter;              // analytic-fluid | openfoam | free-particles | liggghts | custom
-  std::string command;              // executable (resolved from adapter unless given)
-  std::vector<std::string> args;    // extra arguments for the executable
-  std::string launch = "local";     // local: cosim starts it; external: it connects by itself
-  int mpi = 1;                      // ranks; > 1 runs it under mpirun -np
-  std::filesystem::path files;      // case folder to copy and template into the run folder
-  double timeout = 300.0;           // seconds one step may take before it counts as hung
-  YAML::Node options;               // adapter-specific, sent verbatim in Welcome.config_yaml
+  std::string adapter;            // analytic-fluid | openfoam | free-particles | liggghts | custom
+  std::string command;            // executable (resolved from adapter unless given)
+  std::vector<std::string> args;  // extra arguments for the executable
+  std::string launch = "local";   // local: cosim starts it; external: it connects by itself
+  int mpi = 1;                    // ranks; > 1 runs it under mpirun -np
+  std::filesystem::path files;    // case folder to copy and template into the run folder
+  double timeout = 300.0;         // seconds one step may take before it counts as hung
+  YAML::Node options;             // adapter-specific, sent verbatim in Welcome.config_yaml
 };
 
 struct ModelSpec {
@@ -53,9 +53,9 @@ struct Scenario {
 
   std::map<std::string, ParticipantSpec> participants;  // as written (may include unused ones)
 
-  double dt = 0.0;              // coupling interval = CFD time step [s]
-  unsigned dem_steps = 1;       // DEM steps per coupling interval
-  double end_time = 0.0;        // [s]
+  double dt = 0.0;         // coupling interval = CFD time step [s]
+  unsigned dem_steps = 1;  // DEM steps per coupling interval
+  double end_time = 0.0;   // [s]
   double start_time = 0.0;
 
   models::SceneConstants constants;
@@ -73,16 +73,16 @@ struct Scenario {
   std::vector<std::filesystem::path> plugins;
 
   std::filesystem::path output_folder;  // run folder
-  double output_interval = 0.0;          // particle snapshots [s]; 0 = every step
+  double output_interval = 0.0;         // particle snapshots [s]; 0 = every step
 
-  std::string bind_endpoint;     // empty: ipc in /tmp
-  std::string connect_endpoint;  // what participants connect to (defaults to bind)
+  std::string bind_endpoint;        // empty: ipc in /tmp
+  std::string connect_endpoint;     // what participants connect to (defaults to bind)
   double heartbeat_timeout = 10.0;  // s without any sign of life from a participant
   double handshake_timeout = 60.0;  // s for every participant to connect and say Hello
 
   // Stability checks: "refuse" (default) stops unstable settings; "warn" only reports.
   std::string stability = "refuse";
-  double max_particle_speed = 50.0;  // m/s; a faster particle stops the run
+  double max_particle_speed = 50.0;      // m/s; a faster particle stops the run
   double mass_balance_tolerance = 1e-4;  // relative drift that stops the run (coating scenes)
   double max_courant = 5.0;              // fluid Courant number that stops the run
 
@@ -91,12 +91,16 @@ struct Scenario {
   YAML::Node resolved;  // the scenario after templating and --set, as run
 };
 
-// Loads and validates. `sets` are "key.path=value" overrides (a bare name sets a parameter).
-Scenario loadScenario(const std::filesystem::path& file, const std::vector<std::string>& sets = {});
+// Loads and validates. `sets` are "key.path=value" overrides (a bare name sets a parameter; a
+// YAML list or map as value replaces the whole node); `unsets` are "key.path" names of nodes to
+// remove, applied before the sets. Errors in overridden values name the override.
+Scenario loadScenario(const std::filesystem::path& file, const std::vector<std::string>& sets = {},
+                      const std::vector<std::string>& unsets = {});
 
 // Same from text (for tests); `origin` is the name used in messages.
 Scenario parseScenario(const std::string& text, const std::filesystem::path& origin,
-                       const std::vector<std::string>& sets = {});
+                       const std::vector<std::string>& sets = {},
+                       const std::vector<std::string>& unsets = {});
 
 // Adapter name -> default executable name and role.
 struct AdapterInfo {

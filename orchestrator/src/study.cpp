@@ -164,7 +164,7 @@ int runStudy(const StudyOptions& opt) {
   if (opt.vary.empty())
     throw std::runtime_error("cosim study needs at least one --vary key=v1,v2,...");
   // Validate the base scenario first (clear errors before any run starts).
-  Scenario base = loadScenario(opt.scenario, opt.sets);
+  Scenario base = loadScenario(opt.scenario, opt.sets, opt.unsets);
   if (base.observables.empty()) {
     throw std::runtime_error(
         base.file.string() +
@@ -198,7 +198,7 @@ int runStudy(const StudyOptions& opt) {
     sets.insert(sets.end(), v.sets.begin(), v.sets.end());
     if (!opt.quiet)
       std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
-    Scenario sc = loadScenario(opt.scenario, sets);
+    Scenario sc = loadScenario(opt.scenario, sets, opt.unsets);
     if (!opt.rerun && reuseCompleted(v.folder, sc, v)) {
       if (!opt.quiet) {
         std::cout << "study:   done before (" << v.folder.string() << "): wall " << fmt(v.wall)

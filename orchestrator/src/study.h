@@ -17,7 +17,8 @@ namespace cosim::orchestrator {
 
 struct StudyOptions {
   std::filesystem::path scenario;
-  std::vector<std::string> sets;                                        // fixed overrides
+  std::vector<std::string> sets;                                       // fixed overrides
+  std::vector<std::string> unsets;                                     // nodes removed
   std::vector<std::pair<std::string, std::vector<std::string>>> vary;  // key -> values
   std::filesystem::path output;                                        // study folder
   int finest = -1;  // variant used as reference where no analytic one exists; -1: the slowest

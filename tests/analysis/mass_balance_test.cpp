@@ -22,7 +22,10 @@ TEST(MassBalance, FromCumulativeTimeSeriesWithInitialRow) {
   ts.columns = {"time", "precursor_in", "precursor_out", "precursor_held", "precursor_removed", "coated_mass"};
   // Initial state: 1 mg held, 0.5 mg already coated. Three steps of 2 mg in and 0.5 mg out;
   // held grows 0.5 mg per step, so 1 mg per step is removed; the credit lags one step
-  // (0, 1, 2 mg credited) and a final row after the last credit brings it to 3 mg.
+  // (0, 1, 2 mg credited) and a final row after the last credit brings it to 3 mg. (The layout
+  // of run folders written before each row held the credit of its own step; the report still
+  // reads them. Today's rows have coated_mass = precursor_removed, see the orchestrator's
+  // EndToEnd.SnapshotAndRowAtTimeTHoldTheCoatingOfEveryStepUpToT.)
   ts.values = {{0, 1, 2, 3, 3},
                {0, 2e-6, 4e-6, 6e-6, 6e-6},
                {0, 0.5e-6, 1.0e-6, 1.5e-6, 1.5e-6},

@@ -3,9 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
+#include "cosim/models/registry.h"
 #include "expression.h"
 #include "plan.h"
 
@@ -28,8 +30,9 @@ models:
   drag: { law: stokes }
 )";
 
-Scenario parse(const std::string& text, const std::vector<std::string>& sets = {}) {
-  return parseScenario(text, fs::temp_directory_path() / "bad.yaml", sets);
+Scenario parse(const std::string& text, const std::vector<std::string>& sets = {},
+               const std::vector<std::string>& unsets = {}) {
+  return parseScenario(text, fs::temp_directory_path() / "bad.yaml", sets, unsets);
 }
 
 // Replaces the first occurrence of `from` in the good scenario.
@@ -42,9 +45,10 @@ std::string mutate(const std::string& from, const std::string& to) {
 }
 
 void expectError(const std::string& text, const std::vector<std::string>& fragments,
-                 const std::vector<std::string>& sets = {}) {
+                 const std::vector<std::string>& sets = {},
+                 const std::vector<std::string>& unsets = {}) {
   try {
-    parse(text, sets);
+    parse(text, sets, unsets);
     ADD_FAILURE() << "accepted:\n" << text;
   } catch (const ScenarioError& e) {
     const std::string msg = e.what();
@@ -71,6 +75,59 @@ TEST(Scenario, SetOverridesParametersAndKeys) {
   Scenario sc = parse(kGood, {"flow_lpm=100", "coupling.end_time=0.02"});
   EXPECT_NEAR(sc.parameters.at("u"), 100.0 / 60000.0 / 0.01, 1e-15);
   EXPECT_DOUBLE_EQ(sc.end_time, 0.02);
+}
+
+// kGood with coating: a box zone of two keys (min, max) that a cylinder does not take.
+const std::string kZoned = std::string(kGood) +
+                           "  mass_transfer: { law: ranz_marshall }\n"
+                           "  coating_zone: { shape: box, min: [-1, -1, 0], max: [1, 1, 0.025] }\n";
+const char* kCylinder =
+    "models.coating_zone={shape: cylinder, base: [0, 0, 0.004], axis: [0, 0, 1], length: 0.03, "
+    "radius: 0.01}";
+
+// The keys of the resolved coating zone, sorted.
+std::vector<std::string> zoneKeys(const Scenario& sc) {
+  std::vector<std::string> keys;
+  for (const auto& kv : sc.resolved["models"]["coating_zone"])
+    keys.push_back(kv.first.as<std::string>());
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+TEST(Scenario, SetWithAMapReplacesTheWholeNode) {
+  Scenario sc = parse(kZoned, {kCylinder});
+  ASSERT_TRUE(sc.coating_zone);
+  EXPECT_EQ(sc.coating_zone->law, "cylinder");
+  EXPECT_EQ(zoneKeys(sc), (std::vector<std::string>{"axis", "base", "length", "radius", "shape"}));
+  EXPECT_EQ(sc.resolved["models"]["coating_zone"]["radius"].as<double>(), 0.01);
+  EXPECT_EQ(sc.resolved["models"]["coating_zone"]["base"][2].as<double>(), 0.004);
+  // The zone is built: a point on the axis 1 cm above the base is inside, one beyond the radius
+  // is not.
+  auto zone =
+      cosim::models::Registry::instance().makeZone(sc.coating_zone->law, sc.coating_zone->params);
+  const double in[3] = {0, 0, 0.014}, out[3] = {0.011, 0, 0.014};
+  EXPECT_TRUE(zone->contains(in));
+  EXPECT_FALSE(zone->contains(out));
+  // A list value replaces a list, and the rest of the scene is untouched.
+  Scenario sc2 = parse(kZoned, {"models.coating_zone.max=[1, 1, 0.05]"});
+  EXPECT_EQ(sc2.resolved["models"]["coating_zone"]["max"][2].as<double>(), 0.05);
+  EXPECT_EQ(zoneKeys(sc2), (std::vector<std::string>{"max", "min", "shape"}));
+}
+
+TEST(Scenario, UnsetRemovesANodeBeforeTheSetsRebuildIt) {
+  Scenario none = parse(kZoned, {}, {"models.coating_zone"});
+  EXPECT_FALSE(none.coating_zone);  // coat everywhere
+  EXPECT_FALSE(none.resolved["models"]["coating_zone"]);
+  Scenario sc =
+      parse(kZoned,
+            {"models.coating_zone.shape=sphere", "models.coating_zone.center=[0, 0, 0.01]",
+             "models.coating_zone.radius=0.005"},
+            {"models.coating_zone"});
+  ASSERT_TRUE(sc.coating_zone);
+  EXPECT_EQ(sc.coating_zone->law, "sphere");
+  EXPECT_EQ(zoneKeys(sc), (std::vector<std::string>{"center", "radius", "shape"}));
+  // A parameter by its bare name, as for --set.
+  EXPECT_FALSE(parse(kGood, {}, {"d"}).parameters.count("d"));
 }
 
 TEST(Scenario, PlanLeavesOutWhatTheSceneDoesNotNeed) {
@@ -167,6 +224,51 @@ TEST(ScenarioErrors, MissingFilesFolder) {
 
 TEST(ScenarioErrors, SetOfUnknownParameter) {
   expectError(kGood, {"--set flowlpm=3", "no parameter 'flowlpm'"}, {"flowlpm=3"});
+}
+
+TEST(ScenarioErrors, SetOfOneKeyOfAZoneKeepsTheOldKeysAndNamesTheOverride) {
+  // The old box keys stay: the cylinder refuses them, and the message says the shape came from
+  // the command line.
+  expectError(kZoned,
+              {"bad.yaml:", "models.coating_zone", "unknown parameter 'max'",
+               "models.coating_zone.shape comes from the command line",
+               "--set models.coating_zone.shape=cylinder"},
+              {"models.coating_zone.shape=cylinder"});
+}
+
+TEST(ScenarioErrors, BadValueInAWholeNodeNamesTheCommandLineAndTheKey) {
+  const std::string set =
+      "models.coating_zone={shape: cylinder, base: [0, 0, 0.004], axis: [0, 0, 1], length: 0.03, "
+      "radius: -0.01}";
+  try {
+    parse(kZoned, {set});
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    // "<file>: --set <as given>: <key>: <what>", no line of the file (the value is not in it)
+    EXPECT_NE(msg.find("bad.yaml: --set " + set + ": models.coating_zone: "), std::string::npos)
+        << msg;
+    EXPECT_NE(msg.find("radius"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("bad.yaml:1"), std::string::npos) << msg;
+  }
+  expectError(
+      kZoned,
+      {"--set models.coating_zone={shape: cylinder, radius: 0.01}", "models.coating_zone", "base"},
+      {"models.coating_zone={shape: cylinder, radius: 0.01}"});
+  expectError(kZoned, {"--set models.coating_zone={shape: cylinder", "not valid YAML"},
+              {"models.coating_zone={shape: cylinder"});
+  expectError(kGood, {"--set coupling={dt: 1.0e-4}", "coupling.end_time", "missing"},
+              {"coupling={dt: 1.0e-4}"});
+}
+
+TEST(ScenarioErrors, UnsetOfAMissingOrRequiredKey) {
+  expectError(kZoned, {"--unset models.coating_zon", "no 'models.coating_zon'"}, {},
+              {"models.coating_zon"});
+  expectError(kZoned, {"--unset nosuch", "no 'parameters.nosuch'"}, {}, {"nosuch"});
+  expectError(kZoned, {"--unset models.drag.law.x", "no 'models.drag.law' section"}, {},
+              {"models.drag.law.x"});
+  expectError(kGood, {"--unset coupling.dt", "coupling.dt", "missing"}, {}, {"coupling.dt"});
+  expectError(kGood, {"bad.yaml: --unset coupling: coupling: missing section"}, {}, {"coupling"});
 }
 
 TEST(ScenarioErrors, EndTimeBeforeStart) {

@@ -75,14 +75,31 @@ def main():
     d, rho_p = 20e-6, 1000.0
     vt = (rho_p - rho_g) * g * d**2 / (18 * mu_g)
     tau = rho_p * d**2 / (18 * mu_g)
-    print(f"stokes: d={d} rho_p={rho_p}: v_t = {vt:.9e} m/s, Re = {rho_g*vt*d/mu_g:.4f}, tau = {tau:.4e} s")
-    for name, d, rho_p, t_end in (("re10", 180e-6, 1500.0, 0.6), ("re100", 600e-6, 1200.0, 1.2)):
+    t_end = 0.01  # stokes.yaml end_time
+    print(f"stokes: d={d} rho_p={rho_p}: v_t = {vt:.9e} m/s, Re = {rho_g*vt*d/mu_g:.4f}, tau = {tau:.4e} s, "
+          f"slip at t_end={t_end}: {vt * (1 - math.exp(-t_end / tau)):.9e}")
+    # stiff drag (stiff_drag_test.cpp): stokes.yaml with d = 1.8 um
+    d = 1.8e-6
+    print(f"stiff drag: d={d}: v_t = {(rho_p - rho_g) * g * d**2 / (18 * mu_g):.9e} m/s, "
+          f"tau = {rho_p * d**2 / (18 * mu_g):.4e} s")
+    # t_end: the end_time of scenario.yaml (0.5 s) and re100.yaml (1.2 s)
+    for name, d, rho_p, t_end in (("re10", 180e-6, 1500.0, 0.5), ("re100", 600e-6, 1200.0, 1.2)):
         w, Re = terminal_sn(d, rho_p)
         ws, z = slip_history_sn(d, rho_p, t_end)
         taul = rho_p * d**2 / (18 * mu_g * (1 + 0.15 * 1.687 * Re**0.687))
         print(f"{name}: d={d} rho_p={rho_p}: w_t = {w:.9e} m/s, Re_t = {Re:.4f}, tau_lin = {taul:.4f} s, "
               f"slip at t_end={t_end}: {ws:.9e} ({ws/w - 1:+.2e}), "
               f"distance travelled relative to the gas {z:.4f} m")
+
+    print("== 3. coating against Eq. 7 (scenarios/verify-coating) ==")
+    d, eps, slip, rho, mu, Sc, Y, t = 300e-6, 0.6, 0.5, 1.12, 1.8e-5, 1.0, 0.011, 0.05
+    Re = rho * eps * d * slip / mu
+    Sh = (7 - 10 * eps + 5 * eps**2) * (1 + 0.17 * Re**0.2 * Sc**(1 / 3)) + \
+        (1.33 - 2.31 * eps + 1.16 * eps**2) * Re**0.7 * Sc**(1 / 3)
+    Km = Sh * (mu / (rho * Sc)) / d
+    rate = Km * Y * rho * math.pi * d**2
+    print(f"Re = {Re:.6f}, Sh = {Sh:.10f}, K_m = {Km:.10f} m/s, dm/dt = {rate:.10e} kg/s, "
+          f"m({t} s) = {rate * t:.10e} kg per grain in the zone ({rate * t:.16e})")
 
 
 if __name__ == "__main__":
