@@ -8,7 +8,7 @@
 // one cubic cell of side Delta the steady response of the discretised gas momentum in that cell
 // is u_self = -G F with
 //
-//   G = 1 / ( eps mu Delta / c_v  +  eps rho |u_f| Delta^2 / c_a )
+//   G = 1 / ( eps_f mu Delta / c_v  +  eps rho |u_f| Delta^2 / c_a ),   eps_f = (1 + eps) / 2
 //
 //   c_v = (2/3) W_sc = 0.168487   viscous: W_sc = 0.2527310 is the Green's function of the
 //                                 7-point Laplacian at the source (Watson's integral / 6);
@@ -63,8 +63,13 @@ struct SelfDisturbance {
   static constexpr double kTolerance = 1e-13;         // ... until K changes less than this
 
   // G [s/kg]: cell-average gas velocity per unit force spread over a cubic cell of side Delta.
+  // eps: the cell's voidage. The viscous flux leaves through the faces with the face voidage,
+  // interpolated between the cell and its neighbours; the neighbours are taken free of solids
+  // ((1 + eps) / 2: the lone parcel, the only case where the correction is not faded away).
+  // The advective flux is the superficial mass flux eps rho |u_f| Delta^2 (u_f interstitial).
   static double response(double eps, double mu, double rho, double speed, double Delta) {
-    return 1.0 / (eps * mu * Delta / kViscous + eps * rho * speed * Delta * Delta / kAdvective);
+    const double eps_face = 0.5 * (1.0 + eps);
+    return 1.0 / (eps_face * mu * Delta / kViscous + eps * rho * speed * Delta * Delta / kAdvective);
   }
   // a = w K G_eff, G_eff = 1 / (1/G + K (1 - w) / w) (unbounded; the caller caps it).
   static double coupling(double K, double G, double w);
