@@ -17,7 +17,7 @@
 //                                 equally over 3 directions).
 //   c_a = 1                       advective: at high cell Reynolds number the momentum put
 //                                 into the cell leaves through its downstream face with the
-//                                 mass flux rho |u_f| Delta^2 (upwind balance).
+//                                 superficial mass flux eps rho |u_f| Delta^2 (upwind balance).
 //
 // The two are parallel momentum sinks (conductances add). With F = K (u_und - v) and
 // u_s = u_und - G F (a lone parcel),
@@ -27,7 +27,7 @@
 // and the force is F = K_eff (u_s - v): the correction is a factor on K, applied the same way
 // by both solvers (the fluid keeps K_eff implicit), so momentum stays conserved. K is
 // re-evaluated at the undisturbed slip (fixed point until K changes by < 1e-13, at most 50
-// passes; it contracts with the factor (dln K / dln w) a / (1 - a), 0.1-0.3 in practice).
+// passes; it contracts with the factor (dln K / dln |u - v|) a / (1 - a), 0.1-0.3 in practice).
 // a is bounded by kMaxSelfCoupling = 0.9 (K_eff at most 10 K): beyond it the estimate is
 // capped and the drag is under-corrected, never unstable or negative.
 //
@@ -43,8 +43,8 @@
 // A lone parcel gets the full correction (a = K G); in a packed cell (K G >> 1) a -> w^2/(1-w).
 //
 // The estimate is steady: it assumes the disturbance has built up (viscous time
-// rho Delta^2 / mu, advective Delta / |u_f|), which holds where the correction matters (cells of
-// a few diameters).
+// rho Delta^2 / mu with a t^-1/2 tail, advective Delta / |u_f|); until then it over-corrects
+// (measured in docs/verification.md, section 5). No per-parcel memory is kept.
 #pragma once
 
 #include <memory>
