@@ -1,5 +1,7 @@
 #include "cosim/models/registry.h"
 
+#include "cosim/models/drag/undisturbed_velocity.h"
+
 #include <dlfcn.h>
 
 #include <sstream>
@@ -42,8 +44,18 @@ std::unique_ptr<T> make(const M& m, const std::string& kind, const std::string& 
 }
 }  // namespace
 
+// `undisturbed_velocity` is handled here, for every law (built-in or plugin): the law itself
+// never sees the key.
 std::unique_ptr<DragLaw> Registry::makeDrag(const std::string& n, const Parameters& p) const {
-  return make<DragLaw>(drag_, "drag law", n, p);
+  const std::string key = "undisturbed_velocity";
+  if (!p.has(key)) return make<DragLaw>(drag_, "drag law", n, p);
+  const std::string choice = p.text(key);
+  auto law = make<DragLaw>(drag_, "drag law", n, p.without(key, p.owner()));
+  if (choice == "none") return law;
+  if (choice == "self_disturbance") return std::make_unique<UndisturbedVelocityDrag>(std::move(law));
+  std::string known;
+  for (const auto& k : undisturbedVelocityNames()) known += (known.empty() ? "" : ", ") + k;
+  throw ModelError(p.owner() + ": " + key + " '" + choice + "' is not known (known: " + known + ")");
 }
 std::unique_ptr<ForceModel> Registry::makeForce(const std::string& n, const Parameters& p) const {
   return make<ForceModel>(force_, "force model", n, p);

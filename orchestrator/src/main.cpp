@@ -6,6 +6,7 @@
 #include <iostream>
 #include <map>
 
+#include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 #include "coupler.h"
 #include "plan.h"
@@ -177,6 +178,8 @@ int main(int argc, char** argv) {
     if (*models) {
       auto& r = cosim::models::Registry::instance();
       std::cout << "drag laws: " << join(r.dragNames())
+                << "\nundisturbed gas velocity (models.drag.undisturbed_velocity): "
+                << join(cosim::models::undisturbedVelocityNames())
                 << "\nforce models: " << join(r.forceNames())
                 << "\nmass transfer laws: " << join(r.massTransferNames())
                 << "\ncoating zone shapes: " << join(r.zoneNames()) << "\n";

@@ -586,6 +586,14 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
                 "missing, but the models need fluid fields (drag, forces or mass transfer); add a "
                 "fluid participant (adapter: openfoam or analytic-fluid)");
   }
+  // The prescribed flow of analytic-fluid is never disturbed by the particles: there is no own
+  // wake to take out of its samples.
+  if (sc.drag && sc.participants.count("fluid") && sc.participants.at("fluid").adapter == "analytic-fluid" &&
+      sc.drag->params.text("undisturbed_velocity", "none") == "self_disturbance") {
+    ctx.fail(root["models"]["drag"], "models.drag.undisturbed_velocity",
+             "self_disturbance removes the particle's own disturbance of the gas it samples, but the "
+             "analytic-fluid's prescribed flow carries none (it is not two-way coupled); use 'none'");
+  }
 
   // ---- output, transport, checks
   // ------------------------------------------------------------------

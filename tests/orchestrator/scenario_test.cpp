@@ -197,6 +197,13 @@ TEST(ScenarioErrors, UnknownDragLaw) {
               {"models.drag", "unknown drag law 'stoke'", "stokes"});
 }
 
+TEST(ScenarioErrors, UndisturbedVelocityWithAPrescribedFlow) {
+  expectError(mutate("law: stokes", "law: stokes, undisturbed_velocity: self_disturbance"),
+              {"models.drag.undisturbed_velocity", "analytic-fluid", "not two-way coupled"});
+  expectError(mutate("law: stokes", "law: stokes, undisturbed_velocity: selfdisturbance"),
+              {"models.drag", "known: none, self_disturbance"});
+}
+
 TEST(ScenarioErrors, CoarseGrainingBelowOne) {
   expectError(std::string(kGood) + "constants: { cg: 0.5 }\n", {"constants.cg", ">= 1"});
 }

@@ -1,0 +1,96 @@
+// Undisturbed gas velocity at a parcel: removes the parcel's own disturbance ("self-induced
+// velocity", its wake in its own cell) from the sampled gas velocity before drag is evaluated.
+// Selected with `models.drag.undisturbed_velocity: self_disturbance` on any drag law (default
+// `none`); docs/models.md has the derivation, the choice and the limits.
+//
+// The gas the parcel samples is the average over the cells its volume was deposited to, and
+// that gas already carries the reaction -F of the parcel's own drag. For a force F spread over
+// one cubic cell of side Delta the steady response of the discretised gas momentum in that cell
+// is u_self = -G F with
+//
+//   G = 1 / ( eps_f mu Delta / c_v  +  eps rho |u_f| Delta^2 / c_a ),   eps_f = (1 + eps) / 2
+//
+//   c_v = (2/3) W_sc = 0.168487   viscous: W_sc = 0.2527310 is the Green's function of the
+//                                 7-point Laplacian at the source (Watson's integral / 6);
+//                                 the projection onto divergence-free fields keeps exactly 2/3
+//                                 of it on the cubic lattice (trace of I - kk/k^2 = 2, split
+//                                 equally over 3 directions).
+//   c_a = 1                       advective: at high cell Reynolds number the momentum put
+//                                 into the cell leaves through its downstream face with the
+//                                 superficial mass flux eps rho |u_f| Delta^2 (upwind balance).
+//
+// The two are parallel momentum sinks (conductances add). With F = K (u_und - v) and
+// u_s = u_und - G F (a lone parcel),
+//
+//   u_und - v = (u_s - v) / (1 - a),  a = K G,    so    K_eff = K(u_und) / (1 - a)
+//
+// and the force is F = K_eff (u_s - v): the correction is a factor on K, applied the same way
+// by both solvers (the fluid keeps K_eff implicit), so momentum stays conserved. K is
+// re-evaluated at the undisturbed slip (fixed point until K changes by < 1e-13, at most 50
+// passes; it contracts with the factor (dln K / dln |u - v|) a / (1 - a), 0.1-0.3 in practice).
+// a is bounded by kMaxSelfCoupling = 0.9 (K_eff at most 10 K): beyond it the estimate is
+// capped and the drag is under-corrected, never unstable or negative.
+//
+// Dense suspensions: voidage-dependent laws are defined on the cell-average gas velocity that
+// already contains the disturbance of every particle in the cell, and the other particles of
+// the cell resist the disturbance a parcel makes (their drag is a momentum sink in parallel with
+// the free gas). With w the parcel's share of its cell's solid volume,
+//
+//   w     = min(1, V_parcel / ((1 - eps) Delta^3))     (1 when the cell holds no other solid)
+//   K_o   = K (1 - w) / w                               (the others, as much drag per volume)
+//   G_eff = 1 / (1/G + K_o),   self-coupling  a = w K G_eff   (instead of K G)
+//
+// A lone parcel gets the full correction (a = K G); in a packed cell (K G >> 1) a -> w^2/(1-w).
+//
+// The estimate is steady: it assumes the disturbance has built up (viscous time
+// rho Delta^2 / mu with a t^-1/2 tail, advective Delta / |u_f|); until then it over-corrects
+// (measured in docs/verification.md, section 5). No per-parcel memory is kept.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cosim/models/model.h"
+
+namespace cosim::models {
+
+struct SelfDisturbance {
+  static constexpr double kViscous = 2.0 / 3.0 * 0.2527310;  // c_v = 0.168487
+  static constexpr double kAdvective = 1.0;           // c_a
+  static constexpr double kMaxSelfCoupling = 0.9;     // bound on a
+  static constexpr int kMaxPasses = 50;               // fixed-point passes for K(u_und) ...
+  static constexpr double kTolerance = 1e-13;         // ... until K changes less than this
+
+  // G [s/kg]: cell-average gas velocity per unit force spread over a cubic cell of side Delta.
+  // eps: the cell's voidage. The viscous flux leaves through the faces with the face voidage,
+  // interpolated between the cell and its neighbours; the neighbours are taken free of solids
+  // ((1 + eps) / 2: the lone parcel, the only case where the correction is not faded away).
+  // The advective flux is the superficial mass flux eps rho |u_f| Delta^2 (u_f interstitial).
+  static double response(double eps, double mu, double rho, double speed, double Delta) {
+    const double eps_face = 0.5 * (1.0 + eps);
+    return 1.0 / (eps_face * mu * Delta / kViscous + eps * rho * speed * Delta * Delta / kAdvective);
+  }
+  // a = w K G_eff, G_eff = 1 / (1/G + K (1 - w) / w) (unbounded; the caller caps it).
+  static double coupling(double K, double G, double w);
+  // w: the parcel's share of its cell's solid volume (1 for a lone parcel).
+  static double share(double parcel_radius, double voidage, double Delta);
+};
+
+// Wraps a drag law: K_eff = K(u_und) / (1 - a) (see above).
+class UndisturbedVelocityDrag final : public DragLaw {
+ public:
+  explicit UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner);
+  std::string name() const override { return inner_->name(); }
+  std::vector<std::string> requiredFields() const override;
+  void coefficients(const ParcelBatch& p, const SceneConstants& c, double* K) const override;
+  const DragLaw& inner() const { return *inner_; }
+
+ private:
+  std::unique_ptr<DragLaw> inner_;
+};
+
+// Names accepted by models.drag.undisturbed_velocity.
+std::vector<std::string> undisturbedVelocityNames();
+
+}  // namespace cosim::models

@@ -1,0 +1,151 @@
+// models.drag.undisturbed_velocity: self_disturbance (the parcel's own disturbance of the gas it
+// samples removed), against numbers computed by hand with python3 from the formulas of
+// docs/models.md (the script is in the comment of each test):
+//   G = 1 / (eps_f mu Delta / c_v + eps rho |u_f| Delta^2 / c_a), eps_f = (1 + eps)/2,
+//   c_v = (2/3) 0.2527310, c_a = 1
+//   w = min(1, V_parcel / ((1 - eps) Delta^3)),  K_eff = K(u_und) / (1 - w K G)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "cosim/models/drag/undisturbed_velocity.h"
+#include "cosim/models/registry.h"
+#include "support.h"
+
+namespace cosim::models::test {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// One parcel, gas (0, 0, u), parcel velocity (0, 0, v).
+Batch lone(double d, double Delta, double eps, double u, double v) {
+  Batch b;
+  b.add(eps, 0.0, d, 1.0, kRho, kMu, Delta);
+  b.fluid_velocity = {0.0, 0.0, u};
+  b.velocity = {0.0, 0.0, v};
+  return b;
+}
+
+std::unique_ptr<DragLaw> corrected(const std::string& law) {
+  Parameters p("models.drag");
+  p.setText("undisturbed_velocity", "self_disturbance");
+  return Registry::instance().makeDrag(law, p);
+}
+
+TEST(UndisturbedVelocity, ResponseCoefficientsAreTheLatticeGreensFunction) {
+  // c_v = (2/3) x Watson's simple-cubic Green's function at the origin, 1.516386/6 = 0.2527310
+  EXPECT_NEAR(SelfDisturbance::kViscous, 2.0 / 3.0 * 0.2527310, 1e-6);
+  // viscous limit |u_f| = 0: G = c_v / (eps_f mu Delta)
+  EXPECT_NEAR(SelfDisturbance::response(1.0, 1e-3, 1000.0, 0.0, 0.01), 0.168487 / 1e-5, 1e-6 / 1e-5);
+  // advective limit: G -> c_a / (eps rho |u| Delta^2)
+  EXPECT_NEAR(SelfDisturbance::response(1.0, 1e-12, 1.0, 2.0, 0.1) * 2.0 * 0.01, 1.0, 1e-9);
+}
+
+TEST(UndisturbedVelocity, StokesSphereAloneInACellOfTwoDiameters) {
+  // python3: d = 20e-6, Delta = 40e-6, eps = 1 - pi/6 d^3/Delta^3 = 0.934550153050213,
+  // u = 0.01, K = 3 pi mu d = 3.39292006587698e-09, G = 240951001.031883,
+  // K G = 0.81752748629422, K_eff = 1.85941432875076e-08 (5.5 x Stokes)
+  const double d = 20e-6, Delta = 40e-6;
+  const double eps = 1.0 - kPi / 6.0 * std::pow(d / Delta, 3);
+  Batch b = lone(d, Delta, eps, 0.01, 0.0);
+  EXPECT_NEAR(SelfDisturbance::share(d / 2, eps, Delta), 1.0, 1e-12);  // alone in its cell
+  double K = 0.0;
+  corrected("stokes")->coefficients(b.view(), constants(1.0), &K);
+  EXPECT_NEAR(K, 1.85941432875076e-08, 1e-12 * 1.9e-8);
+}
+
+TEST(UndisturbedVelocity, SchillerNaumannIsEvaluatedAtTheUndisturbedSlip) {
+  // python3: d = 180e-6, Delta = 540e-6 (3 d), eps = 0.980607452755619, u = 0.86, v = 0.01,
+  // G = 3007041.53266783; K at the sampled slip 5.17877114061519e-08, at the undisturbed slip
+  // (fixed point) 5.4572654609761e-08, K G = 0.164102238959488, K_eff = 6.52862791997789e-08
+  const double d = 180e-6, Delta = 540e-6;
+  const double eps = 1.0 - kPi / 6.0 * std::pow(d / Delta, 3);
+  Batch b = lone(d, Delta, eps, 0.86, 0.01);
+  double K = 0.0, K_plain = 0.0;
+  Registry::instance().makeDrag("schiller_naumann", Parameters("d"))->coefficients(b.view(), constants(1.0), &K_plain);
+  EXPECT_NEAR(K_plain, 5.17877114061519e-08, 1e-11 * 5.2e-8);
+  corrected("schiller_naumann")->coefficients(b.view(), constants(1.0), &K);
+  EXPECT_NEAR(K, 6.52862791997789e-08, 1e-11 * 6.5e-8);
+}
+
+TEST(UndisturbedVelocity, FadesWithTheParcelsShareOfADenseCell) {
+  // python3: Stokes, d = 300e-6 in a 4 mm cell at eps = 0.5, u = 0.3: w = 0.000441786466911065,
+  // G = 332391.68206397, a = w K / (1/G + K (1 - w)/w) = 1.90289846455796e-07,
+  // K_eff / K = 1.00000019028988
+  const double d = 300e-6, Delta = 4e-3;
+  EXPECT_NEAR(SelfDisturbance::share(d / 2, 0.5, Delta), 0.000441786466911065, 1e-15);
+  Batch b = lone(d, Delta, 0.5, 0.3, 0.0);
+  double K = 0.0;
+  corrected("stokes")->coefficients(b.view(), constants(1.0), &K);
+  EXPECT_NEAR(K / (3.0 * kPi * kMu * d), 1.00000019028988, 1e-13);
+}
+
+TEST(UndisturbedVelocity, InAPackedCellTheOthersDragTakesTheDisturbance) {
+  // The fluidized-bed cell: 1.5 mm parcels in 4 mm cells at eps 0.4, gas 0.05 m/s, K = 1e-4 kg/s
+  // (Beetstra-sized): K G = 152.1 but w = 0.0460194236365692 and the other parcels' drag gives
+  // a = 0.00221924416231722 (-> w^2/(1 - w) = 0.00221994808313081 for K G -> infinity).
+  const double d = 1.5e-3, Delta = 4e-3;
+  const double w = SelfDisturbance::share(d / 2, 0.4, Delta);
+  EXPECT_NEAR(w, 0.0460194236365692, 1e-14);
+  const double G = SelfDisturbance::response(0.4, kMu, kRho, 0.05, Delta);
+  EXPECT_NEAR(1e-4 * G, 152.083788425505, 1e-9);
+  EXPECT_NEAR(SelfDisturbance::coupling(1e-4, G, w), 0.00221924416231722, 1e-15);
+}
+
+TEST(UndisturbedVelocity, SelfCouplingIsBoundedAtPointNine) {
+  // A 1 mm Stokes sphere in a cell just larger than itself, gas at rest: K G = 3 pi c_v d / Delta
+  // / eps >> 1; capped at 0.9, so K_eff = 10 K exactly.
+  const double d = 1e-3, Delta = 1.05e-3;
+  const double eps = 1.0 - kPi / 6.0 * std::pow(d / Delta, 3);
+  Batch b = lone(d, Delta, eps, 0.0, -0.01);
+  double K = 0.0;
+  corrected("stokes")->coefficients(b.view(), constants(1.0), &K);
+  EXPECT_NEAR(K / (3.0 * kPi * kMu * d), 10.0, 1e-12);
+}
+
+TEST(UndisturbedVelocity, NoneIsTheLawItselfAndLostParcelsGetNoDrag) {
+  const double d = 180e-6, Delta = 540e-6;
+  Batch b = lone(d, Delta, 0.98, 0.86, 0.01);
+  Parameters none("models.drag");
+  none.setText("undisturbed_velocity", "none");
+  double K_none = 0.0, K_plain = 0.0;
+  Registry::instance().makeDrag("schiller_naumann", none)->coefficients(b.view(), constants(1.0), &K_none);
+  Registry::instance().makeDrag("schiller_naumann", Parameters("d"))->coefficients(b.view(), constants(1.0), &K_plain);
+  EXPECT_EQ(K_none, K_plain);
+
+  const std::vector<char> lost = {1};
+  ParcelBatch v = b.view();
+  v.lost = lost.data();
+  double K = 1.0;
+  corrected("schiller_naumann")->coefficients(v, constants(1.0), &K);
+  EXPECT_EQ(K, 0.0);
+}
+
+TEST(UndisturbedVelocity, DeclaresCellSizeAndRejectsUnknownChoices) {
+  auto law = corrected("stokes");
+  EXPECT_EQ(law->name(), "stokes");
+  const auto f = law->requiredFields();
+  for (const char* x : {"cell_size", "voidage", "fluid_density", "fluid_velocity"}) {
+    EXPECT_NE(std::find(f.begin(), f.end(), x), f.end()) << x;
+  }
+  Parameters bad("models.drag");
+  bad.setText("undisturbed_velocity", "selfdisturbance");
+  try {
+    Registry::instance().makeDrag("beetstra", bad);
+    FAIL() << "expected an error";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("known: none, self_disturbance"), std::string::npos) << e.what();
+  }
+  // the law's own parameters are still checked (the key is removed before the law sees it)
+  Parameters typo("models.drag");
+  typo.setText("undisturbed_velocity", "self_disturbance");
+  typo.set("swich_voidage", 0.8);
+  EXPECT_THROW(Registry::instance().makeDrag("gidaspow", typo), ModelError);
+}
+
+}  // namespace
+}  // namespace cosim::models::test
