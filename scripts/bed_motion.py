@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """How much a bed moves: the regime of a fluidized-bed run in numbers.
 
-    python3 scripts/bed_motion.py RUN [RUN ...] [--after T] [--zone-z Z]
+    python3 scripts/bed_motion.py RUN [RUN ...] [--after T] [--until T]
 
 For every run folder, from RUN/particles.h5 (snapshots) and RUN/timeseries.csv, over the
 snapshots at t >= --after (default: the first quarter of the run is skipped):
@@ -34,8 +34,10 @@ def snapshots(run):
     return out
 
 
-def row(run, after):
+def row(run, after, until=None):
     snaps = snapshots(run)
+    if until is not None:
+        snaps = [s for s in snaps if s[0] <= until + 1e-12]
     if len(snaps) < 2:
         sys.exit(f"bed_motion: {run} has fewer than two snapshots")
     t_end = snaps[-1][0]
@@ -68,7 +70,7 @@ def row(run, after):
     dp = []
     try:
         for r in csv.DictReader(open(f"{run}/timeseries.csv")):
-            if r.get("pressure_drop") and float(r["time"]) >= t_after:
+            if r.get("pressure_drop") and t_after <= float(r["time"]) <= t_end + 1e-12:
                 v = float(r["pressure_drop"])
                 if np.isfinite(v):
                     dp.append(v)
@@ -95,8 +97,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--after", type=float, help="start of the window [s] (default: skip the first quarter)")
+    ap.add_argument("--until", type=float, help="end of the window [s] (default: the last snapshot)")
     a = ap.parse_args()
-    rows = [row(r, a.after) for r in a.runs]
+    rows = [row(r, a.after, a.until) for r in a.runs]
     keys = list(rows[0].keys())
     print("| " + " | ".join(keys) + " |")
     print("|" + "---|" * len(keys))

@@ -85,6 +85,7 @@ TEST(RadlSundaresan, FilteredBeetstraMatchesIndependentValues) {
                               2.0396379123687548e-05};
   Parameters p("beetstra");
   p.setText("filtered", "true");
+  p.setText("parcel_size_factor", "true");  // the reference values include exp(0.05 (1 - 5))
   p.set("particle_density", kRhoP);
   auto law = Registry::instance().makeDrag("beetstra", p);
   Batch b;
@@ -99,6 +100,7 @@ TEST(RadlSundaresan, FilteredBeetstraMatchesIndependentValues) {
 TEST(RadlSundaresan, TerminalVelocityFromReferenceOrLocalGas) {
   Parameters local("beetstra");
   local.setText("filtered", "true");
+  local.setText("parcel_size_factor", "true");  // k 0.05 in the reference values
   local.set("particle_density", kRhoP);
   Parameters ref = local;
   ref.set("reference_fluid_density", kRho);
