@@ -8,7 +8,8 @@ snapshots at t >= --after (default: the first quarter of the run is skipped):
   - parcel speed: median and 90th percentile, share of parcels faster than 5 cm/s;
   - bed height: 50th and 90th percentile of the parcel height, against the first snapshot;
   - mixing: share of parcels that were ever in the lower/upper half of the bed's initial height
-    and later in the other half (vertical exchange), share with coating > 0 at the end;
+    and later in the other half (vertical exchange), share with coating > 0 at the end of the
+    window and the CV of the coating mass there (population standard deviation / mean);
   - pressure drop: mean and relative standard deviation (bubbling beds swing, fixed beds do not).
 Prints one Markdown table, one row per run.
 """
@@ -63,10 +64,11 @@ def row(run, after, until=None):
     s = np.concatenate(speeds)
     h = np.concatenate(heights)
     last = snaps[-1][1]
-    coated = None
+    coated = cv = None
     if "coating_mass" in last:
         c = last["coating_mass"][:]
         coated = float(np.mean(c > 0))
+        cv = float(np.std(c) / np.mean(c)) if np.mean(c) > 0 else None
     dp = []
     try:
         for r in csv.DictReader(open(f"{run}/timeseries.csv")):
@@ -88,6 +90,7 @@ def row(run, after, until=None):
         "z90 at start [mm]": 1e3 * np.percentile(z0, 90),
         "crossed mid-height [%]": 100 * len(crossed) / len(ids0),
         "coated [%]": None if coated is None else 100 * coated,
+        "coating CV": cv,
         "dp mean [Pa]": float(dp.mean()) if dp.size else None,
         "dp std/mean [%]": 100 * float(dp.std() / dp.mean()) if dp.size else None,
     }

@@ -2,10 +2,13 @@
 """Side views of a fluidized bed run and its pressure drop over time.
 
     python3 scripts/plot_bed.py RUN_FOLDER [--times 0.3,0.4,0.5] [-o bed.png]
+    python3 scripts/plot_bed.py --compare RUN_A RUN_B ... --times 0.5 -o beds.png
 
 Reads RUN/particles.h5 (one group per snapshot) and RUN/timeseries.csv. Draws the parcels of the
 central slab |y| < slab (default: 1.5 parcel diameters) in the x-z plane at up to six snapshots,
 so bubbles show as empty regions in the bed, and the bed pressure drop against time below.
+With --compare, one side view per run at the first of --times (default: each run's last
+snapshot), side by side, each titled with its run folder's name.
 """
 import argparse
 import csv
@@ -19,13 +22,54 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 
+def side_view(ax, g, slab, title):
+    x = g["position"][:].reshape(-1, 3)
+    r = g["radius"][:]
+    d = 2 * float(np.median(r))
+    sel = np.abs(x[:, 1]) < slab * d
+    ax.scatter(x[sel, 0] * 1e3, x[sel, 2] * 1e3, s=(72 * d * 1e3 / 25.4 * 2.2) ** 2 / 4, c="tab:brown",
+               edgecolors="none")
+    ax.set_aspect("equal")
+    ax.set_xlim(x[:, 0].min() * 1e3 - d * 1e3, x[:, 0].max() * 1e3 + d * 1e3)
+    ax.set_ylim(0, max(np.percentile(x[:, 2], 99.9) * 1e3 * 1.3, 10))
+    ax.set_title(title, fontsize=9)
+    ax.set_xlabel("x [mm]")
+
+
+def compare(runs, times, slab, output):
+    fig, axes = plt.subplots(1, len(runs), figsize=(2.4 * len(runs), 6), squeeze=False)
+    for k, run in enumerate(runs):
+        try:
+            f = h5py.File(f"{run}/particles.h5", "r")
+        except OSError as e:
+            sys.exit(f"plot_bed: cannot read {run}/particles.h5: {e}")
+        snaps = sorted((float(g.attrs["time"]), g) for g in f["snapshots"].values() if int(g.attrs["count"]) > 0)
+        if not snaps:
+            sys.exit(f"plot_bed: {run}/particles.h5 has no snapshot with particles")
+        t, g = min(snaps, key=lambda s: abs(s[0] - times[0])) if times else snaps[-1]
+        side_view(axes[0, k], g, slab, f"{run.rstrip('/').split('/')[-1]}, t = {t:.2f} s")
+    axes[0, 0].set_ylabel("z [mm]")
+    fig.suptitle(f"parcels with |y| < {slab:g} d (side view)", fontsize=10)
+    fig.tight_layout()
+    out = output or "beds.png"
+    fig.savefig(out, dpi=110)
+    print(f"plot_bed: wrote {out}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("run")
+    ap.add_argument("run", nargs="+")
+    ap.add_argument("--compare", action="store_true", help="one side view per run, side by side")
     ap.add_argument("--times", help="snapshot times [s], comma separated (default: six across the run)")
     ap.add_argument("--slab", type=float, default=1.5, help="half thickness of the slab in parcel diameters")
     ap.add_argument("-o", "--output", help="PNG file (default RUN/bed.png)")
     a = ap.parse_args()
+    if a.compare:
+        compare(a.run, [float(t) for t in a.times.split(",")] if a.times else None, a.slab, a.output)
+        return
+    if len(a.run) != 1:
+        sys.exit("plot_bed: one run folder, or several with --compare")
+    a.run = a.run[0]
     try:
         f = h5py.File(f"{a.run}/particles.h5", "r")
     except OSError as e:
