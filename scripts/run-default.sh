@@ -5,7 +5,7 @@
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
-scene="${COSIM_SCENE:-scenarios/plasma-coating-bed}"   # the quick coating bed, about 7 minutes
+scene="${COSIM_SCENE:-scenarios/plasma-coating-bed}"   # the quick coating bed, about 9 minutes
 echo "== setup"; scripts/setup.sh
 echo "== build"; scripts/build.sh
 echo "== run $scene"
