@@ -91,19 +91,8 @@ def main():
     fig = plt.figure(figsize=(2.2 * len(chosen), 7.5))
     grid = fig.add_gridspec(2, len(chosen), height_ratios=[3, 1])
     for k, (t, name) in enumerate(chosen):
-        g = f["snapshots"][name]
-        x = g["position"][:].reshape(-1, 3)
-        r = g["radius"][:]
-        d = 2 * float(np.median(r))
-        sel = np.abs(x[:, 1]) < a.slab * d
         ax = fig.add_subplot(grid[0, k])
-        ax.scatter(x[sel, 0] * 1e3, x[sel, 2] * 1e3, s=(72 * d * 1e3 / 25.4 * 2.2) ** 2 / 4, c="tab:brown",
-                   edgecolors="none")
-        ax.set_aspect("equal")
-        ax.set_xlim(x[:, 0].min() * 1e3 - d * 1e3, x[:, 0].max() * 1e3 + d * 1e3)
-        ax.set_ylim(0, max(np.percentile(x[:, 2], 99.9) * 1e3 * 1.3, 10))
-        ax.set_title(f"t = {t:.3f} s", fontsize=9)
-        ax.set_xlabel("x [mm]")
+        side_view(ax, f["snapshots"][name], a.slab, f"t = {t:.3f} s")
         if k == 0:
             ax.set_ylabel("z [mm]")
     rows = list(csv.DictReader(open(f"{a.run}/timeseries.csv")))
