@@ -1,35 +1,34 @@
-// The run: prepares the run folder, starts the participants the scene needs, does the
-// handshake, runs the coupling loop (docs/design.md section 2, steps 1-5, particles and fluid
-// advancing at the same time), watches for crashes, silence, Ctrl-C and unphysical states,
-// records, and stops everything cleanly whatever happens.
+// The run: one coupling loop over the pieces that each own one concept (docs/design.md):
+//   Participants    start, handshake, send and await, watch, shut down (participants.h)
+//   CouplingScheme  how both solvers advance over an interval (coupling_scheme.h)
+//   CoatingLedger   coating owed and paid, the precursor balance (coating_ledger.h)
+//   RunRecord       run folder, time series, snapshots, summary (run_record.h)
+//   StepMonitor     what no physics allows, checked every step (stability.h)
+// Whatever happens (a crash, silence, Ctrl-C, an unphysical state), everything is stopped and
+// what was recorded so far stays, with a summary that says why the run ended.
 #pragma once
 
-#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <functional>
 #include <map>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
+#include "coating_ledger.h"
 #include "cosim/link/particle_data.h"
-#include "cosim/link/transport.h"
+#include "coupling_scheme.h"
 #include "observables.h"
+#include "participants.h"
 #include "plan.h"
-#include "processes.h"
+#include "progress.h"
+#include "run_log.h"
+#include "run_record.h"
 #include "scenario.h"
+#include "stability.h"
 
 namespace cosim::orchestrator {
-
-// Why a run stopped early: who, what, and the tail of its log.
-class RunFailure : public std::runtime_error {
- public:
-  RunFailure(std::string who, const std::string& what)
-      : std::runtime_error(what), participant(std::move(who)) {}
-  std::string participant;  // empty: the orchestrator itself
-};
 
 struct RunOptions {
   bool quiet = false;            // no progress line
@@ -48,9 +47,6 @@ struct RunResult {
   std::vector<ObservableValue> observables;
 };
 
-// Set by SIGINT/SIGTERM handlers; the loop stops cleanly at the next check.
-extern std::atomic<int> g_stop_signal;
-
 class Coupler {
  public:
   Coupler(Scenario scenario, RunOptions options);
@@ -62,45 +58,55 @@ class Coupler {
   std::function<void(double time, const link::ParticleData& state)> on_step;
 
  private:
-  struct Peer;
-  void prepareFolder();
-  void startParticipants();
-  void handshake();
-  std::map<std::string, wire::Envelope> await(
-      const std::map<std::string, wire::Envelope::BodyCase>& expected, double timeout_seconds);
-  void send(const std::string& peer, wire::Envelope& env);
-  void checkState(const link::ParticleData& state, const std::string& where);
-  void shutdown(bool clean);
-  // One time-series row: to timeseries.csv and to the in-memory series the observables read.
-  void appendRow(double time, const std::vector<double>& row);
-  // A particle snapshot of heldState(), every output.interval and when forced.
-  void record(double time, bool force);
-  // state_ with the pending coating credit added: what the particles hold at time_.
-  link::ParticleData heldState() const;
-  void writeSummary(const RunResult& r, const std::string& status);
+  // Step 0: the particles report their initial state; the checks before the run.
+  void reportInitialState();
+  // The five steps of one coupling interval (docs/design.md section 2).
+  void beginStep(std::uint64_t k);
+  link::ParticleData sampleFluid(std::vector<char>& lost);
+  CouplingTerms evaluateModels(const link::ParticleData& samples, const std::vector<char>& lost);
+  AdvanceReplies advanceBoth(const CouplingTerms& terms);
+  void takeParticleState(const wire::Advanced& particles);
+  void takeFluidResults(const wire::Advanced& fluid);
+  void creditAndRecord(const AdvanceReplies& replies, bool last);
+  // The coating owed after the last interval, paid with an Advance of zero length.
+  void flushCredit();
+  void finishRun();
+
+  void check(const link::ParticleData& state, const std::string& where) const;
+  void refuseOrWarn(const StabilityReport& report);
+  std::string describe(const RunFailure& failure) const;
+  analysis::Summary summarize(const RunResult& r, const std::string& status) const;
+
+  // Wall seconds per phase of the coupling step.
+  struct Phases {
+    std::map<std::string, double> seconds;
+    std::chrono::steady_clock::time_point tick;
+    void start() { tick = std::chrono::steady_clock::now(); }
+    void lap(const char* phase);
+  };
 
   Scenario sc_;
   RunOptions opt_;
+  RunLog log_;
   SceneModels models_;
   Plan plan_;
   std::string run_id_;
-  std::filesystem::path folder_;
-  std::unique_ptr<link::Hub> hub_;
-  std::map<std::string, std::unique_ptr<Peer>> peers_;
+  RunRecord record_;
+  Participants participants_;
+  std::unique_ptr<CouplingScheme> scheme_;
+  CoatingLedger ledger_;
+  StepMonitor monitor_;
+  Progress* progress_ = nullptr;
+
+  std::uint64_t nsteps_ = 0;
   std::uint64_t step_ = 0;
   double time_ = 0.0;
   link::ParticleData state_;
-  std::map<std::int64_t, double> pending_credit_;  // precursor removed, to credit as coating
+  std::size_t initial_count_ = 0;
+  bool initial_row_written_ = false;
   std::map<std::string, double> totals_;
-  std::map<std::string, double> wall_;
-  std::map<std::string, double> phase_;  // wall seconds per phase of the coupling step
-  std::vector<ObservableValue> observables_;
-  std::vector<double> series_time_;
-  std::map<std::string, std::vector<double>>
-      series_;  // compute seconds per participant (kept after shutdown)
-  double next_output_ = 0.0;
-  struct Recorders;
-  std::unique_ptr<Recorders> rec_;
+  Phases phases_;
+  std::chrono::steady_clock::time_point wall0_;
 };
 
 }  // namespace cosim::orchestrator

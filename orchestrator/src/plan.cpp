@@ -13,7 +13,8 @@ SceneModels makeModels(const Scenario& sc) {
   SceneModels m;
   if (sc.drag) m.drag = r.makeDrag(sc.drag->law, sc.drag->params);
   for (const auto& f : sc.forces) m.forces.push_back(r.makeForce(f.law, f.params));
-  if (sc.mass_transfer) m.mass_transfer = r.makeMassTransfer(sc.mass_transfer->law, sc.mass_transfer->params);
+  if (sc.mass_transfer)
+    m.mass_transfer = r.makeMassTransfer(sc.mass_transfer->law, sc.mass_transfer->params);
   if (sc.coating_zone) m.zone = r.makeZone(sc.coating_zone->law, sc.coating_zone->params);
   return m;
 }
@@ -46,19 +47,28 @@ Plan makePlan(const Scenario& sc, const SceneModels& m) {
 
   if (p.fluid) {
     static const std::vector<std::string> fluid_side = {
-        field::fluid_velocity, field::voidage, field::fluid_density, field::fluid_viscosity,
-        field::pressure_gradient, field::precursor_fraction, field::cell_size};
+        field::fluid_velocity,  field::voidage,           field::fluid_density,
+        field::fluid_viscosity, field::pressure_gradient, field::precursor_fraction,
+        field::cell_size};
     for (const auto& f : fluid_side) {
-      if (needed.count(f)) p.fluid_send.push_back(f);
+      if (needed.count(f)) p.sample_returns.push_back(f);
     }
-    if (p.coating) p.fluid_send.push_back(field::precursor_removed);
-    p.fluid_receive = {field::position, field::radius, field::velocity};
-    if (m.drag) p.fluid_receive.push_back(field::drag_coefficient);
-    if (p.coating) p.fluid_receive.push_back(field::transfer_coefficient);
+    if (p.coating) p.fluid_advance_returns.push_back(field::precursor_removed);
+    p.sample_state = {field::position, field::radius, field::velocity};
+    if (m.drag) p.fluid_advance_terms.push_back(field::drag_coefficient);
+    if (p.coating) p.fluid_advance_terms.push_back(field::transfer_coefficient);
+    p.fluid_send = p.sample_returns;
+    p.fluid_send.insert(p.fluid_send.end(), p.fluid_advance_returns.begin(),
+                        p.fluid_advance_returns.end());
+    p.fluid_receive = p.sample_state;
+    p.fluid_receive.insert(p.fluid_receive.end(), p.fluid_advance_terms.begin(),
+                           p.fluid_advance_terms.end());
   }
 
   if (!p.fluid && sc.participants.count("fluid")) {
-    p.notes.push_back("participant 'fluid' is configured but no model needs the fluid (no drag, forces or mass transfer): it is not started");
+    p.notes.push_back(
+        "participant 'fluid' is configured but no model needs the fluid (no drag, forces or mass "
+        "transfer): it is not started");
   }
   if (p.fluid && !p.coating) {
     p.notes.push_back("no mass transfer configured: no precursor species is solved or sent");

@@ -18,9 +18,14 @@ struct Plan {
   // particles participant
   std::vector<std::string> particles_send;     // state it reports
   std::vector<std::string> particles_receive;  // forcing it takes
-  // fluid participant
-  std::vector<std::string> fluid_send;     // samples at particles + results
-  std::vector<std::string> fluid_receive;  // particle data and exchange terms
+  // fluid participant, per message
+  std::vector<std::string> sample_state;           // Sample: particle state to locate and sample
+  std::vector<std::string> sample_returns;         // Samples: the gas at the parcels
+  std::vector<std::string> fluid_advance_terms;    // Advance: exchange terms
+  std::vector<std::string> fluid_advance_returns;  // Advanced: per-parcel results
+  // and over both messages (negotiated at the handshake)
+  std::vector<std::string> fluid_send;     // sample_returns + fluid_advance_returns
+  std::vector<std::string> fluid_receive;  // sample_state + fluid_advance_terms
   std::vector<std::string> notes;          // what was left out and why (shown to the user)
 };
 

@@ -200,4 +200,45 @@ void StepMonitor::checkMassBalance(double in, double out, double held, double re
   }
 }
 
+std::optional<std::string> checkParticleState(const link::ParticleData& s, const std::string& where,
+                                              double max_speed, std::uint64_t step, double time) {
+  std::ostringstream os;
+  for (const auto& name : s.names()) {
+    const auto& v = s.get(name);
+    const unsigned c = std::max(1U, field::components(name));
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      if (!std::isfinite(v[i])) {
+        os << where << ": " << name << " of particle " << s.ids[i / c] << " is " << v[i]
+           << " at step " << step << " (t = " << time << " s)";
+        return os.str();
+      }
+    }
+  }
+  if (s.has(field::velocity)) {
+    const auto& v = s.get(field::velocity);
+    for (std::size_t p = 0; p < s.size(); ++p) {
+      const double speed = std::sqrt(v[3 * p] * v[3 * p] + v[3 * p + 1] * v[3 * p + 1] +
+                                     v[3 * p + 2] * v[3 * p + 2]);
+      if (speed > max_speed) {
+        os << where << ": particle " << s.ids[p] << " moves at " << speed << " m/s at step " << step
+           << " (t = " << time << " s), above checks.max_particle_speed = " << max_speed
+           << " m/s: the run is unstable (DEM dt too large, or drag too stiff for the coupling "
+              "interval?)";
+        return os.str();
+      }
+    }
+  }
+  if (s.has(field::voidage)) {
+    const auto& e = s.get(field::voidage);
+    for (std::size_t p = 0; p < s.size(); ++p) {
+      if (e[p] <= 0.0 || e[p] > 1.0 + 1e-9) {
+        os << where << ": voidage " << e[p] << " at particle " << s.ids[p] << " (step " << step
+           << ") is outside (0, 1]";
+        return os.str();
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace cosim::orchestrator

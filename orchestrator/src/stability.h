@@ -41,6 +41,12 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
                                const link::ParticleData& samples,
                                const link::ParticleData& forcing);
 
+// A state that no physics allows: a non-finite value, a particle faster than
+// checks.max_particle_speed, a voidage outside (0, 1]. Returns what is wrong, where and when.
+std::optional<std::string> checkParticleState(const link::ParticleData& state,
+                                              const std::string& where, double max_speed,
+                                              std::uint64_t step, double time);
+
 // Per-step monitors that need memory across steps.
 class StepMonitor {
  public:

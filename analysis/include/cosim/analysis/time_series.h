@@ -10,6 +10,7 @@
 //   precursor_removed  [kg] precursor taken from the gas by the coating sink so far
 //   coated_mass        [kg] coating credited to the particles so far
 //   wall_seconds       [s]  wall-clock time since the run started
+//   pressure_drop      [Pa] inlet average minus outlet average pressure over the last step
 // Mass balance (mass_balance.h): in - out - (held - held at start) = coated_mass. A row with
 // in = out = 0 first is read as the initial state. Because the coating removed in step k is
 // credited to the particles in step k+1, the orchestrator writes one more row after its final
@@ -34,6 +35,7 @@ inline constexpr const char* precursor_removed = "precursor_removed";
 inline constexpr const char* coated_mass = "coated_mass";
 inline constexpr const char* particle_count = "particle_count";
 inline constexpr const char* wall_seconds = "wall_seconds";
+inline constexpr const char* pressure_drop = "pressure_drop";  // [Pa] inlets minus outlets
 }  // namespace column
 
 class TimeSeriesRecorder {

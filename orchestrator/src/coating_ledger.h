@@ -1,0 +1,64 @@
+// The coating ledger (docs/physics.md, "coating credit"): the fluid reports after each interval
+// how much precursor every parcel removed; that mass is owed to the parcel as coating and paid
+// with the next Advance (or a final flush of zero length). The ledger keeps what is owed, the
+// precursor balance of the run (in, out, held, removed, credited) and the credit that leaves with
+// deleted particles. Its whole state is in Balance and the pending map: saved and restored as is.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cosim/link/particle_data.h"
+
+namespace cosim::orchestrator {
+
+class CoatingLedger {
+ public:
+  struct Balance {
+    double in = 0.0;               // precursor into the gas through the inlets [kg]
+    double out = 0.0;              // through the outlets [kg]
+    double held = 0.0;             // in the gas now [kg]
+    double held_start = 0.0;       // in the gas at the start [kg]
+    double removed = 0.0;          // taken up by parcels (owed or paid) [kg]
+    double credited = 0.0;         // paid to parcels, or left with deleted ones [kg]
+    double left_domain = 0.0;      // owed to parcels that were deleted before payment [kg]
+    bool any_left = false;         // a deleted parcel took credit with it
+    double deleted_coating = 0.0;  // coating carried out by deleted parcels [kg]
+    double coating_initial = 0.0;  // coating on the parcels at the start [kg]
+  };
+
+  // The parcels' coating at the start.
+  void start(const link::ParticleData& initial);
+  // The fluid's per-parcel results of one interval: precursor_removed is now owed.
+  void owe(const link::ParticleData& fluid_results);
+  // The fluid's precursor balance after an interval (running totals for in/out, the current
+  // mass for held).
+  void addFlows(double in, double out);
+  void setHeld(double held) { b_.held = held; }
+  void setHeldAtStart(double held) { b_.held_start = held; }
+  // Pays what is owed to the parcels in `forcing` into its coating_increment field.
+  void pay(link::ParticleData& forcing);
+  // Parcels that left the domain take what they were owed with them.
+  void leave(const std::vector<std::int64_t>& deleted_ids, double deleted_coating_mass);
+  // Coating paid plus owed: what the parcels hold once the ledger is settled.
+  double creditedIncludingOwed() const;
+  // The particle state with what is owed added: what the parcels hold at this time.
+  link::ParticleData held(const link::ParticleData& state) const;
+  bool owesAnything() const { return !pending_.empty(); }
+
+  // The balance totals for the summary, with the coating now on `final_state`.
+  void totals(const link::ParticleData& final_state, std::map<std::string, double>& out) const;
+
+  const Balance& balance() const { return b_; }
+  const std::map<std::int64_t, double>& pending() const { return pending_; }
+  // Restores a saved state.
+  void restore(const Balance& b, std::map<std::int64_t, double> pending);
+
+ private:
+  Balance b_;
+  std::map<std::int64_t, double> pending_;  // parcel id -> precursor removed, not yet paid
+};
+
+}  // namespace cosim::orchestrator

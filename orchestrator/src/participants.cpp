@@ -1,0 +1,407 @@
+#include "participants.h"
+
+#include <unistd.h>
+
+#include <set>
+#include <thread>
+
+#include "case_files.h"
+#include "processes.h"
+
+namespace cosim::orchestrator {
+
+namespace fs = std::filesystem;
+
+std::atomic<int> g_stop_signal{0};
+
+using Clock = std::chrono::steady_clock;
+
+struct Participants::Peer {
+  ParticipantSpec spec;
+  std::optional<ChildProcess> process;
+  fs::path log;
+  fs::path workdir;
+  Clock::time_point last_seen = Clock::now();
+  bool connected = false;
+  std::vector<std::string> send, receive;
+};
+
+namespace {
+
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "(none)" : s;
+}
+
+const char* roleName(wire::Role r) { return r == wire::FLUID ? "fluid" : "particles"; }
+
+// A heartbeat socket's identity is the participant's name with "#hb" appended.
+bool stripHeartbeat(std::string& who) {
+  if (who.size() > 3 && who.compare(who.size() - 3, 3, "#hb") == 0) {
+    who.resize(who.size() - 3);
+    return true;
+  }
+  return false;
+}
+
+// The command line that starts a participant cosim launches itself.
+std::vector<std::string> commandLine(const std::string& name, const ParticipantSpec& spec,
+                                     const std::string& endpoint, const std::string& run_id) {
+  auto exe = findExecutable(spec.command);
+  if (!exe) {
+    throw RunFailure(name, "cannot find the executable '" + spec.command + "' of adapter '" +
+                               spec.adapter +
+                               "' (looked next to cosim and in PATH; was it built?)");
+  }
+  std::vector<std::string> argv;
+  if (spec.mpi > 1) {
+    auto mpirun = findExecutable("mpirun");
+    if (!mpirun)
+      throw RunFailure(
+          name, "mpi: " + std::to_string(spec.mpi) + " needs mpirun (apt-get install openmpi-bin)");
+    argv = {mpirun->string(), "-np", std::to_string(spec.mpi)};
+    if (geteuid() == 0) argv.push_back("--allow-run-as-root");
+    argv.push_back("--oversubscribe");
+  }
+  argv.push_back(exe->string());
+  for (const auto& a : {std::string("--endpoint"), endpoint, std::string("--name"), name,
+                        std::string("--run-id"), run_id}) {
+    argv.push_back(a);
+  }
+  for (const auto& a : spec.args) argv.push_back(a);
+  return argv;
+}
+
+}  // namespace
+
+Participants::Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log)
+    : sc_(sc), plan_(plan), run_id_(std::move(run_id)), log_(log) {}
+
+Participants::~Participants() { shutdown(false); }
+
+std::string Participants::connectEndpoint() const {
+  return sc_.connect_endpoint.empty() ? hub_->endpoint() : sc_.connect_endpoint;
+}
+
+void Participants::start(const fs::path& run_folder) {
+  std::string endpoint = sc_.bind_endpoint;
+  if (endpoint.empty()) endpoint = "ipc:///tmp/cosim-" + run_id_ + ".ipc";
+  hub_ = std::make_unique<link::Hub>(endpoint);
+  const std::string connect = connectEndpoint();
+
+  for (const auto& [name, spec] : sc_.participants) {
+    const bool used = name == "particles" || (name == "fluid" && plan_.fluid);
+    if (!used) continue;
+    auto peer = std::make_unique<Peer>();
+    peer->spec = spec;
+    peer->workdir = run_folder / name;
+    peer->log = run_folder / (name + ".log");
+    fs::create_directories(peer->workdir);
+    if (!spec.files.empty()) copyCaseFiles(spec.files, peer->workdir, sc_.parameters);
+    if (spec.launch == "local") {
+      const auto argv = commandLine(name, spec, connect, run_id_);
+      std::map<std::string, std::string> env;
+      if (spec.mpi > 1 && geteuid() == 0) {
+        env["OMPI_ALLOW_RUN_AS_ROOT"] = "1";
+        env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1";
+      }
+      try {
+        peer->process.emplace(argv, peer->workdir, peer->log, env);
+      } catch (const std::exception& e) {
+        throw RunFailure(name, e.what());
+      }
+      log_.file("started " + name + ": " + join(argv));
+    }
+    peers_[name] = std::move(peer);
+  }
+  log_.console("run folder " + run_folder.string());
+  for (const auto& n : plan_.notes) log_.console("note: " + n);
+  std::string who;
+  for (const auto& [n, p] : peers_) {
+    who += (who.empty() ? "" : ", ") + n + " (" + p->spec.adapter +
+           (p->spec.mpi > 1 ? ", " + std::to_string(p->spec.mpi) + " MPI ranks" : "") + ")";
+  }
+  log_.console("orchestrator at " + connect + "; participants: " + who);
+}
+
+void Participants::setClock(std::uint64_t step, double time) {
+  step_ = step;
+  time_ = time;
+}
+
+void Participants::send(const std::string& name, wire::Envelope& env) {
+  auto* h = env.mutable_header();
+  h->set_protocol_version(wire::PROTOCOL_VERSION);
+  h->set_run_id(run_id_);
+  h->set_participant(name);
+  h->set_step(step_);
+  h->set_time(time_);
+  try {
+    hub_->send(name, env);
+  } catch (const std::exception& e) {
+    // Usually the peer's process just died: say how, rather than only "unreachable".
+    auto it = peers_.find(name);
+    if (it != peers_.end() && it->second->process) {
+      auto& proc = *it->second->process;
+      for (int i = 0; i < 40 && proc.running(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      if (!proc.running()) {
+        throw RunFailure(name, "the " + name + " process (" + it->second->spec.adapter + ") " +
+                                   proc.exitDescription() + " at step " + std::to_string(step_));
+      }
+    }
+    throw RunFailure(name, e.what());
+  }
+}
+
+Replies Participants::exchange(std::map<std::string, wire::Envelope> messages,
+                               wire::Envelope::BodyCase reply) {
+  std::map<std::string, wire::Envelope::BodyCase> expected;
+  double timeout = 0.0;
+  for (auto& [name, env] : messages) {
+    send(name, env);
+    expected[name] = reply;
+    timeout = std::max(timeout, peers_.at(name)->spec.timeout);
+  }
+  return await(expected, timeout);
+}
+
+wire::Envelope Participants::request(const std::string& name, wire::Envelope message,
+                                     wire::Envelope::BodyCase reply) {
+  return exchange({{name, std::move(message)}}, reply).at(name);
+}
+
+void Participants::addComputeSeconds(const std::string& name, double seconds) {
+  compute_[name] += seconds;
+}
+
+fs::path Participants::logOf(const std::string& name) const {
+  auto it = peers_.find(name);
+  return it == peers_.end() ? fs::path() : it->second->log;
+}
+
+Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase>& expected,
+                            double timeout) {
+  Replies got;
+  const auto start = Clock::now();
+  while (got.size() < expected.size()) {
+    if (g_stop_signal)
+      throw RunFailure("", "interrupted (signal " + std::to_string(g_stop_signal.load()) + ")");
+    auto in = hub_->receive(link::Millis(100));
+    const auto now = Clock::now();
+    if (in) {
+      std::string who = in->peer;
+      stripHeartbeat(who);
+      auto pit = peers_.find(who);
+      if (pit == peers_.end()) {
+        // Unknown sender: not part of this run. Ignore but keep a trace.
+        log_.file("ignored a message from unknown peer '" + in->peer + "'");
+        continue;
+      }
+      pit->second->last_seen = now;
+      if (!in->envelope) {
+        throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
+      }
+      const auto& env = *in->envelope;
+      if (env.has_heartbeat()) continue;
+      if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
+        throw RunFailure(who, "speaks protocol version " +
+                                  std::to_string(env.header().protocol_version()) +
+                                  ", the orchestrator " + std::to_string(wire::PROTOCOL_VERSION));
+      }
+      if (env.has_error()) {
+        throw RunFailure(
+            who, "reported an error: " + env.error().message() +
+                     (env.error().where().empty() ? "" : " (at " + env.error().where() + ")"));
+      }
+      auto eit = expected.find(who);
+      if (eit == expected.end() || got.count(who)) {
+        throw RunFailure(who, "sent an unexpected message at step " + std::to_string(step_));
+      }
+      if (env.body_case() != eit->second) {
+        throw RunFailure(who, "sent the wrong message type (body " +
+                                  std::to_string(env.body_case()) + ", expected " +
+                                  std::to_string(eit->second) + ") at step " +
+                                  std::to_string(step_));
+      }
+      if (env.header().run_id() != run_id_) {
+        throw RunFailure(
+            who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'");
+      }
+      if (env.header().step() != step_) {
+        throw RunFailure(who, "answered for step " + std::to_string(env.header().step()) +
+                                  " while the run is at step " + std::to_string(step_) +
+                                  " (out-of-order step)");
+      }
+      got[who] = env;
+      continue;
+    }
+    // Nothing arrived: is everyone we wait for alive?
+    for (const auto& [name, kind] : expected) {
+      if (got.count(name)) continue;
+      Peer& p = *peers_.at(name);
+      if (p.process && !p.process->running()) {
+        throw RunFailure(name, "the " + name + " process (" + p.spec.adapter + ") " +
+                                   p.process->exitDescription() + " at step " +
+                                   std::to_string(step_));
+      }
+      const double silent = std::chrono::duration<double>(now - p.last_seen).count();
+      if (p.connected && silent > sc_.heartbeat_timeout) {
+        throw RunFailure(name, "silent for " + std::to_string(static_cast<int>(silent)) +
+                                   " s (no heartbeat; hung, or its host is gone)");
+      }
+      if (std::chrono::duration<double>(now - start).count() > timeout) {
+        throw RunFailure(name, "did not answer within " +
+                                   std::to_string(static_cast<int>(timeout)) + " s at step " +
+                                   std::to_string(step_) + " (participants." + name +
+                                   ".timeout; raise it if a step is legitimately slow)");
+      }
+    }
+  }
+  return got;
+}
+
+void Participants::handshake() {
+  std::set<std::string> waiting;
+  for (const auto& [n, p] : peers_) waiting.insert(n);
+  const auto start = Clock::now();
+  while (!waiting.empty()) {
+    if (g_stop_signal) throw RunFailure("", "interrupted during start-up");
+    auto in = hub_->receive(link::Millis(100));
+    if (in) {
+      std::string who = in->peer;
+      if (stripHeartbeat(who)) continue;
+      if (!peers_.count(who)) {
+        log_.file("ignored a connection from unknown participant '" + who + "'");
+        continue;
+      }
+      if (!in->envelope)
+        throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
+      welcome(who, *in->envelope);
+      waiting.erase(who);
+      continue;
+    }
+    for (const auto& n : waiting) {
+      Peer& p = *peers_.at(n);
+      if (p.process && !p.process->running()) {
+        throw RunFailure(n, "the " + n + " process (" + p.spec.adapter + ") " +
+                                p.process->exitDescription() + " before connecting");
+      }
+    }
+    if (std::chrono::duration<double>(Clock::now() - start).count() > sc_.handshake_timeout) {
+      const std::string who = *waiting.begin();
+      throw RunFailure(who, "did not connect within " +
+                                std::to_string(static_cast<int>(sc_.handshake_timeout)) +
+                                " s (transport.handshake_timeout)" +
+                                (peers_.at(who)->spec.launch == "external"
+                                     ? "; start it with --endpoint " + connectEndpoint() +
+                                           " --name " + who + " --run-id " + run_id_
+                                     : ""));
+    }
+  }
+}
+
+// Checks one Hello against what the scene needs and answers with the Welcome.
+void Participants::welcome(const std::string& who, const wire::Envelope& env) {
+  Peer& p = *peers_.at(who);
+  auto refuse = [&](const std::string& reason) {
+    wire::Envelope r;
+    r.mutable_refused()->set_reason(reason);
+    send(who, r);
+    throw RunFailure(who, "refused at handshake: " + reason);
+  };
+  if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
+    refuse("protocol version " + std::to_string(env.header().protocol_version()) +
+           " but the orchestrator speaks version " + std::to_string(wire::PROTOCOL_VERSION) +
+           "; rebuild the adapter from the same cosim version");
+  }
+  if (!env.has_hello()) refuse("the first message must be Hello");
+  const auto& h = env.hello();
+  if (h.role() != p.spec.role) {
+    refuse("adapter '" + h.adapter() + "' says it simulates " + roleName(h.role()) +
+           " but is configured as participant '" + who + "'");
+  }
+  p.send = who == "fluid" ? plan_.fluid_send : plan_.particles_send;
+  p.receive = who == "fluid" ? plan_.fluid_receive : plan_.particles_receive;
+  const std::set<std::string> provides(h.provides().begin(), h.provides().end());
+  const std::set<std::string> accepts(h.accepts().begin(), h.accepts().end());
+  for (const auto& f : p.send) {
+    if (!provides.count(f)) {
+      refuse("this scene needs field '" + f + "' from the " + who + " participant, but adapter '" +
+             h.adapter() + "' cannot provide it (it provides: " +
+             join({h.provides().begin(), h.provides().end()}) +
+             "); choose models that do not need it or another adapter");
+    }
+  }
+  for (const auto& f : p.receive) {
+    if (!accepts.count(f)) {
+      refuse("this scene sends field '" + f + "' to the " + who + " participant, but adapter '" +
+             h.adapter() + "' does not accept it (it accepts: " +
+             join({h.accepts().begin(), h.accepts().end()}) + ")");
+    }
+  }
+  wire::Envelope w;
+  auto* wel = w.mutable_welcome();
+  for (const auto& f : p.send) wel->add_send(f);
+  for (const auto& f : p.receive) wel->add_receive(f);
+  YAML::Emitter em;
+  em << p.spec.options;
+  wel->set_config_yaml(em.c_str());
+  wel->set_workdir(fs::absolute(p.workdir).string());
+  wel->set_cfd_dt(sc_.dt);
+  wel->set_dem_steps(sc_.dem_steps);
+  wel->set_end_time(sc_.end_time);
+  wel->set_start_time(sc_.start_time);
+  for (const auto& [k, v] : sc_.parameters) (*wel->mutable_parameters())[k] = v;
+  wel->set_species(plan_.coating);
+  send(who, w);
+  p.connected = true;
+  p.last_seen = Clock::now();
+  log_.file(who + " connected: adapter " + h.adapter() + ", pid " + std::to_string(h.pid()) +
+            " on " + h.host() + "; sends " + join(p.send) + "; receives " + join(p.receive));
+}
+
+void Participants::shutdown(bool clean) {
+  if (hub_ && clean) {
+    std::map<std::string, wire::Envelope::BodyCase> bye;
+    for (const auto& [n, p] : peers_) {
+      if (!p->connected || (p->process && !p->process->running())) continue;
+      wire::Envelope e;
+      e.mutable_shutdown()->set_reason("end of run");
+      send(n, e);
+      bye[n] = wire::Envelope::kGoodbye;
+    }
+    try {
+      await(bye, 60.0);
+    } catch (const std::exception& e) {
+      log_.warn(e.what());
+    }
+  } else if (hub_) {
+    for (const auto& [n, p] : peers_) {
+      if (!p->connected || (p->process && !p->process->running())) continue;
+      wire::Envelope e;
+      e.mutable_error()->set_message("run aborted by the orchestrator");
+      try {
+        send(n, e);
+      } catch (...) {
+      }
+    }
+  }
+  for (auto& [n, p] : peers_) {
+    if (p->process) p->process->stop(clean ? 10.0 : 2.0);
+    compute_[n] += 0.0;  // every participant appears in the summary's timings
+  }
+  peers_.clear();
+  if (hub_) {
+    // An ipc:// endpoint is a socket file that zmq leaves behind: remove it with the hub.
+    const std::string ep = hub_->endpoint();
+    hub_.reset();
+    if (ep.rfind("ipc://", 0) == 0) {
+      std::error_code ec;
+      fs::remove(ep.substr(6), ec);
+    }
+  }
+}
+
+}  // namespace cosim::orchestrator

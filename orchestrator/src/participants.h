@@ -1,0 +1,93 @@
+// The participants of a run as the orchestrator sees them (the manager side of a manager /
+// instance split): it starts the processes the scene needs, runs the handshake, sends messages
+// and awaits the replies while watching every participant for a crash, silence or a missed
+// deadline, and stops them all, cleanly or not, whatever happened.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cosim/link/transport.h"
+#include "plan.h"
+#include "run_log.h"
+#include "scenario.h"
+
+namespace cosim::orchestrator {
+
+// Why a run stopped early: who, what, and the tail of its log.
+class RunFailure : public std::runtime_error {
+ public:
+  RunFailure(std::string who, const std::string& what)
+      : std::runtime_error(what), participant(std::move(who)) {}
+  std::string participant;  // empty: the orchestrator itself
+};
+
+// Set by SIGINT/SIGTERM handlers; every wait stops at its next wake-up.
+extern std::atomic<int> g_stop_signal;
+
+// Replies by participant name.
+using Replies = std::map<std::string, wire::Envelope>;
+
+class Participants {
+ public:
+  Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log);
+  ~Participants();
+  Participants(const Participants&) = delete;
+  Participants& operator=(const Participants&) = delete;
+
+  // Binds the orchestrator's endpoint, prepares each participant's folder in `run_folder` and
+  // starts the processes cosim launches itself.
+  void start(const std::filesystem::path& run_folder);
+  // Every participant says Hello (role, fields it provides and accepts) and gets its Welcome
+  // (configuration, fields of this scene, time stepping); refuses a mismatch with the reason.
+  void handshake();
+
+  // The step and time written in the header of every message from now on; replies must be for
+  // this step.
+  void setClock(std::uint64_t step, double time);
+
+  // One message to each participant named in `messages`, then the reply `reply` from each.
+  Replies exchange(std::map<std::string, wire::Envelope> messages, wire::Envelope::BodyCase reply);
+  // The same for one participant.
+  wire::Envelope request(const std::string& name, wire::Envelope message,
+                         wire::Envelope::BodyCase reply);
+
+  // Compute time a participant reported for an interval (kept for the summary).
+  void addComputeSeconds(const std::string& name, double seconds);
+  const std::map<std::string, double>& computeSeconds() const { return compute_; }
+
+  // Its log file, for the tail shown with a failure (empty if it is not a participant).
+  std::filesystem::path logOf(const std::string& name) const;
+
+  // clean: Shutdown and wait for Goodbye; otherwise an Error message. Then the processes are
+  // stopped and the endpoint removed. Safe to call twice.
+  void shutdown(bool clean);
+
+ private:
+  struct Peer;
+  void send(const std::string& name, wire::Envelope& env);
+  Replies await(const std::map<std::string, wire::Envelope::BodyCase>& expected,
+                double timeout_seconds);
+  void welcome(const std::string& name, const wire::Envelope& hello);
+  std::string connectEndpoint() const;
+
+  const Scenario& sc_;
+  const Plan& plan_;
+  std::string run_id_;
+  RunLog& log_;
+  std::unique_ptr<link::Hub> hub_;
+  std::map<std::string, std::unique_ptr<Peer>> peers_;
+  std::map<std::string, double> compute_;
+  std::uint64_t step_ = 0;
+  double time_ = 0.0;
+};
+
+}  // namespace cosim::orchestrator

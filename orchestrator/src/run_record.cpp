@@ -1,0 +1,106 @@
+#include "run_record.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/analysis/time_series.h"
+
+namespace cosim::orchestrator {
+
+namespace fs = std::filesystem;
+
+RunRecord::RunRecord(const Scenario& sc, const Plan& plan, RunLog& log)
+    : sc_(sc), plan_(plan), log_(log) {}
+
+RunRecord::~RunRecord() = default;
+
+const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
+  const fs::path base = output.empty() ? sc_.output_folder : fs::absolute(output);
+  folder_ = base;
+  if (!overwrite && fs::exists(folder_) && !fs::is_empty(folder_)) {
+    // Never overwrite a previous result: take the next free suffix.
+    for (int i = 2;; ++i) {
+      fs::path cand = base.string() + "-" + std::to_string(i);
+      if (!fs::exists(cand)) {
+        folder_ = cand;
+        break;
+      }
+    }
+  }
+  fs::create_directories(folder_);
+  {
+    std::ofstream os(folder_ / "scenario.resolved.yaml");
+    os << "# " << sc_.file.string() << " as run (parameters substituted, --set applied)\n";
+    os << sc_.resolved << "\n";
+  }
+  log_.open(folder_ / "cosim.log");
+  next_output_ = sc_.start_time;
+  return folder_;
+}
+
+void RunRecord::startRecorders() {
+  particles_ = std::make_unique<analysis::ParticleRecorder>(folder_, plan_.particles_send);
+  columns_ = {analysis::column::particle_count, analysis::column::wall_seconds};
+  if (plan_.coating) {
+    for (const char* c : {analysis::column::precursor_in, analysis::column::precursor_out,
+                          analysis::column::precursor_held, analysis::column::precursor_removed,
+                          analysis::column::coated_mass}) {
+      columns_.push_back(c);
+    }
+  }
+  if (plan_.fluid) columns_.push_back(analysis::column::pressure_drop);
+  series_file_ =
+      std::make_unique<analysis::TimeSeriesRecorder>(folder_ / analysis::kTimeSeriesFile, columns_);
+}
+
+void RunRecord::row(double time, const Row& values) {
+  std::vector<double> r;
+  r.reserve(columns_.size());
+  for (const auto& c : columns_) {
+    auto it = values.find(c);
+    r.push_back(it == values.end() ? 0.0 : it->second);
+  }
+  series_file_->write(time, r);
+  series_time_.push_back(time);
+  for (std::size_t c = 0; c < r.size(); ++c) series_[columns_[c]].push_back(r[c]);
+}
+
+void RunRecord::snapshot(double time, const link::ParticleData& held, bool force) {
+  if (!force && time + 1e-12 * std::max(1.0, std::fabs(time)) < next_output_) return;
+  particles_->write(time, held);
+  next_output_ = time + sc_.output_interval;
+}
+
+std::vector<ObservableValue> RunRecord::observables(
+    const link::ParticleData& final_state, const std::map<std::string, double>& totals) const {
+  std::vector<ObservableValue> values;
+  for (const auto& spec : sc_.observables) {
+    ObservableValue v;
+    v.name = spec.name;
+    try {
+      v.value =
+          evaluateQuantity(spec.quantity, final_state, series_time_, series_, totals, spec.after);
+    } catch (const UndefinedQuantity& e) {
+      v.value = std::numeric_limits<double>::quiet_NaN();
+      v.undefined = e.what();
+    } catch (const std::exception& e) {
+      throw std::runtime_error("observables." + spec.name + ": " + e.what());
+    }
+    v.reference = spec.reference;
+    if (v.undefined.empty()) v.relative_error = relativeError(v.value, v.reference);
+    values.push_back(v);
+  }
+  return values;
+}
+
+void RunRecord::summary(const analysis::Summary& s) {
+  try {
+    analysis::writeSummary(folder_ / analysis::kSummaryFile, s);
+  } catch (const std::exception& e) {
+    log_.warn(std::string("could not write the summary: ") + e.what());
+  }
+}
+
+}  // namespace cosim::orchestrator

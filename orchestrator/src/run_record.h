@@ -1,0 +1,69 @@
+// What a run leaves behind, in its run folder: scenario.resolved.yaml, the time series (one row
+// per coupling step, columns by name), the particle snapshots, the log, and at the end
+// summary.json with the observables. It also keeps the series in memory for the observables.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cosim/analysis/summary.h"
+#include "cosim/link/particle_data.h"
+#include "observables.h"
+#include "plan.h"
+#include "run_log.h"
+#include "scenario.h"
+
+namespace cosim::analysis {
+class ParticleRecorder;
+class TimeSeriesRecorder;
+}  // namespace cosim::analysis
+
+namespace cosim::orchestrator {
+
+// A time-series row by column name; a column without a value is recorded as 0.
+using Row = std::map<std::string, double>;
+
+class RunRecord {
+ public:
+  RunRecord(const Scenario& sc, const Plan& plan, RunLog& log);
+  ~RunRecord();
+
+  // The run folder: `output` if given, else the scenario's output.folder; an existing non-empty
+  // folder is never overwritten (the next free "-2", "-3" ... is taken) unless `overwrite`.
+  // Writes scenario.resolved.yaml and opens cosim.log there.
+  const std::filesystem::path& open(const std::filesystem::path& output, bool overwrite);
+  const std::filesystem::path& folder() const { return folder_; }
+
+  // Opens particles.h5 and timeseries.csv with the columns this scene records.
+  void startRecorders();
+  const std::vector<std::string>& columns() const { return columns_; }
+
+  void row(double time, const Row& values);
+  // A particle snapshot every output.interval (and whenever `force`).
+  void snapshot(double time, const link::ParticleData& held, bool force);
+
+  // The scenario's observables over the final state, the recorded series and the totals.
+  // Throws std::runtime_error naming the observable that cannot be evaluated.
+  std::vector<ObservableValue> observables(const link::ParticleData& final_state,
+                                           const std::map<std::string, double>& totals) const;
+
+  // summary.json; a failure to write it is reported, not thrown (the run's own outcome counts).
+  void summary(const analysis::Summary& s);
+
+ private:
+  const Scenario& sc_;
+  const Plan& plan_;
+  RunLog& log_;
+  std::filesystem::path folder_;
+  std::vector<std::string> columns_;
+  std::unique_ptr<analysis::ParticleRecorder> particles_;
+  std::unique_ptr<analysis::TimeSeriesRecorder> series_file_;
+  std::vector<double> series_time_;
+  std::map<std::string, std::vector<double>> series_;
+  double next_output_ = 0.0;
+};
+
+}  // namespace cosim::orchestrator
