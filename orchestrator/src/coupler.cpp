@@ -34,12 +34,6 @@ std::string newRunId() {
   return os.str();
 }
 
-// A scalar a participant reported with Advanced; 0 when it did not report it.
-double reported(const wire::Advanced& a, const char* name) {
-  auto it = a.scalars().find(name);
-  return it == a.scalars().end() ? 0.0 : it->second;
-}
-
 }  // namespace
 
 void Coupler::Phases::lap(const char* phase) {
@@ -212,12 +206,12 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
     const auto fr = link::ParticleData::fromWire(fa.state());
     check(fr, "fluid");
     ledger_.owe(fr);
-    ledger_.addFlows(reported(fa, "precursor_in"), reported(fa, "precursor_out"));
-    ledger_.setHeld(reported(fa, "precursor_held"));
-    if (auto hs = fa.scalars().find("precursor_held_start");
-        step_ == 1 && hs != fa.scalars().end()) {
-      ledger_.setHeldAtStart(hs->second);
-      monitor_.setHeldAtStart(hs->second);
+    const auto& species = fa.fluid().species();
+    ledger_.addFlows(species.precursor_in(), species.precursor_out());
+    ledger_.setHeld(species.precursor_held());
+    if (step_ == 1 && species.has_precursor_held_start()) {
+      ledger_.setHeldAtStart(species.precursor_held_start());
+      monitor_.setHeldAtStart(species.precursor_held_start());
     }
     const auto& b = ledger_.balance();
     try {
@@ -226,9 +220,9 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
       throw RunFailure("fluid", e.what());
     }
   }
-  if (auto it = fa.scalars().find("max_courant"); it != fa.scalars().end()) {
+  if (fa.fluid().has_max_courant()) {
     try {
-      if (auto w = monitor_.checkCourant(it->second, step_, time_)) {
+      if (auto w = monitor_.checkCourant(fa.fluid().max_courant(), step_, time_)) {
         progress_->abort();
         log_.show(*w);
       }
@@ -244,7 +238,7 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
 void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
   const auto& pa = replies.particles;
   ledger_.leave({pa.deleted_ids().begin(), pa.deleted_ids().end()},
-                reported(pa, "deleted_coating_mass"));
+                pa.particles().deleted_coating_mass());
   if (plan_.coating && last) flushCredit();
   if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
   if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
@@ -268,7 +262,7 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
     row[col::precursor_removed] = b.removed;
     row[col::coated_mass] = ledger_.creditedIncludingOwed();
   }
-  if (replies.fluid) row[col::pressure_drop] = reported(*replies.fluid, "pressure_drop");
+  if (replies.fluid) row[col::pressure_drop] = replies.fluid->fluid().pressure_drop();
   record_.row(time_, row);
   const link::ParticleData held = ledger_.held(state_);
   record_.snapshot(time_, held, last);

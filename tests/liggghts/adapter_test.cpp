@@ -280,7 +280,7 @@ TEST_P(InsertDelete, LedgerMatchesState) {
       credited_to_deleted += credited[id];
       ++deletions;
     }
-    reported_deleted += reply.advanced().scalars().at("deleted_coating_mass");
+    reported_deleted += reply.advanced().particles().deleted_coating_mass();
     ASSERT_EQ(std::set<std::int64_t>(s.ids.begin(), s.ids.end()), alive) << "step " << k;
   }
   EXPECT_GE(ever.size(), 80u) << "expected at least two insertions of 40";

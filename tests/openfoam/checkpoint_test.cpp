@@ -12,8 +12,10 @@ namespace fs = std::filesystem;
 
 void checkpointRun(int ranks) {
   FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0.1"}, {"inlet_precursor", "0.01"},
-                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.substitute = {{"inlet_velocity", "0.1"},
+                    {"inlet_precursor", "0.01"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
   cfg.species = true;
   cfg.send = {"voidage", "precursor_removed"};
   cfg.receive = {"position", "radius", "transfer_coefficient"};
@@ -36,7 +38,7 @@ void checkpointRun(int ranks) {
   // The run goes on after a checkpoint
   run.sample(particles);
   const auto a = run.advance(1e-3, cosim::link::ParticleData{});
-  EXPECT_GT(a.scalars().at("precursor_in"), 0.0);
+  EXPECT_GT(a.fluid().species().precursor_in(), 0.0);
   EXPECT_EQ(run.shutdown(), 0);
 }
 

@@ -15,8 +15,10 @@ namespace {
 
 TEST(OpenFoamEmptyColumn, OutflowEqualsInflowAndPressureIsHydrostatic) {
   FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0.2"}, {"inlet_precursor", "0"},
-                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.substitute = {{"inlet_velocity", "0.2"},
+                    {"inlet_precursor", "0"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
   cfg.send = {"fluid_velocity", "voidage"};
   cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
   FoamRun run(cfg);
@@ -27,9 +29,9 @@ TEST(OpenFoamEmptyColumn, OutflowEqualsInflowAndPressureIsHydrostatic) {
     run.sample(none);
     last = run.advance(2e-3, cosim::link::ParticleData{});
   }
-  const auto& s = last.scalars();
-  const double in = s.at("gas_mass_in");
-  const double out = s.at("gas_mass_out");
+  const auto& s = last.fluid();
+  const double in = s.gas_mass_in();
+  const double out = s.gas_mass_out();
   // Inflow: rho * u * A * dt at the inlet
   const double rho_in = gas::density(gas::p_out + 1.08);
   EXPECT_NEAR(in, rho_in * 0.2 * 0.02 * 0.02 * 2e-3, 1e-4 * in);
@@ -37,7 +39,7 @@ TEST(OpenFoamEmptyColumn, OutflowEqualsInflowAndPressureIsHydrostatic) {
 
   const double H = 0.1, dz = 0.004;
   const double expected = gas::density(gas::p_out) * gas::g * (H - dz / 2);
-  EXPECT_NEAR(s.at("pressure_drop"), expected, 0.005 * expected);
+  EXPECT_NEAR(s.pressure_drop(), expected, 0.005 * expected);
   EXPECT_EQ(run.shutdown(), 0);
 }
 
@@ -46,8 +48,10 @@ TEST(OpenFoamEmptyColumn, OutflowEqualsInflowAndPressureIsHydrostatic) {
 // hydrostatic one from the first step and the gas stays at rest.
 double restingGasSpeed(bool hydrostatic, double* pressure_drop) {
   FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0"}, {"inlet_precursor", "0"},
-                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.substitute = {{"inlet_velocity", "0"},
+                    {"inlet_precursor", "0"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
   cfg.options_yaml = hydrostatic ? "{hydrostatic_start: true}" : "{hydrostatic_start: false}";
   cfg.send = {"fluid_velocity", "voidage"};
   cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
@@ -58,7 +62,7 @@ double restingGasSpeed(bool hydrostatic, double* pressure_drop) {
     const auto reply = run.sample(probe);
     speed = std::max(speed, std::fabs(reply.at.get("fluid_velocity")[2]));
     const auto adv = run.advance(2e-3, cosim::link::ParticleData{});
-    if (step == 0) *pressure_drop = adv.scalars().at("pressure_drop");
+    if (step == 0) *pressure_drop = adv.fluid().pressure_drop();
   }
   EXPECT_EQ(run.shutdown(), 0);
   return speed;
@@ -70,8 +74,9 @@ TEST(OpenFoamEmptyColumn, HydrostaticStartKeepsGasAtRest) {
   double dp_uniform = 0, dp_hydro = 0;
   const double ringing = restingGasSpeed(false, &dp_uniform);
   const double resting = restingGasSpeed(true, &dp_hydro);
-  std::printf("resting gas: largest |u_z| %.3g m/s from a uniform start, %.3g m/s from a hydrostatic one\n",
-              ringing, resting);
+  std::printf(
+      "resting gas: largest |u_z| %.3g m/s from a uniform start, %.3g m/s from a hydrostatic one\n",
+      ringing, resting);
   // uniform start: the column settles into its pressure gradient with a velocity of ~0.2 mm/s
   EXPECT_GT(ringing, 1e-4);
   // hydrostatic start: rest to far below a Stokes settling speed, equilibrium from step 1

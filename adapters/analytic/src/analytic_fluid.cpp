@@ -18,9 +18,9 @@ class AnalyticFluid final : public link::Solver {
     link::Capabilities c;
     c.role = wire::FLUID;
     c.adapter = "analytic-fluid";
-    c.provides = {field::fluid_velocity, field::voidage, field::fluid_density,
+    c.provides = {field::fluid_velocity,  field::voidage,           field::fluid_density,
                   field::fluid_viscosity, field::pressure_gradient, field::precursor_fraction,
-                  field::cell_size, field::precursor_removed};
+                  field::cell_size,       field::precursor_removed};
     c.accepts = {field::position, field::radius, field::velocity, field::drag_coefficient,
                  field::transfer_coefficient};
     return c;
@@ -35,7 +35,9 @@ class AnalyticFluid final : public link::Solver {
     u_ = o.vec("velocity", {0, 0, 0});
     profile_ = o.text("profile", "uniform");
     if (profile_ != "uniform" && profile_ != "parabolic") {
-      throw std::runtime_error("analytic-fluid options: profile must be 'uniform' or 'parabolic', got '" + profile_ + "'");
+      throw std::runtime_error(
+          "analytic-fluid options: profile must be 'uniform' or 'parabolic', got '" + profile_ +
+          "'");
     }
     if (profile_ == "parabolic") {
       R_ = o.positive("pipe_radius", 0);
@@ -44,19 +46,25 @@ class AnalyticFluid final : public link::Solver {
     rho_ = o.positive("density", 1.2);
     mu_ = o.positive("viscosity", 1.8e-5);
     eps_ = o.number("voidage", 1.0);
-    if (!(eps_ > 0 && eps_ <= 1)) throw std::runtime_error("analytic-fluid options: voidage must be in (0, 1]");
+    if (!(eps_ > 0 && eps_ <= 1))
+      throw std::runtime_error("analytic-fluid options: voidage must be in (0, 1]");
     Y_ = o.number("precursor_fraction", 0.0);
-    if (Y_ < 0 || Y_ > 1) throw std::runtime_error("analytic-fluid options: precursor_fraction must be in [0, 1]");
+    if (Y_ < 0 || Y_ > 1)
+      throw std::runtime_error("analytic-fluid options: precursor_fraction must be in [0, 1]");
     const auto g = o.vec("gravity", {0, 0, -9.81});
     if (o.has("pressure_gradient") && o.root()["pressure_gradient"].IsSequence()) {
       gradp_ = o.vec("pressure_gradient", {0, 0, 0});
     } else {
       const std::string mode = o.text("pressure_gradient", "hydrostatic");
       if (mode != "hydrostatic" && mode != "none") {
-        throw std::runtime_error("analytic-fluid options: pressure_gradient must be 'hydrostatic', 'none' or [x, y, z] in Pa/m");
+        throw std::runtime_error(
+            "analytic-fluid options: pressure_gradient must be 'hydrostatic', 'none' or [x, y, z] "
+            "in Pa/m");
       }
       // Still or uniformly moving fluid in gravity: grad p = rho_f g.
-      for (int i = 0; i < 3; ++i) gradp_[static_cast<std::size_t>(i)] = mode == "hydrostatic" ? rho_ * g[static_cast<std::size_t>(i)] : 0.0;
+      for (int i = 0; i < 3; ++i)
+        gradp_[static_cast<std::size_t>(i)] =
+            mode == "hydrostatic" ? rho_ * g[static_cast<std::size_t>(i)] : 0.0;
     }
     cell_ = o.positive("cell_size", 0.004);
     if (o.has("domain_min") || o.has("domain_max")) {
@@ -117,7 +125,8 @@ class AnalyticFluid final : public link::Solver {
                link::ParticleData& state) override {
     if (cmd.dt() == 0.0) return;
     if (terms.has(field::transfer_coefficient)) {
-      if (terms.ids != ids_) throw std::runtime_error("Advance terms are for other particles than the last Sample");
+      if (terms.ids != ids_)
+        throw std::runtime_error("Advance terms are for other particles than the last Sample");
       const auto& k = terms.get(field::transfer_coefficient);
       state.ids = terms.ids;
       auto& removed = state.field(field::precursor_removed);
@@ -126,12 +135,13 @@ class AnalyticFluid final : public link::Solver {
         removed[i] = k[i] * Y_ * cmd.dt();  // Y is held constant: exact integral of Eq. 7
         total += removed[i];
       }
-      (*out.mutable_scalars())["precursor_in"] = total;
-      (*out.mutable_scalars())["precursor_out"] = 0.0;
-      (*out.mutable_scalars())["precursor_held"] = 0.0;
-      (*out.mutable_scalars())["precursor_removed_total"] = total;
+      auto& species = *out.mutable_fluid()->mutable_species();
+      species.set_precursor_in(total);
+      species.set_precursor_out(0.0);
+      species.set_precursor_held(0.0);
+      species.set_precursor_removed_total(total);
     }
-    (*out.mutable_scalars())["pressure_drop"] = 0.0;
+    out.mutable_fluid()->set_pressure_drop(0.0);
   }
 
  private:

@@ -109,12 +109,12 @@ void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData
   last_coating_ = std::move(now);
   reported_once_ = true;
 
-  auto& sc = *out.mutable_scalars();
-  sc["particle_count"] = static_cast<double>(s.ids.size());
-  sc["deleted_coating_mass"] = deleted_coating;
+  auto& report = *out.mutable_particles();
+  report.set_particle_count(s.ids.size());
+  report.set_deleted_coating_mass(deleted_coating);
   if (dt_report_ && dt_report_->has_particles) {
-    sc["dt_over_rayleigh_time"] = dt_report_->dtOverRayleigh();
-    sc["dt_over_hertz_time"] = dt_report_->dtOverHertz();
+    report.set_dt_over_rayleigh_time(dt_report_->dtOverRayleigh());
+    report.set_dt_over_hertz_time(dt_report_->dtOverHertz());
   }
 }
 

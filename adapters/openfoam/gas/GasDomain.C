@@ -473,7 +473,7 @@ public:
         #include "rhoEqn.H"
 
         StepResult result;
-        auto& s = result.scalars;
+        auto& s = result;
 
         // Gas mass through the boundaries [kg over the step]
         {
@@ -489,9 +489,9 @@ public:
                     (f < 0 ? in : out) += mag(f)*dt;
                 }
             }
-            s["gas_mass_in"] = returnReduce(in, sumOp<scalar>());
-            s["gas_mass_out"] = returnReduce(out, sumOp<scalar>());
-            s["gas_mass_held"] = gSum(epsRho.primitiveField()*mesh.V().field());
+            s.gas_mass_in = returnReduce(in, sumOp<scalar>());
+            s.gas_mass_out = returnReduce(out, sumOp<scalar>());
+            s.gas_mass_held = gSum(epsRho.primitiveField()*mesh.V().field());
         }
 
         if (settings_.species)
@@ -537,20 +537,21 @@ public:
                 }
             }
 
-            s["precursor_in"] = returnReduce(in, sumOp<scalar>());
-            s["precursor_out"] = returnReduce(out, sumOp<scalar>());
-            s["precursor_held"] = gSum(epsRhoY.primitiveField()*Y.primitiveField()*V);
-            s["precursor_held_start"] = heldStart;
-            s["precursor_removed_cells"] =
+            s.species = true;
+            s.precursor_in = returnReduce(in, sumOp<scalar>());
+            s.precursor_out = returnReduce(out, sumOp<scalar>());
+            s.precursor_held = gSum(epsRhoY.primitiveField()*Y.primitiveField()*V);
+            s.precursor_held_start = heldStart;
+            s.precursor_removed_cells =
                 gSum(sinkCoeff.primitiveField()*Y.primitiveField()*V)*dt;
-            s["precursor_removed_total"] = removedTotal;
-            s["precursor_min"] = gMin(Y.primitiveField());
-            s["precursor_max"] = gMax(Y.primitiveField());
+            s.precursor_removed_total = removedTotal;
+            s.precursor_min = gMin(Y.primitiveField());
+            s.precursor_max = gMax(Y.primitiveField());
         }
 
         rho = psi*p;
 
-        s["pressure_drop"] = patchAverage(p, settings_.inlet_patches)
+        s.pressure_drop = patchAverage(p, settings_.inlet_patches)
                            - patchAverage(p, settings_.outlet_patches);
         {
             const scalarField sumPhi
@@ -558,10 +559,10 @@ public:
                 fvc::surfaceSum(mag(phi))().primitiveField()
                /(epsRho.primitiveField()*mesh.V().field())
             );
-            s["max_courant"] = 0.5*gMax(sumPhi)*dt;
+            s.max_courant = 0.5*gMax(sumPhi)*dt;
         }
-        s["voidage_min"] = gMin(eps.primitiveField());
-        s["solve_seconds"] =
+        s.voidage_min = gMin(eps.primitiveField());
+        s.solve_seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
         runTime.write();

@@ -37,10 +37,20 @@ struct ParticleSet {
   std::size_t size() const { return ids.size(); }
 };
 
-// Result of one CFD step.
+// Result of one CFD step: sent as the FluidReport of Advanced (proto/cosim.proto, where each
+// quantity is documented).
 struct StepResult {
-  std::vector<double> precursor_removed;   // n [kg] per particle (empty without species)
-  std::map<std::string, double> scalars;   // diagnostics sent in Advanced.scalars
+  std::vector<double> precursor_removed;  // n [kg] per particle (empty without species)
+  double pressure_drop = 0.0;
+  double max_courant = 0.0;
+  double voidage_min = 0.0;
+  double gas_mass_in = 0.0, gas_mass_out = 0.0, gas_mass_held = 0.0;
+  double solve_seconds = 0.0;
+  bool species = false;  // the precursor balance below is set
+  double precursor_in = 0.0, precursor_out = 0.0, precursor_held = 0.0;
+  double precursor_held_start = 0.0;
+  double precursor_removed_cells = 0.0, precursor_removed_total = 0.0;
+  double precursor_min = 0.0, precursor_max = 0.0;
 };
 
 class GasDomain {

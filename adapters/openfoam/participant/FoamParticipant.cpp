@@ -1,5 +1,7 @@
 #include "FoamParticipant.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -8,7 +10,6 @@
 #include <regex>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 #include "cosim/link/fields.h"
 
@@ -16,10 +17,10 @@ namespace cosim::foam {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& foamSampleFields() {
-  static const std::vector<std::string> fields{
-      field::fluid_velocity,    field::voidage,        field::fluid_density,
-      field::fluid_viscosity,   field::pressure_gradient, field::precursor_fraction,
-      field::cell_size};
+  static const std::vector<std::string> fields{field::fluid_velocity,    field::voidage,
+                                               field::fluid_density,     field::fluid_viscosity,
+                                               field::pressure_gradient, field::precursor_fraction,
+                                               field::cell_size};
   return fields;
 }
 
@@ -53,8 +54,7 @@ void runTool(const std::string& tool, const std::string& args) {
   const int rc = std::system(cmd.c_str());
   if (rc != 0) {
     throw std::runtime_error("cosimFoam: `" + tool + " " + args + "` failed in " +
-                             fs::current_path().string() + " (see " + log + "):\n" +
-                             tail(log, 15));
+                             fs::current_path().string() + " (see " + log + "):\n" + tail(log, 15));
   }
 }
 
@@ -79,8 +79,8 @@ void prepareCase(const AdapterSettings& settings, int ranks) {
         ": the fluid participant's `files:` folder must be an OpenFOAM case (system/, "
         "constant/, 0/; see docs/openfoam.md)");
   }
-  const bool haveMesh = fs::exists("constant/polyMesh/faces") ||
-                        fs::exists("constant/polyMesh/faces.gz");
+  const bool haveMesh =
+      fs::exists("constant/polyMesh/faces") || fs::exists("constant/polyMesh/faces.gz");
   bool meshed = false;
   if (settings.mesh == "blockMesh" || (settings.mesh == "auto" && !haveMesh)) {
     if (!fs::exists("system/blockMeshDict")) {
@@ -185,7 +185,8 @@ void FoamParticipant::sample(const cosim::link::ParticleData& particles,
           std::string s;
           for (const auto& n : particles.names()) s += n + " ";
           return s;
-        }() + ")");
+        }() +
+        ")");
   }
   ParticleSet set;
   set.ids = particles.ids;
@@ -194,9 +195,8 @@ void FoamParticipant::sample(const cosim::link::ParticleData& particles,
   if (particles.has(field::velocity)) set.velocity = particles.get(field::velocity);
   for (std::size_t i = 0; i < set.radius.size(); ++i) {
     if (!(set.radius[i] > 0)) {
-      throw std::runtime_error("Sample: particle " + std::to_string(set.ids[i]) +
-                               " has radius " + std::to_string(set.radius[i]) +
-                               " (must be > 0)");
+      throw std::runtime_error("Sample: particle " + std::to_string(set.ids[i]) + " has radius " +
+                               std::to_string(set.radius[i]) + " (must be > 0)");
     }
   }
   std::vector<std::string> names;
@@ -241,8 +241,7 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
     for (std::size_t t = 0; t < terms.size(); ++t) {
       const auto it = where.find(terms.ids[t]);
       if (it == where.end()) {
-        throw std::runtime_error("Advance for cosimFoam: particle " +
-                                 std::to_string(terms.ids[t]) +
+        throw std::runtime_error("Advance for cosimFoam: particle " + std::to_string(terms.ids[t]) +
                                  " has exchange terms but was not in this step's Sample");
       }
       slot[t] = it->second;
@@ -263,9 +262,27 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
   bridge_.share(k);
   const StepResult r = gas_->advance(dt, K, k);
 
-  for (const auto& [name, v] : r.scalars) (*out.mutable_scalars())[name] = v;
-  (*out.mutable_scalars())["sample_seconds"] = sampleSeconds_;
-  (*out.mutable_scalars())["lost_particles"] = static_cast<double>(lostCount_);
+  auto& report = *out.mutable_fluid();
+  report.set_pressure_drop(r.pressure_drop);
+  report.set_max_courant(r.max_courant);
+  report.set_voidage_min(r.voidage_min);
+  report.set_gas_mass_in(r.gas_mass_in);
+  report.set_gas_mass_out(r.gas_mass_out);
+  report.set_gas_mass_held(r.gas_mass_held);
+  report.set_solve_seconds(r.solve_seconds);
+  report.set_sample_seconds(sampleSeconds_);
+  report.set_lost_particles(static_cast<std::uint64_t>(lostCount_));
+  if (r.species) {
+    auto& sp = *report.mutable_species();
+    sp.set_precursor_in(r.precursor_in);
+    sp.set_precursor_out(r.precursor_out);
+    sp.set_precursor_held(r.precursor_held);
+    sp.set_precursor_held_start(r.precursor_held_start);
+    sp.set_precursor_removed_cells(r.precursor_removed_cells);
+    sp.set_precursor_removed_total(r.precursor_removed_total);
+    sp.set_precursor_min(r.precursor_min);
+    sp.set_precursor_max(r.precursor_max);
+  }
   if (std::find(send_.begin(), send_.end(), field::precursor_removed) != send_.end()) {
     state.ids = sampledIds_;
     auto& removed = state.field(field::precursor_removed);
