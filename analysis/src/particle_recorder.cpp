@@ -131,6 +131,23 @@ void ParticleRecorder::write(double time, const cosim::link::ParticleData& parti
   writeXdmf();
 }
 
+void ParticleRecorder::truncateAfter(double time) {
+  const std::string file = h5_.string();
+  if (entries_.empty() || !(entries_.back().time > time)) return;
+  {
+    h5::Handle f = h5::openFile(file, H5F_ACC_RDWR, "to cut it back to a checkpoint");
+    h5::Handle snaps = h5::openGroup(f, "snapshots", file);
+    while (!entries_.empty() && entries_.back().time > time) {
+      if (H5Ldelete(snaps, entries_.back().group.c_str(), H5P_DEFAULT) < 0)
+        throw std::runtime_error(file + ": cannot remove snapshot " + entries_.back().group);
+      entries_.pop_back();
+    }
+    if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(file + ": flush failed (disk full?)");
+  }
+  next_index_ = entries_.empty() ? 0 : std::stoul(entries_.back().group) + 1;
+  writeXdmf();
+}
+
 void ParticleRecorder::writeXdmf() const {
   bool hasPosition = false;
   for (const auto& s : shapes_) hasPosition = hasPosition || s.name == cosim::field::position;

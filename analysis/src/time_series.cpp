@@ -152,4 +152,22 @@ TimeSeries readTimeSeries(const std::filesystem::path& path) {
   return ts;
 }
 
+void truncateTimeSeries(const std::filesystem::path& path, std::size_t rows) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path.string() + ": cannot open it to cut it back");
+  std::string text, line;
+  std::size_t kept = 0;
+  if (std::getline(in, line)) text += line + "\n";  // header
+  while (kept < rows && std::getline(in, line)) {
+    text += line + "\n";
+    ++kept;
+  }
+  if (kept < rows) {
+    throw std::runtime_error(path.string() + " has " + std::to_string(kept) +
+                             " rows, fewer than the " + std::to_string(rows) +
+                             " the checkpoint recorded: the run folder was changed after it");
+  }
+  writeFileAtomically(path, text);
+}
+
 }  // namespace cosim::analysis

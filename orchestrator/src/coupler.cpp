@@ -8,6 +8,7 @@
 #include <random>
 #include <sstream>
 
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
 #include "processes.h"
@@ -61,16 +62,26 @@ RunResult Coupler::run() {
   wall0_ = Clock::now();
   time_ = sc_.start_time;
   nsteps_ = static_cast<std::uint64_t>(std::llround((sc_.end_time - sc_.start_time) / sc_.dt));
-  result.folder = record_.open(opt_.output, opt_.overwrite);
-  Progress progress(sc_.start_time, sc_.end_time, opt_.quiet);
-  progress_ = &progress;
+  result.folder =
+      opt_.resume.empty() ? record_.open(opt_.output, opt_.overwrite) : record_.reopen(opt_.resume);
+  checkpoints_.emplace(record_.folder());
+  next_checkpoint_ = sc_.start_time + sc_.checkpoint_interval;
+  std::optional<Progress> progress;
   std::string status = "completed";
   try {
-    record_.startRecorders();
-    participants_.start(record_.folder());
-    participants_.handshake();
-    reportInitialState();
-    for (std::uint64_t k = 0; k < nsteps_; ++k) {
+    std::uint64_t done = 0;
+    if (opt_.resume.empty()) {
+      record_.startRecorders();
+      participants_.start(record_.folder());
+      participants_.handshake();
+      reportInitialState();
+    } else {
+      done = resumeFromCheckpoint();
+    }
+    progress.emplace(time_, sc_.end_time, opt_.quiet);
+    result.steps = done;
+    bool interrupted = false;
+    for (std::uint64_t k = done; k < nsteps_ && !interrupted; ++k) {
       beginStep(k);
       std::vector<char> lost;
       const link::ParticleData samples = sampleFluid(lost);       // the gas at the parcels
@@ -79,29 +90,42 @@ RunResult Coupler::run() {
       takeParticleState(replies.particles);                       // the particles' new state
       if (replies.fluid) takeFluidResults(*replies.fluid);        // what the gas did
       creditAndRecord(replies, k + 1 == nsteps_);                 // coating, rows, snapshots
-      progress.update(time_, k + 1, state_.size());
+      progress->update(time_, k + 1, state_.size());
       result.steps = k + 1;
+      interrupted = g_stop_signal != 0 && k + 1 < nsteps_;
+      if (interrupted || checkpointDue(k + 1 == nsteps_)) writeCheckpoint();
     }
-    finishRun();
-    progress.finish(time_, result.steps);
+    if (interrupted) {
+      status = "interrupted";
+      result.exit_code = 130;
+      result.message = "cosim: interrupted by signal " + std::to_string(g_stop_signal.load()) +
+                       " at t = " + analysis::formatShortest(time_) + " s (step " +
+                       std::to_string(step_) +
+                       "); a checkpoint holds this state. Continue with:\n  cosim resume " +
+                       record_.folder().string();
+      progress->abort();
+    } else {
+      finishRun();
+      progress->finish(time_, result.steps);
+    }
     participants_.shutdown(true);
   } catch (const RunFailure& f) {
     status = g_stop_signal ? "interrupted" : "failed";
     result.message = describe(f);
     result.exit_code = g_stop_signal ? 130 : 2;
-    progress.abort();
+    if (progress) progress->abort();
     participants_.shutdown(false);
   } catch (const std::exception& e) {
     status = "failed";
     result.message = std::string("cosim: ") + e.what();
     result.exit_code = 2;
-    progress.abort();
+    if (progress) progress->abort();
     participants_.shutdown(false);
   }
-  result.wall_seconds = std::chrono::duration<double>(Clock::now() - wall0_).count();
+  result.wall_seconds = wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count();
   result.final_state = state_;
   result.totals = totals_;
-  if (result.exit_code == 0) {
+  if (status == "completed") {
     try {
       result.observables = record_.observables(state_, totals_);
     } catch (const std::exception& e) {
@@ -110,12 +134,104 @@ RunResult Coupler::run() {
       status = "failed";
     }
   }
-  record_.summary(summarize(result, status));
+  // A resume refused before it began leaves the run folder (and its summary) as it was.
+  if (opt_.resume.empty() || resume_accepted_) record_.summary(summarize(result, status));
   if (!result.message.empty()) {
     log_.file(result.message);
     result.message += "\n  everything recorded so far is in " + record_.folder().string();
   }
   return result;
+}
+
+std::uint64_t Coupler::resumeFromCheckpoint() {
+  const auto checkpoint = checkpoints_->newest();
+  if (!checkpoint) {
+    throw RunFailure("", "nothing to resume in " + record_.folder().string() +
+                             ": it holds no complete checkpoint (checkpoints/<time>/ with "
+                             "orchestrator.json); runs write them when checkpoint.interval is "
+                             "set, and when they are interrupted");
+  }
+  CoupledState saved;
+  try {
+    saved = readCoupledState(*checkpoint);
+  } catch (const std::exception& e) {
+    throw RunFailure("", e.what());
+  }
+  const auto differences = sceneDifferences(YAML::Load(saved.scene), sc_.resolved);
+  if (!differences.empty()) {
+    std::string msg = "cannot resume from " + checkpoint->string() +
+                      ": the scene differs from the one the checkpoint was written with, in "
+                      "what the saved state cannot honour:";
+    for (const auto& d : differences) msg += "\n  - " + d;
+    msg +=
+        "\n  (only coupling.end_time, output, checkpoint, transport, checks, observables and "
+        "timeouts may change; start a new run for anything else)";
+    throw RunFailure("", msg);
+  }
+  if (saved.step >= nsteps_) {
+    throw RunFailure("", "the run in " + record_.folder().string() +
+                             " already reached t = " + analysis::formatShortest(saved.time) +
+                             " s, the scene's coupling.end_time; make it longer with --set "
+                             "coupling.end_time=...");
+  }
+  resume_accepted_ = true;  // from here on the run folder changes
+  record_.writeResolvedScene();
+  record_.resumeRecorders(saved.series_rows, saved.time, saved.next_output);
+  participants_.resumeFrom(*checkpoint);
+  participants_.start(record_.folder());
+  participants_.handshake();
+
+  step_ = saved.step;
+  time_ = saved.time;
+  participants_.setClock(step_, time_);
+  wire::Envelope e;
+  e.mutable_advance()->set_dt(0.0);
+  const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
+  state_ = link::ParticleData::fromWire(r.advanced().state());
+  check(state_, "particles");
+  ledger_.restore(saved.balance, saved.pending);
+  totals_ = saved.totals;
+  monitor_.restore(saved.monitor);
+  initial_count_ = saved.initial_count;
+  initial_row_written_ = saved.initial_row_written;
+  phases_.seconds = saved.phases;
+  for (const auto& [name, seconds] : saved.compute) participants_.addComputeSeconds(name, seconds);
+  wall_before_ = saved.wall_seconds;
+  next_checkpoint_ = saved.time + sc_.checkpoint_interval;
+  log_.show("resumed from " + checkpoint->string() + " (t = " +
+            analysis::formatShortest(saved.time) + " s, step " + std::to_string(saved.step) + ")");
+  return saved.step;
+}
+
+bool Coupler::checkpointDue(bool last) const {
+  if (sc_.checkpoint_interval <= 0.0) return false;
+  return last || time_ + 1e-9 * sc_.dt >= next_checkpoint_;
+}
+
+void Coupler::writeCheckpoint() {
+  const auto partial = checkpoints_->begin(time_, participants_.names());
+  participants_.checkpoint(partial);
+  CoupledState s;
+  s.step = step_;
+  s.time = time_;
+  s.balance = ledger_.balance();
+  s.pending = ledger_.pending();
+  s.totals = totals_;
+  s.monitor = monitor_.state();
+  s.initial_count = initial_count_;
+  s.initial_row_written = initial_row_written_;
+  s.series_rows = record_.rows();
+  s.next_output = record_.nextOutput();
+  s.wall_seconds = wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count();
+  s.phases = phases_.seconds;
+  s.compute = participants_.computeSeconds();
+  YAML::Emitter em;
+  em << sc_.resolved;
+  s.scene = em.c_str();
+  const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint_keep);
+  next_checkpoint_ = time_ + sc_.checkpoint_interval;
+  log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());
+  phases_.lap("checkpoint");
 }
 
 void Coupler::reportInitialState() {
@@ -254,7 +370,8 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
     initial_row_written_ = true;
   }
   Row row{{col::particle_count, static_cast<double>(state_.size())},
-          {col::wall_seconds, std::chrono::duration<double>(Clock::now() - wall0_).count()}};
+          {col::wall_seconds,
+           wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count()}};
   if (plan_.coating) {
     row[col::precursor_in] = b.in;
     row[col::precursor_out] = b.out;

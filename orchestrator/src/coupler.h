@@ -13,9 +13,11 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "checkpoints.h"
 #include "coating_ledger.h"
 #include "cosim/link/particle_data.h"
 #include "coupling_scheme.h"
@@ -34,6 +36,7 @@ struct RunOptions {
   bool quiet = false;            // no progress line
   std::filesystem::path output;  // overrides scenario output.folder
   bool overwrite = false;        // reuse an existing run folder
+  std::filesystem::path resume;  // continue the run in this folder from its newest checkpoint
 };
 
 struct RunResult {
@@ -60,6 +63,11 @@ class Coupler {
  private:
   // Step 0: the particles report their initial state; the checks before the run.
   void reportInitialState();
+  // Resume: the state of the newest checkpoint; returns the steps already done.
+  std::uint64_t resumeFromCheckpoint();
+  // Every participant's part and the coupler's own state, under checkpoints/<time>/.
+  void writeCheckpoint();
+  bool checkpointDue(bool last) const;
   // The five steps of one coupling interval (docs/design.md section 2).
   void beginStep(std::uint64_t k);
   link::ParticleData sampleFluid(std::vector<char>& lost);
@@ -97,6 +105,11 @@ class Coupler {
   CoatingLedger ledger_;
   StepMonitor monitor_;
   Progress* progress_ = nullptr;
+
+  std::optional<CheckpointStore> checkpoints_;
+  double next_checkpoint_ = 0.0;
+  double wall_before_ = 0.0;  // wall seconds of the run before it was resumed
+  bool resume_accepted_ = false;
 
   std::uint64_t nsteps_ = 0;
   std::uint64_t step_ = 0;

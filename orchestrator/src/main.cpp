@@ -3,7 +3,9 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <map>
 
 #include "cosim/models/drag/undisturbed_velocity.h"
@@ -22,7 +24,32 @@ using namespace cosim::orchestrator;
 
 namespace {
 
-void onSignal(int sig) { g_stop_signal = sig; }
+void onSignal(int sig) {
+  g_stop_signal = sig;
+  ++g_stop_count;
+}
+
+// The scene a run folder was run with: its scenario.resolved.yaml, read with the original
+// scenario file as origin (relative paths in it are relative to that file's folder).
+Scenario loadRunScene(const std::filesystem::path& run, const std::vector<std::string>& sets) {
+  const auto file = run / "scenario.resolved.yaml";
+  std::ifstream in(file);
+  if (!in)
+    throw ScenarioError("cosim resume: " + run.string() +
+                        " is not a run folder (no scenario.resolved.yaml in it)");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string first;
+  std::getline(text, first);
+  const std::string prefix = "# ", suffix = " as run";
+  const auto end = first.find(suffix);
+  if (first.rfind(prefix, 0) != 0 || end == std::string::npos)
+    throw ScenarioError(file.string() + ": its first line must name the scenario it was made "
+                        "from ('# <file> as run ...'); was it edited?");
+  text.clear();
+  text.seekg(0);
+  return parseScenario(text.str(), first.substr(prefix.size(), end - prefix.size()), sets);
+}
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -89,6 +116,18 @@ int main(int argc, char** argv) {
                   "run folder (default: the scenario's output.folder, never overwritten)");
   run->add_flag("--overwrite", ropt.overwrite, "reuse the run folder even if it exists");
   run->add_flag("-q,--quiet", ropt.quiet, "no progress line");
+
+  auto* resume = app.add_subcommand(
+      "resume",
+      "Continue a run from its newest checkpoint, in the same folder (Ctrl-C, a crash or a "
+      "time limit stopped it; or make a finished run longer with --set coupling.end_time=...)");
+  std::string resume_folder;
+  resume->add_option("run", resume_folder, "run folder")->required();
+  resume->add_option("--set", sets,
+                     "override a value as for run; only coupling.end_time, output, checkpoint, "
+                     "transport, checks and observables may differ from the checkpoint's scene")
+      ->take_all();
+  resume->add_flag("-q,--quiet", ropt.quiet, "no progress line");
 
   auto* val = app.add_subcommand(
       "validate", "Check a scenario and show what it would start and send, without running");
@@ -208,6 +247,16 @@ int main(int argc, char** argv) {
     }
     if (*rep) return cosim::analysis::runReport(rep_opt);
 #endif
+    if (*resume) {
+      Scenario sc = loadRunScene(resume_folder, sets);
+      std::signal(SIGINT, onSignal);
+      std::signal(SIGTERM, onSignal);
+      ropt.resume = std::filesystem::absolute(resume_folder);
+      Coupler c(std::move(sc), ropt);
+      RunResult r = c.run();
+      if (r.exit_code != 0) std::cerr << "\ncosim: run stopped\n" << r.message << "\n";
+      return r.exit_code;
+    }
     if (*run) {
       Scenario sc = loadScenario(scenario, sets, unsets);
       if (!output.empty()) ropt.output = output;

@@ -13,6 +13,7 @@ namespace cosim::orchestrator {
 namespace fs = std::filesystem;
 
 std::atomic<int> g_stop_signal{0};
+std::atomic<int> g_stop_count{0};
 
 using Clock = std::chrono::steady_clock;
 
@@ -97,8 +98,11 @@ void Participants::start(const fs::path& run_folder) {
     peer->spec = spec;
     peer->workdir = run_folder / name;
     peer->log = run_folder / (name + ".log");
+    const bool resuming = !restart_from_.empty();
+    if (resuming && !fs::is_directory(peer->workdir))
+      throw RunFailure(name, "cannot resume: its folder " + peer->workdir.string() + " is gone");
     fs::create_directories(peer->workdir);
-    if (!spec.files.empty()) copyCaseFiles(spec.files, peer->workdir, sc_.parameters);
+    if (!resuming && !spec.files.empty()) copyCaseFiles(spec.files, peer->workdir, sc_.parameters);
     if (spec.launch == "local") {
       const auto argv = commandLine(name, spec, connect, run_id_);
       std::map<std::string, std::string> env;
@@ -172,6 +176,20 @@ wire::Envelope Participants::request(const std::string& name, wire::Envelope mes
   return exchange({{name, std::move(message)}}, reply).at(name);
 }
 
+void Participants::checkpoint(const fs::path& folder) {
+  std::map<std::string, wire::Envelope> messages;
+  for (const auto& [name, p] : peers_) {
+    messages[name].mutable_checkpoint()->set_path(fs::absolute(folder / name).string());
+  }
+  exchange(std::move(messages), wire::Envelope::kCheckpointWritten);
+}
+
+std::vector<std::string> Participants::names() const {
+  std::vector<std::string> n;
+  for (const auto& [name, p] : peers_) n.push_back(name);
+  return n;
+}
+
 void Participants::addComputeSeconds(const std::string& name, double seconds) {
   compute_[name] += seconds;
 }
@@ -186,8 +204,13 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
   Replies got;
   const auto start = Clock::now();
   while (got.size() < expected.size()) {
-    if (g_stop_signal)
+    if (g_stop_count >= 2)
       throw RunFailure("", "interrupted (signal " + std::to_string(g_stop_signal.load()) + ")");
+    if (g_stop_signal && !stop_noted_) {
+      stop_noted_ = true;
+      log_.show("signal " + std::to_string(g_stop_signal.load()) +
+                ": stopping after this step with a checkpoint (send it again to stop at once)");
+    }
     auto in = hub_->receive(link::Millis(100));
     const auto now = Clock::now();
     if (in) {
@@ -355,6 +378,7 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env) {
   wel->set_start_time(sc_.start_time);
   for (const auto& [k, v] : sc_.parameters) (*wel->mutable_parameters())[k] = v;
   wel->set_species(plan_.coating);
+  if (!restart_from_.empty()) wel->set_restart_from(fs::absolute(restart_from_ / who).string());
   send(who, w);
   p.connected = true;
   p.last_seen = Clock::now();

@@ -30,8 +30,11 @@ class RunFailure : public std::runtime_error {
   std::string participant;  // empty: the orchestrator itself
 };
 
-// Set by SIGINT/SIGTERM handlers; every wait stops at its next wake-up.
+// Set by the SIGINT/SIGTERM handlers: the signal and how many arrived. After the first, the
+// run finishes its step, writes a checkpoint and stops; after the second, every wait stops at
+// its next wake-up.
 extern std::atomic<int> g_stop_signal;
+extern std::atomic<int> g_stop_count;
 
 // Replies by participant name.
 using Replies = std::map<std::string, wire::Envelope>;
@@ -46,6 +49,12 @@ class Participants {
   // Binds the orchestrator's endpoint, prepares each participant's folder in `run_folder` and
   // starts the processes cosim launches itself.
   void start(const std::filesystem::path& run_folder);
+  // Resume: the participants' folders are kept as they are, and each continues from its part
+  // of `checkpoint` (Welcome.restart_from). Call before start().
+  void resumeFrom(const std::filesystem::path& checkpoint) { restart_from_ = checkpoint; }
+  // Each participant writes its part of a checkpoint into `folder`/<name>.
+  void checkpoint(const std::filesystem::path& folder);
+  std::vector<std::string> names() const;
   // Every participant says Hello (role, fields it provides and accepts) and gets its Welcome
   // (configuration, fields of this scene, time stepping); refuses a mismatch with the reason.
   void handshake();
@@ -88,6 +97,8 @@ class Participants {
   std::map<std::string, double> compute_;
   std::uint64_t step_ = 0;
   double time_ = 0.0;
+  std::filesystem::path restart_from_;
+  bool stop_noted_ = false;
 };
 
 }  // namespace cosim::orchestrator

@@ -3,7 +3,9 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <sstream>
 
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/analysis/time_series.h"
 
@@ -30,18 +32,48 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
     }
   }
   fs::create_directories(folder_);
-  {
-    std::ofstream os(folder_ / "scenario.resolved.yaml");
-    os << "# " << sc_.file.string() << " as run (parameters substituted, --set applied)\n";
-    os << sc_.resolved << "\n";
-  }
+  writeResolvedScene();
   log_.open(folder_ / "cosim.log");
   next_output_ = sc_.start_time;
   return folder_;
 }
 
+const fs::path& RunRecord::reopen(const fs::path& folder) {
+  folder_ = folder;
+  log_.open(folder_ / "cosim.log");
+  return folder_;
+}
+
+void RunRecord::writeResolvedScene() const {
+  std::ostringstream os;
+  os << "# " << sc_.file.string() << " as run (parameters substituted, --set applied)\n";
+  os << sc_.resolved << "\n";
+  analysis::writeFileAtomically(folder_ / "scenario.resolved.yaml", os.str());
+}
+
+void RunRecord::resumeRecorders(std::size_t rows, double time, double next_output) {
+  makeColumns();
+  const fs::path csv = folder_ / analysis::kTimeSeriesFile;
+  analysis::truncateTimeSeries(csv, rows);
+  const analysis::TimeSeries kept = analysis::readTimeSeries(csv);
+  series_time_ = kept.rows() ? kept.at(analysis::column::time) : std::vector<double>{};
+  for (const auto& c : columns_) series_[c] = kept.rows() ? kept.at(c) : std::vector<double>{};
+  series_file_ = std::make_unique<analysis::TimeSeriesRecorder>(
+      csv, columns_, analysis::TimeSeriesRecorder::Mode::append);
+  particles_ = std::make_unique<analysis::ParticleRecorder>(
+      folder_, plan_.particles_send, analysis::ParticleRecorder::Mode::append);
+  particles_->truncateAfter(time);
+  next_output_ = next_output;
+}
+
 void RunRecord::startRecorders() {
   particles_ = std::make_unique<analysis::ParticleRecorder>(folder_, plan_.particles_send);
+  makeColumns();
+  series_file_ =
+      std::make_unique<analysis::TimeSeriesRecorder>(folder_ / analysis::kTimeSeriesFile, columns_);
+}
+
+void RunRecord::makeColumns() {
   columns_ = {analysis::column::particle_count, analysis::column::wall_seconds};
   if (plan_.coating) {
     for (const char* c : {analysis::column::precursor_in, analysis::column::precursor_out,
@@ -51,8 +83,6 @@ void RunRecord::startRecorders() {
     }
   }
   if (plan_.fluid) columns_.push_back(analysis::column::pressure_drop);
-  series_file_ =
-      std::make_unique<analysis::TimeSeriesRecorder>(folder_ / analysis::kTimeSeriesFile, columns_);
 }
 
 void RunRecord::row(double time, const Row& values) {

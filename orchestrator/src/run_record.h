@@ -36,9 +36,19 @@ class RunRecord {
   // Writes scenario.resolved.yaml and opens cosim.log there.
   const std::filesystem::path& open(const std::filesystem::path& output, bool overwrite);
   const std::filesystem::path& folder() const { return folder_; }
+  void writeResolvedScene() const;
+
+  // Resume: the run continues in `folder` (cosim.log appended to; scenario.resolved.yaml is
+  // rewritten once the checkpoint has accepted the scene, writeResolvedScene).
+  const std::filesystem::path& reopen(const std::filesystem::path& folder);
 
   // Opens particles.h5 and timeseries.csv with the columns this scene records.
   void startRecorders();
+  // Resume: cuts timeseries.csv back to `rows` rows and particles.h5 back to `time`, then
+  // continues both; the observables see the rows kept.
+  void resumeRecorders(std::size_t rows, double time, double next_output);
+  std::size_t rows() const { return series_time_.size(); }
+  double nextOutput() const { return next_output_; }
   const std::vector<std::string>& columns() const { return columns_; }
 
   void row(double time, const Row& values);
@@ -54,6 +64,7 @@ class RunRecord {
   void summary(const analysis::Summary& s);
 
  private:
+  void makeColumns();
   const Scenario& sc_;
   const Plan& plan_;
   RunLog& log_;

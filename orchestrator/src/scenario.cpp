@@ -137,7 +137,7 @@ void templateTree(YAML::Node node, const Variables& vars, const Context& ctx,
 const std::set<std::string>& sectionNames() {
   static const std::set<std::string> sections = {
       "name",   "description", "parameters", "participants", "coupling",   "constants",
-      "models", "output",      "transport",  "checks",       "observables"};
+      "models", "output",      "transport",  "checks",       "observables", "checkpoint"};
   return sections;
 }
 
@@ -335,7 +335,7 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
   }
   ctx.allowOnly(root, "",
                 {"name", "description", "parameters", "participants", "coupling", "constants",
-                 "models", "output", "transport", "checks", "observables"});
+                 "models", "output", "transport", "checks", "observables", "checkpoint"});
   for (const auto& u : unsets) applyUnset(root, u, ctx);
   for (const auto& s : sets) applySet(root, s, ctx);
 
@@ -609,6 +609,22 @@ Scenario parseScenario(const std::string& text, const fs::path& origin,
       if (sc.output_interval < 0)
         ctx.fail(o["interval"], "output.interval",
                  "must be >= 0 seconds (0 = every coupling step)");
+    }
+  }
+  if (const YAML::Node c = root["checkpoint"]) {
+    ctx.allowOnly(c, "checkpoint", {"interval", "keep"});
+    if (c["interval"]) {
+      sc.checkpoint_interval = ctx.number(c["interval"], "checkpoint.interval");
+      if (!(sc.checkpoint_interval >= 0) || !std::isfinite(sc.checkpoint_interval))
+        ctx.fail(c["interval"], "checkpoint.interval",
+                 "must be >= 0 simulated seconds (0 = no periodic checkpoints)");
+    }
+    if (c["keep"]) {
+      const double k = ctx.number(c["keep"], "checkpoint.keep");
+      if (!(k >= 1) || k != std::floor(k) || k > 1000)
+        ctx.fail(c["keep"], "checkpoint.keep",
+                 "must be a whole number of checkpoints to keep, 1 to 1000");
+      sc.checkpoint_keep = static_cast<int>(k);
     }
   }
   if (const YAML::Node t = root["transport"]) {

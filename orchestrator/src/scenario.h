@@ -75,6 +75,10 @@ struct Scenario {
   std::filesystem::path output_folder;  // run folder
   double output_interval = 0.0;         // particle snapshots [s]; 0 = every step
 
+  // Checkpoints of the whole coupled state under RUN/checkpoints/<time>/ (docs/restarts.md).
+  double checkpoint_interval = 0.0;  // simulated seconds; 0 = none (a final one on Ctrl-C)
+  int checkpoint_keep = 3;           // the newest ones kept
+
   std::string bind_endpoint;        // empty: ipc in /tmp
   std::string connect_endpoint;     // what participants connect to (defaults to bind)
   double heartbeat_timeout = 10.0;  // s without any sign of life from a participant

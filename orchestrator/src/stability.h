@@ -68,6 +68,17 @@ class StepMonitor {
   void checkMassBalance(double in, double out, double held, double removed, std::uint64_t step,
                         double time);
 
+ // What the monitors remember across steps (saved with a checkpoint).
+  struct State {
+    bool courant_warned = false;
+    std::optional<std::array<double, 4>> baseline;  // in, out, held, removed at the start
+  };
+  State state() const { return {courant_warned_, baseline_}; }
+  void restore(const State& s) {
+    courant_warned_ = s.courant_warned;
+    baseline_ = s.baseline;
+  }
+
  private:
   const Scenario& sc_;
   bool courant_warned_ = false;

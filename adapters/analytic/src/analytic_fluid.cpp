@@ -144,6 +144,10 @@ class AnalyticFluid final : public link::Solver {
     out.mutable_fluid()->set_pressure_drop(0.0);
   }
 
+  // A prescribed flow has no state of its own beyond its configuration.
+  std::vector<std::string> checkpoint(const std::string& /*path*/) override { return {}; }
+  void restore(const std::string& /*path*/) override {}
+
  private:
   std::vector<std::string> send_;
   std::array<double, 3> u_{}, axis_{}, gradp_{}, dmin_{}, dmax_{};

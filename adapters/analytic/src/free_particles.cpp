@@ -4,6 +4,8 @@
 // v_inf = u_f + (F + m g)/K,  x(t) = x0 + v_inf t + (v0 - v_inf) tau (1 - exp(-t/tau)).
 // Exact for any time step, however small tau: the reference for stiff-drag tests.
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <numbers>
@@ -28,7 +30,8 @@ class FreeParticles final : public link::Solver {
     link::Capabilities c;
     c.role = wire::PARTICLES;
     c.adapter = "free-particles";
-    c.provides = {field::position, field::velocity, field::radius, field::coating_mass, field::type};
+    c.provides = {field::position, field::velocity, field::radius, field::coating_mass,
+                  field::type};
     c.accepts = {field::drag_coefficient, field::fluid_velocity, field::explicit_force,
                  field::coating_increment};
     return c;
@@ -36,14 +39,16 @@ class FreeParticles final : public link::Solver {
 
   void configure(const wire::Welcome& w) override {
     Options o(w.config_yaml(), "free-particles options");
-    o.allowOnly({"density", "gravity", "fixed", "particles", "lattice", "domain_min", "domain_max"});
+    o.allowOnly(
+        {"density", "gravity", "fixed", "particles", "lattice", "domain_min", "domain_max"});
     send_ = {w.send().begin(), w.send().end()};
     rho_ = o.positive("density", 2500.0);
     g_ = o.vec("gravity", {0, 0, -9.81});
     fixed_ = o.flag("fixed", false);
     if (o.has("particles")) {
       const auto& list = o.root()["particles"];
-      if (!list.IsSequence()) throw std::runtime_error("free-particles options: particles must be a list");
+      if (!list.IsSequence())
+        throw std::runtime_error("free-particles options: particles must be a list");
       std::int64_t next = 1;
       for (std::size_t i = 0; i < list.size(); ++i) {
         const auto& n = list[i];
@@ -51,12 +56,16 @@ class FreeParticles final : public link::Solver {
         Particle p{};
         p.id = n["id"] ? n["id"].as<std::int64_t>() : next;
         next = p.id + 1;
-        if (!n["position"]) throw std::runtime_error("free-particles options: " + k + ".position missing");
+        if (!n["position"])
+          throw std::runtime_error("free-particles options: " + k + ".position missing");
         p.x = o.vec(n["position"], k + ".position");
-        p.v = n["velocity"] ? o.vec(n["velocity"], k + ".velocity") : std::array<double, 3>{0, 0, 0};
-        if (!n["radius"]) throw std::runtime_error("free-particles options: " + k + ".radius missing");
+        p.v =
+            n["velocity"] ? o.vec(n["velocity"], k + ".velocity") : std::array<double, 3>{0, 0, 0};
+        if (!n["radius"])
+          throw std::runtime_error("free-particles options: " + k + ".radius missing");
         p.r = o.number(n["radius"], k + ".radius");
-        if (!(p.r > 0)) throw std::runtime_error("free-particles options: " + k + ".radius must be > 0");
+        if (!(p.r > 0))
+          throw std::runtime_error("free-particles options: " + k + ".radius must be > 0");
         add(p);
       }
     }
@@ -66,7 +75,9 @@ class FreeParticles final : public link::Solver {
       const auto origin = o.vec(l["origin"], "lattice.origin");
       const double s = o.number(l["spacing"], "lattice.spacing");
       const double r = o.number(l["radius"], "lattice.radius");
-      if (!(r > 0) || !(s > 0)) throw std::runtime_error("free-particles options: lattice.radius and lattice.spacing must be > 0");
+      if (!(r > 0) || !(s > 0))
+        throw std::runtime_error(
+            "free-particles options: lattice.radius and lattice.spacing must be > 0");
       std::int64_t id = particles_.empty() ? 1 : particles_.rbegin()->first + 1;
       for (int k = 0; k < static_cast<int>(count[2]); ++k)
         for (int j = 0; j < static_cast<int>(count[1]); ++j)
@@ -79,7 +90,9 @@ class FreeParticles final : public link::Solver {
             add(p);
           }
     }
-    if (particles_.empty()) throw std::runtime_error("free-particles options: no particles (give 'particles:' or 'lattice:')");
+    if (particles_.empty())
+      throw std::runtime_error(
+          "free-particles options: no particles (give 'particles:' or 'lattice:')");
     if (o.has("domain_min") || o.has("domain_max")) {
       bounded_ = true;
       dmin_ = o.vec("domain_min", {-1e300, -1e300, -1e300});
@@ -91,15 +104,20 @@ class FreeParticles final : public link::Solver {
                link::ParticleData& state) override {
     const double dt = cmd.dt();
     const auto n = terms.size();
-    const std::vector<double>* K = terms.has(field::drag_coefficient) ? &terms.get(field::drag_coefficient) : nullptr;
-    const std::vector<double>* uf = terms.has(field::fluid_velocity) ? &terms.get(field::fluid_velocity) : nullptr;
-    const std::vector<double>* F = terms.has(field::explicit_force) ? &terms.get(field::explicit_force) : nullptr;
-    const std::vector<double>* dm = terms.has(field::coating_increment) ? &terms.get(field::coating_increment) : nullptr;
+    const std::vector<double>* K =
+        terms.has(field::drag_coefficient) ? &terms.get(field::drag_coefficient) : nullptr;
+    const std::vector<double>* uf =
+        terms.has(field::fluid_velocity) ? &terms.get(field::fluid_velocity) : nullptr;
+    const std::vector<double>* F =
+        terms.has(field::explicit_force) ? &terms.get(field::explicit_force) : nullptr;
+    const std::vector<double>* dm =
+        terms.has(field::coating_increment) ? &terms.get(field::coating_increment) : nullptr;
     std::map<std::int64_t, std::size_t> row;
     for (std::size_t i = 0; i < n; ++i) row[terms.ids[i]] = i;
     for (const auto& [id, i] : row) {
       if (!particles_.count(id)) {
-        throw std::runtime_error("terms for particle " + std::to_string(id) + ", which does not exist");
+        throw std::runtime_error("terms for particle " + std::to_string(id) +
+                                 ", which does not exist");
       }
       if (dm) particles_[id].coating += (*dm)[i];
     }
@@ -152,19 +170,55 @@ class FreeParticles final : public link::Solver {
       auto& v = state.field(name);
       std::size_t i = 0;
       for (const auto& [id, p] : particles_) {
-        if (name == field::position) for (std::size_t c = 0; c < 3; ++c) v[3 * i + c] = p.x[c];
-        else if (name == field::velocity) for (std::size_t c = 0; c < 3; ++c) v[3 * i + c] = p.v[c];
-        else if (name == field::radius) v[i] = p.r;
-        else if (name == field::coating_mass) v[i] = p.coating;
-        else if (name == field::type) v[i] = p.type;
+        if (name == field::position)
+          for (std::size_t c = 0; c < 3; ++c) v[3 * i + c] = p.x[c];
+        else if (name == field::velocity)
+          for (std::size_t c = 0; c < 3; ++c) v[3 * i + c] = p.v[c];
+        else if (name == field::radius)
+          v[i] = p.r;
+        else if (name == field::coating_mass)
+          v[i] = p.coating;
+        else if (name == field::type)
+          v[i] = p.type;
         ++i;
       }
     }
   }
 
+  // The particles as they are, to the bit (raw doubles): a resumed run continues exactly.
+  std::vector<std::string> checkpoint(const std::string& path) override {
+    const auto file = std::filesystem::path(path) / "free-particles.state";
+    std::ofstream os(file, std::ios::binary);
+    const std::uint64_t n = particles_.size();
+    os.write(reinterpret_cast<const char*>(&n), sizeof n);
+    for (const auto& [id, p] : particles_) os.write(reinterpret_cast<const char*>(&p), sizeof p);
+    os.close();
+    if (!os) throw std::runtime_error("free-particles: cannot write " + file.string());
+    return {file.string()};
+  }
+
+  void restore(const std::string& path) override {
+    const auto file = std::filesystem::path(path) / "free-particles.state";
+    std::ifstream is(file, std::ios::binary);
+    std::uint64_t n = 0;
+    is.read(reinterpret_cast<char*>(&n), sizeof n);
+    if (!is || n > (1ULL << 32))
+      throw std::runtime_error("free-particles: " + file.string() +
+                               " is not a checkpoint of this adapter");
+    particles_.clear();
+    for (std::uint64_t i = 0; i < n; ++i) {
+      Particle p{};
+      is.read(reinterpret_cast<char*>(&p), sizeof p);
+      if (!is) throw std::runtime_error("free-particles: " + file.string() + " is truncated");
+      particles_[p.id] = p;
+    }
+  }
+
  private:
   void add(const Particle& p) {
-    if (particles_.count(p.id)) throw std::runtime_error("free-particles options: particle id " + std::to_string(p.id) + " given twice");
+    if (particles_.count(p.id))
+      throw std::runtime_error("free-particles options: particle id " + std::to_string(p.id) +
+                               " given twice");
     particles_[p.id] = p;
   }
   std::vector<std::string> send_;

@@ -185,6 +185,7 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
   try {
     const wire::Welcome welcome = session.handshake();
     solver.configure(welcome);
+    if (!welcome.restart_from().empty()) solver.restore(welcome.restart_from());
     while (true) {
       wire::Envelope cmd = session.nextCommand();
       wire::Envelope out;

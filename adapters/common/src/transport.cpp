@@ -1,5 +1,6 @@
 #include "cosim/link/transport.h"
 
+#include <cerrno>
 #include <zmq.hpp>
 
 #include "cosim/link/errors.h"
@@ -53,6 +54,21 @@ Channel::Channel(const std::string& endpoint, const std::string& identity)
   impl_->socket.connect(endpoint);
 }
 
+namespace {
+// Waits up to `timeout` for a message. A signal (Ctrl-C) interrupting the wait is a wake-up
+// without a message, not an error: the caller's loop decides what the signal means.
+bool readable(zmq::socket_t& socket, Millis timeout) {
+  zmq::pollitem_t item{socket.handle(), 0, ZMQ_POLLIN, 0};
+  try {
+    zmq::poll(&item, 1, timeout);
+  } catch (const zmq::error_t& e) {
+    if (e.num() == EINTR) return false;
+    throw;
+  }
+  return (item.revents & ZMQ_POLLIN) != 0;
+}
+}  // namespace
+
 Channel::~Channel() = default;
 
 void Channel::send(const wire::Envelope& env) { sendRaw(serialize(env)); }
@@ -62,9 +78,7 @@ void Channel::sendRaw(const std::string& bytes) {
 }
 
 std::optional<wire::Envelope> Channel::receive(Millis timeout) {
-  zmq::pollitem_t item{impl_->socket.handle(), 0, ZMQ_POLLIN, 0};
-  zmq::poll(&item, 1, timeout);
-  if (!(item.revents & ZMQ_POLLIN)) return std::nullopt;
+  if (!readable(impl_->socket, timeout)) return std::nullopt;
   zmq::message_t msg;
   if (!impl_->socket.recv(msg, zmq::recv_flags::dontwait)) return std::nullopt;
   return parse(msg.data(), msg.size());
@@ -101,9 +115,7 @@ void Hub::send(const std::string& peer, const wire::Envelope& env) {
 }
 
 std::optional<Hub::Incoming> Hub::receive(Millis timeout) {
-  zmq::pollitem_t item{impl_->socket.handle(), 0, ZMQ_POLLIN, 0};
-  zmq::poll(&item, 1, timeout);
-  if (!(item.revents & ZMQ_POLLIN)) return std::nullopt;
+  if (!readable(impl_->socket, timeout)) return std::nullopt;
   zmq::message_t id;
   zmq::message_t body;
   if (!impl_->socket.recv(id, zmq::recv_flags::dontwait)) return std::nullopt;

@@ -43,6 +43,10 @@ class ParticleRecorder {
   // at fault.
   void write(double time, const cosim::link::ParticleData& particles);
 
+  // Resume: removes the snapshots after `time` (recorded after the checkpoint the run continues
+  // from), so the file reads as if the run had never gone past it.
+  void truncateAfter(double time);
+
   std::size_t snapshots() const { return entries_.size(); }
   const std::filesystem::path& file() const { return h5_; }
   const std::filesystem::path& xdmf() const { return xmf_; }

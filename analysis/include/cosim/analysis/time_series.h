@@ -73,4 +73,8 @@ struct TimeSeries {
 // line cut short by a crash is ignored. Throws with file:line on malformed content.
 TimeSeries readTimeSeries(const std::filesystem::path& path);
 
+// Resume: keeps the header and the first `rows` rows of a time-series file (replaced atomically);
+// throws std::runtime_error naming the file if it has fewer rows.
+void truncateTimeSeries(const std::filesystem::path& path, std::size_t rows);
+
 }  // namespace cosim::analysis

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -53,9 +54,17 @@ class Solver {
   // Advance one coupling interval (dt == 0: only report the current state).
   virtual void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced& out,
                        ParticleData& state) = 0;
+  // Writes everything the solver needs to continue from this moment into the folder `path`
+  // (created by the orchestrator; the participant's own part of a checkpoint) and returns the
+  // files written. Called between coupling steps.
   virtual std::vector<std::string> checkpoint(const std::string& path) {
     (void)path;
-    return {};
+    throw std::runtime_error("this adapter cannot write checkpoints");
+  }
+  // After configure, when the run resumes: continue from what checkpoint(path) wrote.
+  virtual void restore(const std::string& path) {
+    (void)path;
+    throw std::runtime_error("this adapter cannot resume from a checkpoint");
   }
   virtual void finish() {}
 };

@@ -1,0 +1,210 @@
+#include "checkpoints.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <stdexcept>
+
+#include "cosim/analysis/files.h"
+
+namespace cosim::orchestrator {
+
+namespace fs = std::filesystem;
+using Json = analysis::Json;
+
+namespace {
+
+constexpr const char* kStateFile = "orchestrator.json";
+constexpr const char* kPartialPrefix = ".partial-";
+
+Json toJson(const CoupledState& s) {
+  const auto& b = s.balance;
+  Json j;
+  j["format"] = "cosim-checkpoint";
+  j["version"] = 1;
+  j["step"] = s.step;
+  j["time"] = s.time;
+  j["balance"] = {{"in", b.in},
+                  {"out", b.out},
+                  {"held", b.held},
+                  {"held_start", b.held_start},
+                  {"removed", b.removed},
+                  {"credited", b.credited},
+                  {"left_domain", b.left_domain},
+                  {"any_left", b.any_left},
+                  {"deleted_coating", b.deleted_coating},
+                  {"coating_initial", b.coating_initial}};
+  Json owed = Json::array();
+  for (const auto& [id, m] : s.pending) owed.push_back({id, m});
+  j["pending"] = owed;
+  j["totals"] = s.totals;
+  j["monitor"]["courant_warned"] = s.monitor.courant_warned;
+  if (s.monitor.baseline) j["monitor"]["baseline"] = *s.monitor.baseline;
+  j["initial_count"] = s.initial_count;
+  j["initial_row_written"] = s.initial_row_written;
+  j["series_rows"] = s.series_rows;
+  j["next_output"] = s.next_output;
+  j["wall_seconds"] = s.wall_seconds;
+  j["phases"] = s.phases;
+  j["compute"] = s.compute;
+  j["scene"] = s.scene;
+  return j;
+}
+
+CoupledState fromJson(const Json& j) {
+  CoupledState s;
+  s.step = j.at("step").get<std::uint64_t>();
+  s.time = j.at("time").get<double>();
+  const Json& b = j.at("balance");
+  s.balance.in = b.at("in");
+  s.balance.out = b.at("out");
+  s.balance.held = b.at("held");
+  s.balance.held_start = b.at("held_start");
+  s.balance.removed = b.at("removed");
+  s.balance.credited = b.at("credited");
+  s.balance.left_domain = b.at("left_domain");
+  s.balance.any_left = b.at("any_left");
+  s.balance.deleted_coating = b.at("deleted_coating");
+  s.balance.coating_initial = b.at("coating_initial");
+  for (const auto& e : j.at("pending")) s.pending[e.at(0).get<std::int64_t>()] = e.at(1);
+  s.totals = j.at("totals").get<std::map<std::string, double>>();
+  s.monitor.courant_warned = j.at("monitor").at("courant_warned");
+  if (j.at("monitor").contains("baseline"))
+    s.monitor.baseline = j.at("monitor").at("baseline").get<std::array<double, 4>>();
+  s.initial_count = j.at("initial_count");
+  s.initial_row_written = j.at("initial_row_written");
+  s.series_rows = j.at("series_rows");
+  s.next_output = j.at("next_output");
+  s.wall_seconds = j.at("wall_seconds");
+  s.phases = j.at("phases").get<std::map<std::string, double>>();
+  s.compute = j.at("compute").get<std::map<std::string, double>>();
+  s.scene = j.at("scene");
+  return s;
+}
+
+// Every leaf of a YAML tree as "a.b[2].c" -> its text.
+void flatten(const YAML::Node& n, const std::string& path,
+             std::map<std::string, std::string>& out) {
+  if (n.IsMap()) {
+    for (const auto& kv : n) {
+      const std::string k = kv.first.as<std::string>();
+      flatten(kv.second, path.empty() ? k : path + "." + k, out);
+    }
+  } else if (n.IsSequence()) {
+    for (std::size_t i = 0; i < n.size(); ++i)
+      flatten(n[i], path + "[" + std::to_string(i) + "]", out);
+  } else if (n.IsScalar()) {
+    out[path] = n.Scalar();
+  } else {
+    out[path] = "~";
+  }
+}
+
+bool under(const std::string& key, const std::string& prefix) {
+  return key == prefix || key.rfind(prefix + ".", 0) == 0 || key.rfind(prefix + "[", 0) == 0;
+}
+
+bool mayChange(const std::string& key) {
+  for (const char* p : {"coupling.end_time", "output", "checkpoint", "transport", "checks",
+                        "observables", "description"}) {
+    if (under(key, p)) return true;
+  }
+  // participants.<name>.timeout
+  const std::string t = ".timeout";
+  return key.rfind("participants.", 0) == 0 && key.size() > t.size() &&
+         key.compare(key.size() - t.size(), t.size(), t) == 0;
+}
+
+// 1.0e-3 and 0.001 are the same setting.
+bool sameNumber(const std::string& a, const std::string& b) {
+  char *ea = nullptr, *eb = nullptr;
+  const double x = std::strtod(a.c_str(), &ea);
+  const double y = std::strtod(b.c_str(), &eb);
+  return !a.empty() && !b.empty() && *ea == '\0' && *eb == '\0' && x == y;
+}
+
+double timeOf(const fs::path& p) { return std::strtod(p.filename().c_str(), nullptr); }
+
+}  // namespace
+
+CheckpointStore::CheckpointStore(fs::path run_folder)
+    : dir_(std::move(run_folder) / "checkpoints") {}
+
+fs::path CheckpointStore::begin(double time, const std::vector<std::string>& participants) const {
+  const fs::path partial = dir_ / (kPartialPrefix + analysis::formatShortest(time));
+  std::error_code ec;
+  fs::remove_all(partial, ec);  // a checkpoint that a crash interrupted
+  for (const auto& p : participants) fs::create_directories(partial / p);
+  fs::create_directories(partial);
+  return partial;
+}
+
+fs::path CheckpointStore::commit(const fs::path& partial, const CoupledState& state,
+                                 int keep) const {
+  analysis::writeFileAtomically(partial / kStateFile, toJson(state).dump(1) + "\n");
+  const fs::path final_dir = dir_ / analysis::formatShortest(state.time);
+  std::error_code ec;
+  fs::remove_all(final_dir, ec);
+  fs::rename(partial, final_dir);
+  auto done = all();
+  while (static_cast<int>(done.size()) > keep) {
+    fs::remove_all(done.front(), ec);
+    done.erase(done.begin());
+  }
+  return final_dir;
+}
+
+std::vector<fs::path> CheckpointStore::all() const {
+  std::vector<fs::path> found;
+  std::error_code ec;
+  if (!fs::is_directory(dir_, ec)) return found;
+  for (const auto& e : fs::directory_iterator(dir_)) {
+    const std::string name = e.path().filename().string();
+    if (!e.is_directory() || name.rfind(kPartialPrefix, 0) == 0) continue;
+    if (!fs::exists(e.path() / kStateFile)) continue;  // not complete
+    found.push_back(e.path());
+  }
+  std::sort(found.begin(), found.end(),
+            [](const fs::path& a, const fs::path& b) { return timeOf(a) < timeOf(b); });
+  return found;
+}
+
+std::optional<fs::path> CheckpointStore::newest() const {
+  auto done = all();
+  if (done.empty()) return std::nullopt;
+  return done.back();
+}
+
+CoupledState readCoupledState(const fs::path& checkpoint) {
+  const fs::path file = checkpoint / kStateFile;
+  try {
+    const Json j = analysis::readJsonFile(file);
+    if (j.value("format", "") != "cosim-checkpoint")
+      throw std::runtime_error("not a cosim checkpoint (no format: cosim-checkpoint)");
+    return fromJson(j);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(file.string() + ": " + e.what());
+  }
+}
+
+std::vector<std::string> sceneDifferences(const YAML::Node& saved, const YAML::Node& now) {
+  std::map<std::string, std::string> a, b;
+  flatten(saved, "", a);
+  flatten(now, "", b);
+  std::set<std::string> keys;
+  for (const auto& [k, v] : a) keys.insert(k);
+  for (const auto& [k, v] : b) keys.insert(k);
+  std::vector<std::string> diff;
+  for (const auto& k : keys) {
+    if (mayChange(k)) continue;
+    auto ia = a.find(k), ib = b.find(k);
+    const std::string va = ia == a.end() ? "(absent)" : ia->second;
+    const std::string vb = ib == b.end() ? "(absent)" : ib->second;
+    if (va != vb && !sameNumber(va, vb)) diff.push_back(k + ": " + va + " -> " + vb);
+  }
+  return diff;
+}
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,64 @@
+// Checkpoints of the whole coupled state (docs/restarts.md). RUN/checkpoints/<time>/ holds one
+// folder per participant (what its adapter's Checkpoint wrote: LIGGGHTS restart file, OpenFOAM
+// time folder, ...) and orchestrator.json, the coupler's own state: time, step, the coating owed,
+// the balance totals, the monitors, the recorders' positions. A checkpoint is written under a
+// temporary name and renamed when every part is on disk: it is complete or absent.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coating_ledger.h"
+#include "stability.h"
+
+namespace cosim::orchestrator {
+
+struct CoupledState {
+  std::uint64_t step = 0;  // coupling steps done
+  double time = 0.0;       // [s]
+  CoatingLedger::Balance balance;
+  std::map<std::int64_t, double> pending;  // coating owed, by parcel id
+  std::map<std::string, double> totals;
+  StepMonitor::State monitor;
+  std::size_t initial_count = 0;
+  bool initial_row_written = false;
+  std::size_t series_rows = 0;            // rows of timeseries.csv at the checkpoint
+  double next_output = 0.0;               // next particle snapshot [s]
+  double wall_seconds = 0.0;              // wall time of the run so far
+  std::map<std::string, double> phases;   // wall seconds per phase so far
+  std::map<std::string, double> compute;  // compute seconds per participant so far
+  std::string scene;                      // the resolved scenario it was written with (YAML)
+};
+
+class CheckpointStore {
+ public:
+  explicit CheckpointStore(std::filesystem::path run_folder);
+  // A fresh temporary folder for a checkpoint at `time`, with one empty folder per participant.
+  std::filesystem::path begin(double time, const std::vector<std::string>& participants) const;
+  // Writes the coupler's state, renames the temporary folder to its final name and removes all
+  // but the newest `keep` checkpoints. Returns the final folder.
+  std::filesystem::path commit(const std::filesystem::path& partial, const CoupledState& state,
+                               int keep) const;
+  // The newest complete checkpoint, if any.
+  std::optional<std::filesystem::path> newest() const;
+  // Every complete checkpoint, oldest first.
+  std::vector<std::filesystem::path> all() const;
+
+ private:
+  std::filesystem::path dir_;
+};
+
+CoupledState readCoupledState(const std::filesystem::path& checkpoint);
+
+// Keys of the scene whose values differ between a checkpoint's scene and the one to resume with,
+// as "key: old -> new", leaving out what a resumed run may change (end time, output, checkpoint,
+// transport, checks, observables, description, timeouts).
+std::vector<std::string> sceneDifferences(const YAML::Node& saved, const YAML::Node& now);
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,223 @@
+// Checkpoints and resume, as a user meets them: `cosim run` killed with SIGKILL at a random
+// moment, or stopped with Ctrl-C, then `cosim resume`, must leave the same run folder as a run
+// that never stopped: the same time series (to the bit, wall times aside), the same particle
+// snapshots, the same summary totals. The analytic adapters make the solvers themselves exact.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "cosim/analysis/files.h"
+#include "cosim/analysis/particle_file.h"
+#include "cosim/analysis/time_series.h"
+#include "processes.h"
+
+using namespace cosim;
+using namespace cosim::orchestrator;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kCosim = fs::path(COSIM_BIN_DIR) / "cosim";
+
+// Parcels held nearly still by a rising gas, coated in a zone, some of them leaving through the
+// bottom: the coating owed at a checkpoint, deletions and snapshots all cross the restart.
+const char* kScene = R"(name: restart
+participants:
+  fluid:
+    adapter: analytic-fluid
+    options: { velocity: [0, 0, 6.0], density: 1.2, viscosity: 1.8e-5, precursor_fraction: 0.01 }
+  particles:
+    adapter: free-particles
+    options:
+      density: 2500
+      lattice: { count: [5, 5, 8], origin: [-0.004, -0.004, 0.0], spacing: 0.002, radius: 0.0005 }
+      domain_min: [-1, -1, -0.004]
+      domain_max: [1, 1, 1]
+coupling: { dt: 1.0e-3, dem_steps: 1, end_time: 0.12 }
+constants: { cg: 1, gravity: [0, 0, -9.81] }
+models:
+  drag: { law: schiller_naumann }
+  mass_transfer: { law: ranz_marshall }
+  coating_zone: { shape: box, min: [-0.01, -0.01, 0.004], max: [0.01, 0.01, 0.012] }
+output: { interval: 0.01 }
+checkpoint: { interval: 0.02, keep: 2 }
+)";
+
+struct Workspace {
+  fs::path dir;
+  Workspace() {
+    dir = fs::temp_directory_path() / ("cosim-restart-" + std::to_string(getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    std::ofstream(dir / "scene.yaml") << kScene;
+  }
+  ~Workspace() { fs::remove_all(dir); }
+};
+
+// Starts cosim with `args` in `dir`; its output goes to `log`.
+ChildProcess start(const Workspace& w, const std::vector<std::string>& args,
+                   const std::string& log) {
+  std::vector<std::string> argv = {kCosim.string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  return ChildProcess(argv, w.dir, w.dir / log, {});
+}
+
+int finish(ChildProcess& p) {
+  for (int i = 0; i < 1200 && p.running(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_FALSE(p.running()) << "cosim did not end within 60 s";
+  return p.exitCode();
+}
+
+std::string text(const fs::path& file) {
+  std::ifstream in(file);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Everything two runs must share: the time series without the wall-clock column, every
+// snapshot's fields, the summary's totals.
+void expectSameRun(const fs::path& a, const fs::path& b) {
+  const auto ta = analysis::readTimeSeries(a / "timeseries.csv");
+  const auto tb = analysis::readTimeSeries(b / "timeseries.csv");
+  ASSERT_EQ(ta.columns, tb.columns);
+  ASSERT_EQ(ta.rows(), tb.rows());
+  for (const auto& c : ta.columns) {
+    if (c == "wall_seconds") continue;
+    const auto& x = ta.at(c);
+    const auto& y = tb.at(c);
+    for (std::size_t r = 0; r < x.size(); ++r) {
+      if (std::isnan(x[r]) && std::isnan(y[r])) continue;
+      ASSERT_EQ(x[r], y[r]) << c << " row " << r;
+    }
+  }
+  const analysis::ParticleFile pa(a / "particles.h5"), pb(b / "particles.h5");
+  ASSERT_EQ(pa.fields(), pb.fields());
+  ASSERT_EQ(pa.snapshots().size(), pb.snapshots().size());
+  for (std::size_t s = 0; s < pa.snapshots().size(); ++s) {
+    const double t = pa.snapshots()[s].time;
+    ASSERT_EQ(t, pb.snapshots()[s].time);
+    ASSERT_EQ(pa.ids(s), pb.ids(s)) << "snapshot at " << t;
+    for (const auto& name : pa.fields())
+      ASSERT_EQ(pa.read(s, name), pb.read(s, name)) << name << " at " << t;
+  }
+  const auto sa = analysis::readJsonFile(a / "summary.json");
+  const auto sb = analysis::readJsonFile(b / "summary.json");
+  EXPECT_EQ(sa.at("status"), sb.at("status"));
+  EXPECT_EQ(sa.at("steps"), sb.at("steps"));
+  EXPECT_EQ(sa.at("headline"), sb.at("headline"));
+}
+
+}  // namespace
+
+TEST(Restart, KilledAtARandomMomentAndResumedIsTheUninterruptedRun) {
+  Workspace w;
+  auto full = start(w, {"run", "scene.yaml", "-o", "full", "--quiet"}, "full.out");
+  ASSERT_EQ(finish(full), 0) << text(w.dir / "full.out");
+  // The uninterrupted run kept the newest two checkpoints, the last one at its end time.
+  ASSERT_TRUE(fs::exists(w.dir / "full/checkpoints/0.12/orchestrator.json"));
+  ASSERT_TRUE(fs::exists(w.dir / "full/checkpoints/0.1/orchestrator.json"));
+  ASSERT_FALSE(fs::exists(w.dir / "full/checkpoints/0.08"));
+
+  std::mt19937 rng(std::random_device{}());
+  const int after = std::uniform_int_distribution<int>(2, 4)(rng);  // checkpoints 0.04 .. 0.08
+  const int extra_ms = std::uniform_int_distribution<int>(0, 20)(rng);
+  auto cut = start(w, {"run", "scene.yaml", "-o", "cut", "--quiet"}, "cut.out");
+  const fs::path wait_for =
+      w.dir / "cut/checkpoints" / analysis::formatShortest(0.02 * after) / "orchestrator.json";
+  for (int i = 0; i < 2000 && cut.running() && !fs::exists(wait_for); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  std::this_thread::sleep_for(std::chrono::milliseconds(extra_ms));
+  ::kill(cut.pid(), SIGKILL);
+  finish(cut);
+  SCOPED_TRACE("killed after checkpoint " + std::to_string(0.02 * after) + " s + " +
+               std::to_string(extra_ms) + " ms");
+
+  auto resumed = start(w, {"resume", "cut", "--quiet"}, "resume.out");
+  ASSERT_EQ(finish(resumed), 0) << text(w.dir / "resume.out");
+  expectSameRun(w.dir / "full", w.dir / "cut");
+}
+
+TEST(Restart, CtrlCStopsWithACheckpointAndSaysHowToResume) {
+  Workspace w;
+  auto full =
+      start(w, {"run", "scene.yaml", "-o", "full", "--quiet", "--set", "checkpoint.interval=0"},
+            "full.out");
+  ASSERT_EQ(finish(full), 0) << text(w.dir / "full.out");
+  EXPECT_FALSE(fs::exists(w.dir / "full/checkpoints")) << "interval 0: no periodic checkpoints";
+
+  auto cut =
+      start(w, {"run", "scene.yaml", "-o", "cut", "--quiet", "--set", "checkpoint.interval=0"},
+            "cut.out");
+  for (int i = 0; i < 2000 && cut.running() && !fs::exists(w.dir / "cut/timeseries.csv"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ::kill(cut.pid(), SIGINT);
+  EXPECT_EQ(finish(cut), 130) << text(w.dir / "cut.out");
+  const auto summary = analysis::readJsonFile(w.dir / "cut/summary.json");
+  EXPECT_EQ(summary.at("status"), "interrupted");
+  EXPECT_NE(summary.at("message").get<std::string>().find("cosim resume"), std::string::npos);
+  ASSERT_TRUE(fs::exists(w.dir / "cut/checkpoints")) << "the final checkpoint";
+
+  auto resumed = start(w, {"resume", "cut", "--quiet"}, "resume.out");
+  ASSERT_EQ(finish(resumed), 0) << text(w.dir / "resume.out");
+  expectSameRun(w.dir / "full", w.dir / "cut");
+}
+
+TEST(Restart, AFinishedRunIsMadeLongerAndEqualsTheLongerRun) {
+  Workspace w;
+  auto longer =
+      start(w, {"run", "scene.yaml", "-o", "long", "--quiet", "--set", "coupling.end_time=0.16"},
+            "long.out");
+  ASSERT_EQ(finish(longer), 0) << text(w.dir / "long.out");
+  auto first = start(w, {"run", "scene.yaml", "-o", "ext", "--quiet"}, "ext.out");
+  ASSERT_EQ(finish(first), 0) << text(w.dir / "ext.out");
+  auto again = start(w, {"resume", "ext", "--quiet"}, "again.out");
+  EXPECT_EQ(finish(again), 2);
+  EXPECT_NE(text(w.dir / "again.out").find("coupling.end_time=..."), std::string::npos)
+      << text(w.dir / "again.out");
+  auto extend =
+      start(w, {"resume", "ext", "--quiet", "--set", "coupling.end_time=0.16"}, "extend.out");
+  ASSERT_EQ(finish(extend), 0) << text(w.dir / "extend.out");
+  expectSameRun(w.dir / "long", w.dir / "ext");
+}
+
+TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
+  Workspace w;
+  auto run = start(
+      w, {"run", "scene.yaml", "-o", "r", "--quiet", "--set", "coupling.end_time=0.04"}, "r.out");
+  ASSERT_EQ(finish(run), 0) << text(w.dir / "r.out");
+  auto changed = start(w,
+                       {"resume", "r", "--quiet", "--set", "coupling.end_time=0.08", "--set",
+                        "models.drag.law=stokes", "--set", "coupling.dt=2e-3"},
+                       "changed.out");
+  EXPECT_EQ(finish(changed), 2);
+  const std::string out = text(w.dir / "changed.out");
+  EXPECT_NE(out.find("models.drag.law: schiller_naumann -> stokes"), std::string::npos) << out;
+  EXPECT_NE(out.find("coupling.dt: "), std::string::npos) << out;
+  EXPECT_EQ(out.find("- coupling.end_time"), std::string::npos) << "end time may change: " << out;
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "r/summary.json").at("status"), "completed")
+      << "a refused resume leaves the run folder as it was";
+
+  // The same value written another way is no change.
+  auto same = start(
+      w,
+      {"resume", "r", "--quiet", "--set", "coupling.end_time=0.06", "--set", "coupling.dt=0.001"},
+      "same.out");
+  EXPECT_EQ(finish(same), 0) << text(w.dir / "same.out");
+
+  auto nothing = start(w, {"resume", "r/particles", "--quiet"}, "nothing.out");
+  EXPECT_NE(finish(nothing), 0);
+  EXPECT_NE(text(w.dir / "nothing.out").find("not a run folder"), std::string::npos)
+      << text(w.dir / "nothing.out");
+}
