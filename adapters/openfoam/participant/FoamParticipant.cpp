@@ -11,6 +11,8 @@
 #include <unistd.h>
 
 #include "cosim/link/fields.h"
+#include "cosim/util/child_process.h"
+#include "cosim/util/text_file.h"
 
 namespace cosim::foam {
 namespace fs = std::filesystem;
@@ -36,25 +38,23 @@ struct Argv {
   std::vector<char*> ptrs;
 };
 
-std::string tail(const fs::path& log, std::size_t lines) {
-  std::ifstream in(log);
-  std::vector<std::string> all;
-  for (std::string l; std::getline(in, l);) all.push_back(l);
-  std::ostringstream out;
-  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) {
-    out << all[i] << "\n";
-  }
-  return out.str();
-}
-
-void runTool(const std::string& tool, const std::string& args) {
+// An OpenFOAM utility run in the case folder from an argument vector (no shell), its output in
+// log.<tool>.
+void runTool(const std::vector<std::string>& argv) {
+  const std::string& tool = argv.front();
   const std::string log = "log." + tool;
-  const std::string cmd = tool + " " + args + " > " + log + " 2>&1";
-  const int rc = std::system(cmd.c_str());
+  int rc = 0;
+  std::string why;
+  try {
+    rc = util::runProgram(argv, log);
+  } catch (const std::exception& e) {
+    rc = 127;
+    why = std::string(": ") + e.what();
+  }
   if (rc != 0) {
-    throw std::runtime_error("cosimFoam: `" + tool + " " + args + "` failed in " +
-                             fs::current_path().string() + " (see " + log + "):\n" +
-                             tail(log, 15));
+    throw std::runtime_error("cosimFoam: `" + util::displayCommand(argv) + "` failed in " +
+                             fs::current_path().string() + why + " (see " + log + "):\n" +
+                             util::tailOfFile(log, 15));
   }
 }
 
@@ -88,7 +88,7 @@ void prepareCase(const AdapterSettings& settings, int ranks) {
                                " has no mesh (constant/polyMesh) and no system/blockMeshDict "
                                "to make one");
     }
-    runTool("blockMesh", "");
+    runTool({"blockMesh"});
     meshed = true;
   } else if (!haveMesh) {
     throw std::runtime_error("cosimFoam: options.mesh is 'existing' but " + here.string() +
@@ -111,7 +111,7 @@ void prepareCase(const AdapterSettings& settings, int ranks) {
       if (!fs::exists("processor" + std::to_string(r) + "/constant/polyMesh")) decomposed = false;
     }
     if (fs::exists("processor" + std::to_string(ranks))) decomposed = false;
-    if (meshed || !decomposed) runTool("decomposePar", "-force");
+    if (meshed || !decomposed) runTool({"decomposePar", "-force"});
   }
 }
 
