@@ -23,7 +23,6 @@
 #include "cosim/liggghts/drag_relaxation_fix.h"
 #include "cosim/liggghts/hertz_contact_time.h"
 #include "cosim/liggghts/liggghts_error.h"
-#include "cosim/liggghts/rayleigh_time.h"
 
 namespace cosim::liggghts {
 
@@ -221,7 +220,7 @@ TimestepReport Engine::timestepReport(double impact_speed) const {
     const double density = atom->rmass[i] / (4.0 / 3.0 * std::numbers::pi * r * r * r);
     const double e = E->compute_vector(t - 1), p = nu->compute_vector(t - 1);
     local[0] = std::min(local[0], r);
-    local[1] = std::min(local[1], rayleighTime(r, density, e, p));
+    local[1] = std::min(local[1], util::rayleighTime(r, density, e, p));
     local[2] = std::min(local[2], hertzContactTimeRigidWall(r, density, e, p, impact_speed));
   }
   double global[3];
