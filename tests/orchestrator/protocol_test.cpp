@@ -233,3 +233,45 @@ TEST(Protocol, OutOfOrderStepIsRefused) {
   EXPECT_THROW(session.nextCommand(), link::ProtocolError);
   orch.join();
 }
+
+// The adapters' own command line (CLI11): the flags the orchestrator passes, OpenFOAM's options
+// left over in order, --help, and the usage when a required flag is missing.
+TEST(ParticipantOptions, CommandLine) {
+  auto parse = [](std::vector<std::string> args, std::vector<std::string>* rest) {
+    args.insert(args.begin(), "adapter");
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    return link::ParticipantOptions::parse(static_cast<int>(args.size()), argv.data(),
+                                           "test adapter", rest);
+  };
+  std::vector<std::string> rest;
+  const auto o = parse({"--endpoint", "ipc:///tmp/x", "-parallel", "--name", "fluid", "-case",
+                        "/tmp/case", "--run-id", "r1", "--heartbeat-ms", "250",
+                        "--command-timeout", "7"},
+                       &rest);
+  ASSERT_TRUE(o);
+  EXPECT_EQ(o->endpoint, "ipc:///tmp/x");
+  EXPECT_EQ(o->name, "fluid");
+  EXPECT_EQ(o->run_id, "r1");
+  EXPECT_EQ(o->heartbeat_ms, 250);
+  EXPECT_EQ(o->command_timeout_ms, 7000);
+  EXPECT_EQ(rest, (std::vector<std::string>{"-parallel", "-case", "/tmp/case"}));
+  const auto defaults = parse({"--endpoint", "e", "--name", "particles"}, nullptr);
+  ASSERT_TRUE(defaults);
+  EXPECT_EQ(defaults->heartbeat_ms, 500);
+  EXPECT_EQ(defaults->command_timeout_ms, 600000);
+  testing::internal::CaptureStdout();
+  EXPECT_FALSE(parse({"--help"}, nullptr));
+  const std::string help = testing::internal::GetCapturedStdout();
+  EXPECT_NE(help.find("test adapter"), std::string::npos) << help;
+  EXPECT_NE(help.find("--endpoint"), std::string::npos) << help;
+  try {
+    parse({"--endpoint", "e"}, nullptr);
+    ADD_FAILURE() << "no --name accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("--name PARTICIPANT"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse({"--endpoint", "e", "--name", "n", "--heartbeat-ms", "x"}, nullptr),
+               std::runtime_error);
+}
