@@ -70,7 +70,8 @@ bool runPlotScript(const std::string& name, const std::filesystem::path& folder,
                    const std::filesystem::path& log, std::string& message) {
   auto script = findScript(name);
   if (!script) {
-    message = name + " not found: set COSIM_SCRIPTS to the folder holding it (the source tree's scripts/)";
+    message = name +
+              " not found: set COSIM_SCRIPTS to the folder holding it (the source tree's scripts/)";
     return false;
   }
   auto python = findPython(message);
@@ -79,8 +80,8 @@ bool runPlotScript(const std::string& name, const std::filesystem::path& folder,
   std::filesystem::remove(log, ec);  // the log of this drawing only
   const int rc = run({*python, script->string(), folder.string()}, log, {{"MPLBACKEND", "Agg"}});
   if (rc != 0) {
-    message = script->string() + " failed (exit " + std::to_string(rc) + "); its output is in " + log.string() +
-              ":\n" + util::tailOfFile(log, 15);
+    message = script->string() + " failed (exit " + std::to_string(rc) + "); its output is in " +
+              log.string() + ":\n" + util::tailOfFile(log, 15);
     return false;
   }
   return true;

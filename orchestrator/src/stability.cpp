@@ -1,5 +1,7 @@
 #include "stability.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -13,12 +15,7 @@ namespace cosim::orchestrator {
 double relaxationTime(double mass, double K) { return K > 0 ? mass / K : INFINITY; }
 
 namespace {
-std::string g(double v) {
-  std::ostringstream os;
-  os.precision(3);
-  os << v;
-  return os.str();
-}
+std::string g(double v) { return fmt::format("{:.3g}", v); }
 }  // namespace
 
 StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/,

@@ -184,8 +184,8 @@ StudyRecord evaluate(const StudyOptions& opt, const Scenario& base,
   const std::size_t nobs = base.observables.size();
   for (std::size_t k = 0; k < nobs; ++k) {
     const std::string kind = base.observables[k].reference ? "analytic"
-                             : ref ? "finest variant (" + ref->label + ")"
-                                   : "none";
+                             : ref                         ? "finest variant (" + ref->label + ")"
+                                                           : "none";
     record.references.emplace_back(base.observables[k].name, kind);
   }
   std::vector<double> cost, worst;
@@ -206,12 +206,13 @@ StudyRecord evaluate(const StudyOptions& opt, const Scenario& base,
     for (std::size_t k = 0; k < nobs; ++k) {
       const auto& o = v.observables[k];
       std::optional<double> reference = o.reference;
-      if (!reference && !base.observables[k].reference && ref) reference = ref->observables[k].value;
+      if (!reference && !base.observables[k].reference && ref)
+        reference = ref->observables[k].value;
       if (reference && std::isnan(*reference)) reference.reset();
       const auto error = relativeError(o.value, reference);
       const bool defined = error && !std::isnan(*error);
-      r.observables.push_back({base.observables[k].name, o.value, reference,
-                               defined ? error : std::nullopt});
+      r.observables.push_back(
+          {base.observables[k].name, o.value, reference, defined ? error : std::nullopt});
       if (defined) w = std::max(w, *error);
     }
     ok.push_back(i);
@@ -245,9 +246,8 @@ int runStudy(const StudyOptions& opt) {
         ": observables: the scenario defines no observables, so a study has nothing to measure; "
         "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
   }
-  const fs::path folder = opt.output.empty()
-                              ? fs::current_path() / "runs" / (base.name + "-study")
-                              : fs::absolute(opt.output);
+  const fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study")
+                                             : fs::absolute(opt.output);
   fs::create_directories(folder);
 
   std::vector<Variant> variants = combinations(opt);

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "cosim/analysis/particle_file.h"
-#include "cosim/util/child_process.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/child_process.h"
 
 namespace fs = std::filesystem;
 using namespace cosim::analysis;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <random>
 #include <thread>
 
@@ -9,6 +10,7 @@
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
 #include "cosim/link/transport.h"
+#include "cosim/models/parcels.h"
 
 using namespace cosim;
 
@@ -246,10 +248,10 @@ TEST(ParticipantOptions, CommandLine) {
                                            "test adapter", rest);
   };
   std::vector<std::string> rest;
-  const auto o = parse({"--endpoint", "ipc:///tmp/x", "-parallel", "--name", "fluid", "-case",
-                        "/tmp/case", "--run-id", "r1", "--heartbeat-ms", "250",
-                        "--command-timeout", "7"},
-                       &rest);
+  const auto o =
+      parse({"--endpoint", "ipc:///tmp/x", "-parallel", "--name", "fluid", "-case", "/tmp/case",
+             "--run-id", "r1", "--heartbeat-ms", "250", "--command-timeout", "7"},
+            &rest);
   ASSERT_TRUE(o);
   EXPECT_EQ(o->endpoint, "ipc:///tmp/x");
   EXPECT_EQ(o->name, "fluid");
@@ -274,4 +276,29 @@ TEST(ParticipantOptions, CommandLine) {
   }
   EXPECT_THROW(parse({"--endpoint", "e", "--name", "n", "--heartbeat-ms", "x"}, nullptr),
                std::runtime_error);
+}
+
+// The models' batch is bound by wire field name (models/include/cosim/models/parcels.h): every
+// name is a wire field, vectors have 3 components, and each array lands in its own member.
+TEST(ParcelFields, AreWireFieldsAndBindToTheirMembers) {
+  const auto& known = field::all();
+  models::ParcelArrays arrays;
+  double tag = 1.0;
+  for (const auto& f : models::kParcelFields) {
+    EXPECT_NE(std::find(known.begin(), known.end(), f.name), known.end()) << f.name;
+    const bool vector = std::string(f.name) == field::position ||
+                        std::string(f.name) == field::velocity ||
+                        std::string(f.name) == field::fluid_velocity ||
+                        std::string(f.name) == field::pressure_gradient;
+    EXPECT_EQ(field::components(f.name), vector ? 3u : 1u) << f.name;
+    arrays.*f.arrays = std::vector<double>(1, tag++);
+  }
+  const models::ParcelBatch b = arrays.view();
+  EXPECT_EQ(b.n, 1u);
+  EXPECT_EQ(b.position[0], 1.0);
+  EXPECT_EQ(b.radius[0], 3.0);
+  EXPECT_EQ(b.fluid_density[0], 6.0);
+  EXPECT_EQ(b.cell_size[0], 10.0);
+  arrays.precursor_fraction.clear();  // a field the scene does not carry
+  EXPECT_EQ(arrays.view().precursor_fraction, nullptr);
 }

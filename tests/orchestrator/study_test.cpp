@@ -152,7 +152,8 @@ TEST(Study, ShellSyntaxInTheScenarioNameIsNeverRun) {
   std::string why;
   if (!cosim::analysis::findPython(why)) GTEST_SKIP() << "the plot is what ran a shell: " << why;
   const fs::path here = fs::current_path();
-  const fs::path sandbox = fs::temp_directory_path() / ("cosim-study-shell-" + std::to_string(getpid()));
+  const fs::path sandbox =
+      fs::temp_directory_path() / ("cosim-study-shell-" + std::to_string(getpid()));
   fs::remove_all(sandbox);
   fs::create_directories(sandbox);
   fs::current_path(sandbox);  // the default study folder is ./runs/<name>-study

@@ -150,7 +150,8 @@ int main(int argc, char** argv) {
   try {
     const auto opts = cosim::link::ParticipantOptions::parse(
         argc, argv,
-        "cosim-analytic-fluid: a prescribed gas flow (a cosim fluid participant, normally started by `cosim run`)");
+        "cosim-analytic-fluid: a prescribed gas flow (a cosim fluid participant, normally started "
+        "by `cosim run`)");
     if (!opts) return 0;  // --help
     cosim::analytic::AnalyticFluid fluid;
     return cosim::link::runParticipant(fluid, *opts);

@@ -180,7 +180,8 @@ int main(int argc, char** argv) {
   try {
     const auto opts = cosim::link::ParticipantOptions::parse(
         argc, argv,
-        "cosim-free-particles: non-colliding particles under gravity and the coupling forces (a cosim particle participant, normally started by `cosim run`)");
+        "cosim-free-particles: non-colliding particles under gravity and the coupling forces (a "
+        "cosim particle participant, normally started by `cosim run`)");
     if (!opts) return 0;  // --help
     cosim::analytic::FreeParticles particles;
     return cosim::link::runParticipant(particles, *opts);

@@ -2,12 +2,11 @@
 
 #include <unistd.h>
 
-#include <CLI/CLI.hpp>
-
 #include <chrono>
 #include <cstring>
 #include <iostream>
 
+#include "CLI/CLI.hpp"
 #include "cosim/link/errors.h"
 
 namespace cosim::link {
@@ -34,8 +33,8 @@ const char* bodyName(const wire::Envelope& e) {
 }  // namespace
 
 std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** argv,
-                                                           const std::string& about,
-                                                           std::vector<std::string>* rest) {
+                                                            const std::string& about,
+                                                            std::vector<std::string>* rest) {
   const std::string program = argc > 0 ? argv[0] : "adapter";
   const std::string usage = "usage: " + program +
                             " --endpoint ENDPOINT --name PARTICIPANT [--run-id ID] (normally "
