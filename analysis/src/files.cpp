@@ -1,6 +1,7 @@
 #include "cosim/analysis/files.h"
 
-#include <cstdio>
+#include <fmt/format.h>
+
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -11,12 +12,12 @@
 namespace cosim::analysis {
 
 std::string formatShortest(double v) {
-  char buf[32];
+  std::string text;
   for (int precision = 15; precision <= 17; ++precision) {
-    std::snprintf(buf, sizeof buf, "%.*g", precision, v);
-    if (std::strtod(buf, nullptr) == v) break;
+    text = fmt::format("{:.{}g}", v, precision);
+    if (std::strtod(text.c_str(), nullptr) == v) break;
   }
-  return buf;
+  return text;
 }
 
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {

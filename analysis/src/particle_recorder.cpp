@@ -1,8 +1,9 @@
 #include "cosim/analysis/particle_recorder.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,11 +14,7 @@
 namespace cosim::analysis {
 
 namespace {
-std::string groupName(std::size_t index) {
-  char buf[16];
-  std::snprintf(buf, sizeof buf, "%06zu", index);
-  return buf;
-}
+std::string groupName(std::size_t index) { return fmt::format("{:06d}", index); }
 
 std::string joined(const std::vector<std::string>& xs) {
   std::string s;

@@ -1,8 +1,9 @@
 // runReport: the `cosim report RUN [RUN...]` command.
 #include "cosim/analysis/report.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <iostream>
 #include <set>
 #include <stdexcept>
@@ -104,9 +105,8 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
     Json ps = Json::object();
     for (const auto& n : varied) {
       ps[n] = parameter(a, n);
-      char buf[32];  // 4 significant digits: a legend, not a record (parameters keep full precision)
-      std::snprintf(buf, sizeof buf, "%.4g", parameter(a, n));
-      legend += " " + n + "=" + buf;
+      // 4 significant digits: a legend, not a record (parameters keep full precision)
+      legend += fmt::format(" {}={:.4g}", n, parameter(a, n));
     }
     r["parameters"] = ps;
     r["legend"] = legend;
@@ -137,12 +137,12 @@ void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::file
       "mass_balance_error_percent,wall_seconds\n";
   for (const auto& a : runs) {
     const auto& l = a.snapshots.back();
-    char buf[512];
-    std::snprintf(buf, sizeof buf, "\"%s\",%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d,%.10g,%.10g\n",
-                  a.label.c_str(), l.time, l.total, l.mean, l.cv, l.uncoated_share, a.fit.a1, a.a1Error(), a.fit.a2,
-                  a.a2Error(), a.verdict.well_mixed ? 1 : 0,
-                  a.mass_balance ? a.mass_balance->error_percent : std::nan(""), a.wall_seconds);
-    csv += buf;
+    csv += fmt::format(
+        "\"{}\",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{:.10g},"
+        "{:.10g}\n",
+        a.label, l.time, l.total, l.mean, l.cv, l.uncoated_share, a.fit.a1, a.a1Error(), a.fit.a2,
+        a.a2Error(), a.verdict.well_mixed ? 1 : 0,
+        a.mass_balance ? a.mass_balance->error_percent : std::nan(""), a.wall_seconds);
   }
   writeFileAtomically(dir / "comparison.csv", csv);
 }
@@ -175,10 +175,8 @@ int runReport(const ReportOptions& o) {
       const auto pngs = writeRunReport(a, o, dir, plotMessage);
       log << "cosim report: " << a.label << ": " << a.verdict.summary() << "\n";
       if (a.mass_balance) {
-        char buf[160];
-        std::snprintf(buf, sizeof buf, "cosim report: %s: mass balance error %.3g kg (%.3g %%)\n", a.label.c_str(),
-                      a.mass_balance->error, a.mass_balance->error_percent);
-        log << buf;
+        log << fmt::format("cosim report: {}: mass balance error {:.3g} kg ({:.3g} %)\n", a.label,
+                           a.mass_balance->error, a.mass_balance->error_percent);
       }
       log << "cosim report: wrote " << (dir / "report.html").string() << " (" << pngs.size() << " figures)\n";
       if (!plotMessage.empty()) anyPlotProblem = plotMessage;
@@ -205,10 +203,9 @@ int runReport(const ReportOptions& o) {
           std::cerr << "cosim report: " << a.label << ": mass balance check failed: " << a.mass_balance_problem << "\n";
           rc = 3;
         } else if (!(std::abs(a.mass_balance->error_percent) <= o.mass_balance_limit_percent)) {
-          char buf[256];
-          std::snprintf(buf, sizeof buf, "cosim report: %s: mass balance error %.3g %% exceeds the limit %.3g %%\n",
-                        a.label.c_str(), a.mass_balance->error_percent, o.mass_balance_limit_percent);
-          std::cerr << buf;
+          std::cerr << fmt::format(
+              "cosim report: {}: mass balance error {:.3g} % exceeds the limit {:.3g} %\n", a.label,
+              a.mass_balance->error_percent, o.mass_balance_limit_percent);
           rc = 3;
         } else {
           log << "cosim report: " << a.label << ": mass balance within " << o.mass_balance_limit_percent << " %\n";

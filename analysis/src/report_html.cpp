@@ -1,6 +1,7 @@
 // report.html (one run) and comparison.html (several runs): tables, verdict and the PNGs.
+#include <fmt/format.h>
+
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "cosim/analysis/files.h"
@@ -24,13 +25,11 @@ std::string htmlEscape(const std::string& s) {
 }
 
 namespace {
-std::string g(double v, const char* fmt = "%.4g") {
-  if (!std::isfinite(v)) return "&ndash;";
-  char buf[48];
-  std::snprintf(buf, sizeof buf, fmt, v);
-  return buf;
+// A number for a table cell (4 significant digits unless told), a dash when it is not finite.
+std::string g(double v, fmt::format_string<double> spec = "{:.4g}") {
+  return std::isfinite(v) ? fmt::format(spec, double{v}) : "&ndash;";
 }
-std::string pct(double v) { return std::isfinite(v) ? g(100.0 * v, "%.2f") + " %" : "&ndash;"; }
+std::string pct(double v) { return std::isfinite(v) ? g(100.0 * v, "{:.2f}") + " %" : "&ndash;"; }
 
 const char* kStyle =
     "<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}"
@@ -151,9 +150,10 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
       << pct(a.fit.variance_relative_rms) << " of the mean variance (variance fit). Normality of the last "
       << "snapshot in the window: ";
     if (a.verdict.normality.valid) {
-      h << "skewness " << g(a.verdict.normality.skewness, "%.3f") << ", excess kurtosis "
-        << g(a.verdict.normality.kurtosis - 3.0, "%.3f") << ", K<sup>2</sup> = " << g(a.verdict.normality.k2)
-        << ", p = " << g(a.verdict.normality.p_value, "%.3g");
+      h << "skewness " << g(a.verdict.normality.skewness, "{:.3f}") << ", excess kurtosis "
+        << g(a.verdict.normality.kurtosis - 3.0, "{:.3f}")
+        << ", K<sup>2</sup> = " << g(a.verdict.normality.k2)
+        << ", p = " << g(a.verdict.normality.p_value, "{:.3g}");
     } else {
       h << htmlEscape(a.verdict.normality.problem);
     }
@@ -166,14 +166,17 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
       h << "<p class=bad>Not extrapolated: the run is poorly mixed (see the verdict), so Eqs. 9-10 do not "
            "describe it and a long-time CV from them would be wrong.</p>\n";
     } else {
-    h << "<table><tr><th>t [min]</th><th>mean [kg]</th><th>&sigma; [kg]</th><th>CV</th><th>CV with a2 &minus;"
-      << g(100 * o.band, "%.0f") << " %</th><th>CV with a2 +" << g(100 * o.band, "%.0f") << " %</th></tr>";
-    std::vector<double> times = o.predict_times;
-    times.push_back(o.predict_until);
-    for (double t : times) {
-      const auto d = predictDistribution(a.fit, t, o.band);
-      h << "<tr><td>" << g(t / 60.0) << "</td><td>" << g(d.mean) << "</td><td>" << g(d.sigma) << "</td><td>"
-        << g(d.cv) << "</td><td>" << g((1 - o.band) * d.cv) << "</td><td>" << g((1 + o.band) * d.cv) << "</td></tr>";
+      h << "<table><tr><th>t [min]</th><th>mean [kg]</th><th>&sigma; [kg]</th><th>CV</th><th>CV "
+           "with a2 &minus;"
+        << g(100 * o.band, "{:.0f}") << " %</th><th>CV with a2 +" << g(100 * o.band, "{:.0f}")
+        << " %</th></tr>";
+      std::vector<double> times = o.predict_times;
+      times.push_back(o.predict_until);
+      for (double t : times) {
+        const auto d = predictDistribution(a.fit, t, o.band);
+        h << "<tr><td>" << g(t / 60.0) << "</td><td>" << g(d.mean) << "</td><td>" << g(d.sigma)
+          << "</td><td>" << g(d.cv) << "</td><td>" << g((1 - o.band) * d.cv) << "</td><td>"
+          << g((1 + o.band) * d.cv) << "</td></tr>";
     }
     h << "</table>\n";
     }
@@ -200,8 +203,9 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
     for (const auto& p : w.points) {
       h << "<tr><td>" << g(p.t_end) << "</td><td>" << g(p.wall_seconds) << "</td>";
       if (p.ok) {
-        h << "<td>" << g(p.a1) << " &plusmn; " << g(p.a1_se, "%.2g") << "</td><td>" << g(p.a2) << " &plusmn; "
-          << g(p.a2_se, "%.2g") << "</td><td>" << g(p.cv_horizon) << "</td><td>" << pct(p.cv_run_end_error) << "</td>";
+        h << "<td>" << g(p.a1) << " &plusmn; " << g(p.a1_se, "{:.2g}") << "</td><td>" << g(p.a2)
+          << " &plusmn; " << g(p.a2_se, "{:.2g}") << "</td><td>" << g(p.cv_horizon) << "</td><td>"
+          << pct(p.cv_run_end_error) << "</td>";
       } else {
         h << "<td colspan=4>no fit (too few snapshots)</td>";
       }
@@ -215,20 +219,30 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
   if (a.mass_balance) {
     const auto& b = *a.mass_balance;
     h << "<table><tr><th class=l>quantity</th><th>kg</th></tr>"
-      << "<tr><td class=l>precursor in</td><td>" << g(b.precursor_in, "%.6g") << "</td></tr>"
-      << "<tr><td class=l>precursor out</td><td>" << g(b.precursor_out, "%.6g") << "</td></tr>"
-      << "<tr><td class=l>held in the gas (change)</td><td>" << g(b.held_change, "%.6g") << "</td></tr>"
-      << "<tr><td class=l>expected coating (in &minus; out &minus; held change)</td><td>" << g(b.expected_coating, "%.6g") << "</td></tr>"
-      << (b.has_removed ? "<tr><td class=l>removed from the gas by the coating sink</td><td>" + g(b.removed, "%.6g") + "</td></tr>" : std::string())
-      << "<tr><td class=l>coating on particles</td><td>" << g(b.obtained_coating, "%.6g") << "</td></tr>"
-      << "<tr><td class=l>error (expected &minus; obtained)</td><td>" << g(b.error, "%.3g") << "</td></tr>"
-      << "<tr><td class=l>error %</td><td>" << g(b.error_percent, "%.3g") << "</td></tr></table>\n"
-      << "<p>Initial state: " << htmlEscape(b.initial_state) << ". Coating on particles: "
-      << htmlEscape(b.obtained_source) << ".</p>\n";
+      << "<tr><td class=l>precursor in</td><td>" << g(b.precursor_in, "{:.6g}") << "</td></tr>"
+      << "<tr><td class=l>precursor out</td><td>" << g(b.precursor_out, "{:.6g}") << "</td></tr>"
+      << "<tr><td class=l>held in the gas (change)</td><td>" << g(b.held_change, "{:.6g}")
+      << "</td></tr>"
+      << "<tr><td class=l>expected coating (in &minus; out &minus; held change)</td><td>"
+      << g(b.expected_coating, "{:.6g}") << "</td></tr>"
+      << (b.has_removed ? "<tr><td class=l>removed from the gas by the coating sink</td><td>" +
+                              g(b.removed, "{:.6g}") + "</td></tr>"
+                        : std::string())
+      << "<tr><td class=l>coating on particles</td><td>" << g(b.obtained_coating, "{:.6g}")
+      << "</td></tr>"
+      << "<tr><td class=l>error (expected &minus; obtained)</td><td>" << g(b.error, "{:.3g}")
+      << "</td></tr>"
+      << "<tr><td class=l>error %</td><td>" << g(b.error_percent, "{:.3g}")
+      << "</td></tr></table>\n"
+      << "<p>Initial state: " << htmlEscape(b.initial_state)
+      << ". Coating on particles: " << htmlEscape(b.obtained_source) << ".</p>\n";
     if (b.has_removed && std::abs(b.pending) > 1e-9 * std::abs(b.removed)) {
-      h << "<p class=note>" << g(b.pending, "%.3g") << " kg removed from the gas is not on the particles "
-        << "(removed minus coating on particles). If the coating was read from timeseries.csv, the last step's "
-        << "credit comes after its last row; otherwise coating was lost between the fluid and the particles.</p>\n";
+      h << "<p class=note>" << g(b.pending, "{:.3g}")
+        << " kg removed from the gas is not on the particles "
+        << "(removed minus coating on particles). If the coating was read from timeseries.csv, the "
+           "last step's "
+        << "credit comes after its last row; otherwise coating was lost between the fluid and the "
+           "particles.</p>\n";
     }
   } else {
     h << "<p>" << htmlEscape(a.mass_balance_problem) << "</p>\n";
@@ -280,13 +294,17 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector
     const auto& l = a.snapshots.back();
     h << "<tr><td class=l><a href=\"" << htmlEscape(folders[i]) << "/report.html\">" << htmlEscape(a.label)
       << "</a></td>";
-    for (const auto& n : varied) h << "<td>" << g(parameter(a, n), "%.6g") << "</td>";
-    h << "<td>" << g(l.time) << "</td><td>" << g(l.total) << "</td><td>" << g(l.mean) << "</td><td>" << g(l.cv)
-      << "</td><td>" << pct(l.uncoated_share) << "</td><td>" << (a.fit.ok ? g(a.fit.a1) + " &plusmn; " + g(a.a1Error(), "%.2g") : "&ndash;")
-      << "</td><td>" << (a.fit.ok ? g(a.fit.a2) + " &plusmn; " + g(a.a2Error(), "%.2g") : "&ndash;") << "</td><td>"
-      << (a.fit.ok && a.verdict.well_mixed ? g(predictDistribution(a.fit, 1200.0).cv) : "&ndash;") << "</td><td>"
-      << (a.mass_balance ? g(a.mass_balance->error_percent, "%.3g") : "&ndash;") << "</td><td>" << g(a.wall_seconds)
-      << "</td><td class=l><span class=" << (a.verdict.well_mixed ? "ok>well mixed" : "bad>poorly mixed") << "</span>";
+    for (const auto& n : varied) h << "<td>" << g(parameter(a, n), "{:.6g}") << "</td>";
+    h << "<td>" << g(l.time) << "</td><td>" << g(l.total) << "</td><td>" << g(l.mean) << "</td><td>"
+      << g(l.cv) << "</td><td>" << pct(l.uncoated_share) << "</td><td>"
+      << (a.fit.ok ? g(a.fit.a1) + " &plusmn; " + g(a.a1Error(), "{:.2g}") : "&ndash;")
+      << "</td><td>"
+      << (a.fit.ok ? g(a.fit.a2) + " &plusmn; " + g(a.a2Error(), "{:.2g}") : "&ndash;")
+      << "</td><td>"
+      << (a.fit.ok && a.verdict.well_mixed ? g(predictDistribution(a.fit, 1200.0).cv) : "&ndash;")
+      << "</td><td>" << (a.mass_balance ? g(a.mass_balance->error_percent, "{:.3g}") : "&ndash;")
+      << "</td><td>" << g(a.wall_seconds) << "</td><td class=l><span class="
+      << (a.verdict.well_mixed ? "ok>well mixed" : "bad>poorly mixed") << "</span>";
     for (const auto& r : a.verdict.reasons) h << "<br>" << htmlEscape(r);
     h << "</td></tr>\n";
   }

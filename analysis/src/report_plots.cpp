@@ -1,64 +1,52 @@
 // Finding and running scripts/plot_report.py (matplotlib, Agg backend).
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
+#include <map>
+#include <vector>
 
 #include "cosim/analysis/report.h"
+#include "cosim/util/child_process.h"
+#include "cosim/util/text_file.h"
 #include "report_internal.h"
 
 namespace cosim::analysis {
 
 namespace {
-std::string shellQuote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) {
-    if (c == '\'') q += "'\\''";
-    else q += c;
-  }
-  return q + "'";
-}
-
 std::filesystem::path executableDir() {
   std::error_code ec;
   auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::filesystem::path() : exe.parent_path();
 }
 
-int run(const std::string& command) {
-  const int rc = std::system(command.c_str());
-  if (rc == -1) return -1;
-  return WIFEXITED(rc) ? WEXITSTATUS(rc) : 128;
-}
-
-std::string tail(const std::filesystem::path& file, std::size_t lines) {
-  std::ifstream in(file);
-  std::vector<std::string> all;
-  for (std::string l; std::getline(in, l);) all.push_back(l);
-  std::string out;
-  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) out += all[i] + "\n";
-  return out;
+// Runs a program from its argument vector (no shell); -1 if it cannot be started.
+int run(const std::vector<std::string>& argv, const std::filesystem::path& log,
+        const std::map<std::string, std::string>& env = {}) {
+  try {
+    return util::runProgram(argv, log, env);
+  } catch (const std::exception&) {
+    return -1;
+  }
 }
 }  // namespace
 
-std::optional<std::filesystem::path> findPlotScript() {
+std::optional<std::filesystem::path> findScript(const std::string& name) {
   std::vector<std::filesystem::path> candidates;
   if (const char* env = std::getenv("COSIM_SCRIPTS"); env != nullptr && *env != '\0') {
-    candidates.emplace_back(std::filesystem::path(env) / "plot_report.py");
+    candidates.emplace_back(std::filesystem::path(env) / name);
   }
   const auto exe = executableDir();
   if (!exe.empty()) {
-    candidates.push_back(exe / ".." / "share" / "cosim" / "scripts" / "plot_report.py");
-    candidates.push_back(exe / ".." / ".." / "scripts" / "plot_report.py");
+    candidates.push_back(exe / ".." / "share" / "cosim" / "scripts" / name);
+    candidates.push_back(exe / ".." / ".." / "scripts" / name);
   }
-  candidates.emplace_back(std::filesystem::path(COSIM_SOURCE_SCRIPTS_DIR) / "plot_report.py");
+  candidates.emplace_back(std::filesystem::path(COSIM_SOURCE_SCRIPTS_DIR) / name);
   for (const auto& c : candidates) {
     if (std::filesystem::is_regular_file(c)) return c.lexically_normal();
   }
   return std::nullopt;
 }
+
+std::optional<std::filesystem::path> findPlotScript() { return findScript("plot_report.py"); }
 
 std::optional<std::string> findPython(std::string& why_not) {
   std::vector<std::string> candidates;
@@ -69,7 +57,7 @@ std::optional<std::string> findPython(std::string& why_not) {
     candidates.emplace_back("/usr/bin/python3");
   }
   for (const auto& py : candidates) {
-    if (run(shellQuote(py) + " -c 'import matplotlib, numpy' >/dev/null 2>&1") == 0) return py;
+    if (run({py, "-c", "import matplotlib, numpy"}, "/dev/null") == 0) return py;
   }
   why_not = "no python3 with matplotlib and numpy found (tried";
   for (const auto& c : candidates) why_not += " " + c;
@@ -78,24 +66,29 @@ std::optional<std::string> findPython(std::string& why_not) {
   return std::nullopt;
 }
 
-bool drawPlots(const std::filesystem::path& folder, std::string& message) {
-  auto script = findPlotScript();
+bool runPlotScript(const std::string& name, const std::filesystem::path& folder,
+                   const std::filesystem::path& log, std::string& message) {
+  auto script = findScript(name);
   if (!script) {
-    message = "plot_report.py not found: set COSIM_SCRIPTS to the folder holding it (the source tree's scripts/)";
+    message = name +
+              " not found: set COSIM_SCRIPTS to the folder holding it (the source tree's scripts/)";
     return false;
   }
   auto python = findPython(message);
   if (!python) return false;
-  const auto log = folder / "plot_report.log";
-  const std::string cmd = "MPLBACKEND=Agg " + shellQuote(*python) + " " + shellQuote(script->string()) + " " +
-                          shellQuote(folder.string()) + " > " + shellQuote(log.string()) + " 2>&1";
-  const int rc = run(cmd);
+  std::error_code ec;
+  std::filesystem::remove(log, ec);  // the log of this drawing only
+  const int rc = run({*python, script->string(), folder.string()}, log, {{"MPLBACKEND", "Agg"}});
   if (rc != 0) {
-    message = script->string() + " failed (exit " + std::to_string(rc) + "); its output is in " + log.string() +
-              ":\n" + tail(log, 15);
+    message = script->string() + " failed (exit " + std::to_string(rc) + "); its output is in " +
+              log.string() + ":\n" + util::tailOfFile(log, 15);
     return false;
   }
   return true;
+}
+
+bool drawPlots(const std::filesystem::path& folder, std::string& message) {
+  return runPlotScript("plot_report.py", folder, folder / "plot_report.log", message);
 }
 
 std::vector<std::string> pngsIn(const std::filesystem::path& dir) {

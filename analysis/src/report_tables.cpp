@@ -1,5 +1,6 @@
 // report.json and the CSV tables of one run's report.
-#include <cstdio>
+#include <fmt/format.h>
+
 #include <fstream>
 #include <limits>
 #include <stdexcept>
@@ -59,9 +60,7 @@ class Csv {
     f_ << header << '\n';
   }
   Csv& operator<<(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%s%.10g", first_ ? "" : ",", v);
-    f_ << buf;
+    f_ << fmt::format("{}{:.10g}", first_ ? "" : ",", v);
     first_ = false;
     return *this;
   }

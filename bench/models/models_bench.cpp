@@ -12,8 +12,7 @@ namespace {
 
 using namespace cosim::models;
 
-struct Bed {
-  std::vector<double> position, velocity, radius, fluid_velocity, voidage, rho, mu, gradp, cell;
+struct Bed : ParcelArrays {
   explicit Bed(std::size_t n) {
     std::mt19937_64 rng(42);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -23,25 +22,11 @@ struct Bed {
       fluid_velocity.insert(fluid_velocity.end(), {0.1 * u(rng), 0.1 * u(rng), 3.0 * u(rng)});
       radius.push_back(7.5e-4);
       voidage.push_back(0.4 + 0.6 * u(rng));
-      rho.push_back(1.1 + 0.05 * u(rng));
-      mu.push_back(1.8e-5);
-      gradp.insert(gradp.end(), {0.0, 0.0, -8000.0 * u(rng)});
-      cell.push_back(4e-3);
+      fluid_density.push_back(1.1 + 0.05 * u(rng));
+      fluid_viscosity.push_back(1.8e-5);
+      pressure_gradient.insert(pressure_gradient.end(), {0.0, 0.0, -8000.0 * u(rng)});
+      cell_size.push_back(4e-3);
     }
-  }
-  ParcelBatch view() const {
-    ParcelBatch b;
-    b.n = radius.size();
-    b.position = position.data();
-    b.velocity = velocity.data();
-    b.radius = radius.data();
-    b.fluid_velocity = fluid_velocity.data();
-    b.voidage = voidage.data();
-    b.fluid_density = rho.data();
-    b.fluid_viscosity = mu.data();
-    b.pressure_gradient = gradp.data();
-    b.cell_size = cell.data();
-    return b;
   }
 };
 

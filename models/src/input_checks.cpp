@@ -1,18 +1,14 @@
 #include "cosim/models/input_checks.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
-#include <sstream>
 
 namespace cosim::models {
 
 namespace {
 
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
+std::string num(double v) { return fmt::format("{:.6g}", v); }
 
 [[noreturn]] void fail(const std::string& owner, const std::string& field, std::size_t i,
                        double v, const std::string& expected) {

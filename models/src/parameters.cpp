@@ -1,19 +1,12 @@
 #include "cosim/models/parameters.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <sstream>
 
 namespace cosim::models {
-
-namespace {
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-}  // namespace
 
 bool Parameters::has(const std::string& k) const {
   return numbers_.count(k) || texts_.count(k) || lists_.count(k) || children_.count(k);
@@ -41,8 +34,8 @@ double Parameters::number(const std::string& k, double fallback) const {
 double Parameters::number(const std::string& k, double lo, double hi) const {
   double v = number(k);
   if (v < lo || v > hi) {
-    throw ModelError(owner_ + ": parameter '" + k + "' = " + fmt(v) + " is out of range [" +
-                     fmt(lo) + ", " + fmt(hi) + "]");
+    throw ModelError(fmt::format("{}: parameter '{}' = {:.6g} is out of range [{:.6g}, {:.6g}]",
+                                 owner_, k, v, lo, hi));
   }
   return v;
 }
@@ -50,7 +43,7 @@ double Parameters::number(const std::string& k, double lo, double hi) const {
 double Parameters::positive(const std::string& k) const {
   double v = number(k);
   if (!(v > 0.0)) {
-    throw ModelError(owner_ + ": parameter '" + k + "' = " + fmt(v) + " must be > 0");
+    throw ModelError(fmt::format("{}: parameter '{}' = {:.6g} must be > 0", owner_, k, v));
   }
   return v;
 }

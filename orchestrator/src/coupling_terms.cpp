@@ -18,18 +18,9 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan,
   t.forcing.ids = state.ids;
   t.exchange.ids = state.ids;
 
-  models::ParcelBatch b;
-  b.n = n;
-  b.position = ptr(state, field::position);
-  b.velocity = ptr(state, field::velocity);
-  b.radius = ptr(state, field::radius);
-  b.fluid_velocity = ptr(samples, field::fluid_velocity);
-  b.voidage = ptr(samples, field::voidage);
-  b.fluid_density = ptr(samples, field::fluid_density);
-  b.fluid_viscosity = ptr(samples, field::fluid_viscosity);
-  b.pressure_gradient = ptr(samples, field::pressure_gradient);
-  b.precursor_fraction = ptr(samples, field::precursor_fraction);
-  b.cell_size = ptr(samples, field::cell_size);
+  // The particle state (position, velocity, radius) and the fluid samples (the rest).
+  models::ParcelBatch b = models::bindParcelBatch(
+      n, [&](const char* name) { return state.has(name) ? ptr(state, name) : ptr(samples, name); });
   b.lost = lost.empty() ? nullptr : lost.data();
 
   if (m.drag) {

@@ -218,8 +218,10 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
       stripHeartbeat(who);
       auto pit = peers_.find(who);
       if (pit == peers_.end()) {
-        // Unknown sender: not part of this run. Ignore but keep a trace.
-        log_.file("ignored a message from unknown peer '" + in->peer + "'");
+        // Unknown sender: not part of this run. Dropped; one line in the log per sender.
+        if (ignored_.insert(in->peer).second)
+          log_.file("ignored messages from unknown peer '" + in->peer + "'");
+        checkAlive(expected, got, start, timeout);
         continue;
       }
       pit->second->last_seen = now;
@@ -227,7 +229,10 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
         throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
       }
       const auto& env = *in->envelope;
-      if (env.has_heartbeat()) continue;
+      if (env.has_heartbeat()) {
+        checkAlive(expected, got, start, timeout);
+        continue;
+      }
       if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
         throw RunFailure(who, "speaks protocol version " +
                                   std::to_string(env.header().protocol_version()) +
@@ -258,9 +263,17 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
                                   " (out-of-order step)");
       }
       got[who] = env;
-      continue;
     }
-    // Nothing arrived: is everyone we wait for alive?
+    // On every wake-up, message or not: no stream of messages may hide a dead or silent peer.
+    checkAlive(expected, got, start, timeout);
+  }
+  return got;
+}
+
+void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCase>& expected,
+                              const Replies& got, Clock::time_point start, double timeout) {
+  const auto now = Clock::now();
+  {
     for (const auto& [name, kind] : expected) {
       if (got.count(name)) continue;
       Peer& p = *peers_.at(name);
@@ -282,7 +295,6 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
       }
     }
   }
-  return got;
 }
 
 void Participants::handshake() {

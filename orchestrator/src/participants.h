@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -86,6 +87,11 @@ class Participants {
   Replies await(const std::map<std::string, wire::Envelope::BodyCase>& expected,
                 double timeout_seconds);
   void welcome(const std::string& name, const wire::Envelope& hello);
+  // Throws RunFailure if a participant in `expected` that has not answered yet has exited, has
+  // been silent longer than the heartbeat timeout, or the wait has lasted `timeout` seconds.
+  void checkAlive(const std::map<std::string, wire::Envelope::BodyCase>& expected,
+                  const Replies& got, std::chrono::steady_clock::time_point start,
+                  double timeout);
   std::string connectEndpoint() const;
 
   const Scenario& sc_;
@@ -99,6 +105,7 @@ class Participants {
   double time_ = 0.0;
   std::filesystem::path restart_from_;
   bool stop_noted_ = false;
+  std::set<std::string> ignored_;  // senders that are not participants of this run
 };
 
 }  // namespace cosim::orchestrator

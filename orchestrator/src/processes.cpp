@@ -1,139 +1,21 @@
 #include "processes.h"
 
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <cstring>
-#include <deque>
-#include <fstream>
-#include <stdexcept>
-#include <thread>
+#include <algorithm>
+#include <cstdlib>
+
+#include "cosim/util/text_file.h"
 
 namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path& cwd,
-                           const fs::path& log, const std::map<std::string, std::string>& env)
-    : log_(log) {
-  if (argv.empty()) throw std::runtime_error("empty command");
-  const pid_t parent = getpid();
-  int err_pipe[2];
-  if (pipe2(err_pipe, O_CLOEXEC) != 0) throw std::runtime_error("pipe failed");
-  pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
-  if (pid == 0) {
-    close(err_pipe[0]);
-    setpgid(0, 0);                       // own group: we stop mpirun and its ranks together
-    prctl(PR_SET_PDEATHSIG, SIGKILL);    // never outlive the orchestrator
-    if (getppid() != parent) _exit(127);
-    signal(SIGINT, SIG_IGN);             // Ctrl-C goes to the orchestrator, which stops us cleanly
-    int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-    if (fd >= 0) {
-      dup2(fd, STDOUT_FILENO);
-      dup2(fd, STDERR_FILENO);
-      close(fd);
-    }
-    int devnull = open("/dev/null", O_RDONLY);
-    if (devnull >= 0) dup2(devnull, STDIN_FILENO);
-    if (chdir(cwd.c_str()) != 0) {
-      int e = errno;
-      (void)!write(err_pipe[1], &e, sizeof e);
-      _exit(127);
-    }
-    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
-    std::vector<char*> args;
-    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execvp(args[0], args.data());
-    int e = errno;
-    (void)!write(err_pipe[1], &e, sizeof e);
-    _exit(127);
-  }
-  close(err_pipe[1]);
-  int child_errno = 0;
-  ssize_t n = read(err_pipe[0], &child_errno, sizeof child_errno);
-  close(err_pipe[0]);
-  setpgid(pid, pid);  // also from the parent, to avoid the race
-  pid_ = pid;
-  reaped_ = false;
-  if (n == sizeof child_errno) {
-    waitpid(pid, nullptr, 0);
-    reaped_ = true;
-    pid_ = -1;
-    throw std::runtime_error("cannot start '" + argv[0] + "': " + std::strerror(child_errno));
-  }
-}
-
-ChildProcess& ChildProcess::operator=(ChildProcess&& o) noexcept {
-  if (this != &o) {
-    pid_ = o.pid_;
-    reaped_ = o.reaped_;
-    code_ = o.code_;
-    exit_ = std::move(o.exit_);
-    log_ = std::move(o.log_);
-    o.pid_ = -1;
-    o.reaped_ = true;
-  }
-  return *this;
-}
-
-ChildProcess::~ChildProcess() {
-  if (!reaped_) stop(2.0);
-}
-
-bool ChildProcess::running() {
-  if (reaped_) return false;
-  int status = 0;
-  pid_t r = waitpid(pid_, &status, WNOHANG);
-  if (r == 0) return true;
-  reaped_ = true;
-  if (r < 0) {
-    exit_ = "vanished";
-    code_ = -1;
-  } else if (WIFEXITED(status)) {
-    code_ = WEXITSTATUS(status);
-    exit_ = "exited with code " + std::to_string(code_);
-  } else if (WIFSIGNALED(status)) {
-    code_ = 128 + WTERMSIG(status);
-    exit_ = "killed by signal " + std::to_string(WTERMSIG(status)) + " (" +
-            strsignal(WTERMSIG(status)) + ")";
-  }
-  // Whatever the group leader left behind (e.g. MPI ranks) goes too.
-  ::kill(-pid_, SIGKILL);
-  return false;
-}
-
-void ChildProcess::stop(double grace) {
-  if (reaped_) return;
-  ::kill(-pid_, SIGTERM);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (!running()) return;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  ::kill(-pid_, SIGKILL);
-  int status = 0;
-  waitpid(pid_, &status, 0);
-  reaped_ = true;
-  code_ = 128 + SIGKILL;
-  exit_ = "stopped by the orchestrator";
-}
-
 std::string tailOfFile(const fs::path& file, int lines) {
-  std::ifstream in(file);
-  if (!in) return "(no log at " + file.string() + ")";
-  std::deque<std::string> q;
-  for (std::string l; std::getline(in, l);) {
-    q.push_back(l);
-    if (static_cast<int>(q.size()) > lines) q.pop_front();
-  }
+  const auto last = util::lastLines(file, static_cast<std::size_t>(std::max(lines, 0)));
+  if (!last) return "(no log at " + file.string() + ")";
   std::string out;
-  for (const auto& l : q) out += "    | " + l + "\n";
+  for (const auto& l : *last) out += "    | " + l + "\n";
   return out.empty() ? "    | (log is empty)\n" : out;
 }
 

@@ -1,25 +1,23 @@
 #include "progress.h"
 
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace cosim::orchestrator {
 
 using Clock = std::chrono::steady_clock;
 
 namespace {
-void duration(char* buf, std::size_t n, double s) {
-  if (!std::isfinite(s) || s < 0) {
-    std::snprintf(buf, n, "?");
-  } else if (s < 60) {
-    std::snprintf(buf, n, "%.0f s", s);
-  } else if (s < 3600) {
-    std::snprintf(buf, n, "%d min %02d s", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
-  } else {
-    std::snprintf(buf, n, "%d h %02d min", static_cast<int>(s) / 3600, (static_cast<int>(s) % 3600) / 60);
-  }
+std::string duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  if (s < 60) return fmt::format("{:.0f} s", s);
+  const int whole = static_cast<int>(s);
+  if (s < 3600) return fmt::format("{} min {:02d} s", whole / 60, whole % 60);
+  return fmt::format("{} h {:02d} min", whole / 3600, (whole % 3600) / 60);
 }
 }  // namespace
 
@@ -32,12 +30,11 @@ void Progress::print(double t, std::uint64_t steps, std::size_t particles, bool 
   const double frac = (t - t0_) / (t1_ - t0_);
   const double rate = wall > 0 ? static_cast<double>(steps) / wall : 0.0;
   const double eta = frac > 0 ? wall * (1.0 - frac) / frac : NAN;
-  char w[32], e[32];
-  duration(w, sizeof w, wall);
-  duration(e, sizeof e, eta);
-  std::printf("%st = %.4g / %.4g s (%5.1f%%)  step %llu  %zu particles  wall %s  %.1f steps/s  ETA %s%s",
-              tty_ ? "\r\033[K" : "", t, t1_, 100.0 * frac, static_cast<unsigned long long>(steps),
-              particles, w, rate, final ? "0 s" : e, tty_ && !final ? "" : "\n");
+  fmt::print(
+      "{}t = {:.4g} / {:.4g} s ({:5.1f}%)  step {}  {} particles  wall {}  {:.1f} steps/s  ETA "
+      "{}{}",
+      tty_ ? "\r\033[K" : "", t, t1_, 100.0 * frac, steps, particles, duration(wall), rate,
+      final ? "0 s" : duration(eta), tty_ && !final ? "" : "\n");
   std::fflush(stdout);
   open_line_ = tty_ && !final;
 }
@@ -59,10 +56,8 @@ void Progress::finish(double t, std::uint64_t steps) {
   if (quiet_) return;
   if (open_line_) std::printf("\n");
   const double wall = std::chrono::duration<double>(Clock::now() - start_).count();
-  char w[32];
-  duration(w, sizeof w, wall);
-  std::printf("cosim: reached t = %.6g s in %llu coupling steps, wall %s\n", t,
-              static_cast<unsigned long long>(steps), w);
+  fmt::print("cosim: reached t = {:.6g} s in {} coupling steps, wall {}\n", t, steps,
+             duration(wall));
   open_line_ = false;
 }
 

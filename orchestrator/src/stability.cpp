@@ -1,5 +1,7 @@
 #include "stability.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -10,20 +12,10 @@
 
 namespace cosim::orchestrator {
 
-double rayleighTime(double r, double rho, double E, double nu) {
-  const double G = E / (2.0 * (1.0 + nu));
-  return std::numbers::pi * r * std::sqrt(rho / G) / (0.1631 * nu + 0.8766);
-}
-
 double relaxationTime(double mass, double K) { return K > 0 ? mass / K : INFINITY; }
 
 namespace {
-std::string g(double v) {
-  std::ostringstream os;
-  os.precision(3);
-  os << v;
-  return os.str();
-}
+std::string g(double v) { return fmt::format("{:.3g}", v); }
 }  // namespace
 
 StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/,
@@ -44,12 +36,13 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/
     const double ratio = dem_dt / tR;
     std::string line = "DEM dt / Rayleigh time = " + g(ratio) + " (t_R = " + g(tR) +
                        " s for r = " + g(rmin) + " m)";
-    if (ratio > 0.3) {
+    if (ratio > util::kRefuseRayleighFraction) {
+      const double dt_max = util::kWarnRayleighFraction * tR;
       r.refusals.push_back(line + ": unstable contacts; use coupling.dem_steps >= " +
-                           std::to_string(static_cast<long long>(std::ceil(sc.dt / (0.2 * tR)))) +
-                           " (DEM dt <= 0.2 t_R = " + g(0.2 * tR) + " s)");
+                           std::to_string(static_cast<long long>(std::ceil(sc.dt / dt_max))) +
+                           " (DEM dt <= 0.2 t_R = " + g(dt_max) + " s)");
       line += " REFUSED";
-    } else if (ratio > 0.2) {
+    } else if (ratio > util::kWarnRayleighFraction) {
       line += " warning: above the usual 10-20 %";
     } else {
       line += " ok";

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cosim/link/particle_data.h"
+#include "cosim/util/rayleigh_time.h"
 #include "plan.h"
 #include "scenario.h"
 
@@ -25,9 +26,9 @@ struct StabilityReport {
   std::vector<std::string> refusals;  // unstable: what is wrong and what would work
 };
 
-// Rayleigh time of a Hertzian sphere (docs/physics.md section 7):
-//   t_R = pi r sqrt(rho/G) / (0.1631 nu + 0.8766)
-double rayleighTime(double radius, double density, double youngs_modulus, double poisson);
+// Rayleigh time of a Hertzian sphere (docs/physics.md section 7), the one implementation the
+// LIGGGHTS adapter's time-step check uses too, with the same limits.
+using util::rayleighTime;
 // Particle relaxation time under a drag coefficient K [kg/s]: tau = m / K.
 double relaxationTime(double mass, double drag_coefficient);
 

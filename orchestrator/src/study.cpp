@@ -1,16 +1,13 @@
 #include "study.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <fstream>
-#include <iomanip>
 #include <iostream>
-#include <limits>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "cosim/analysis/report.h"
 #include "cosim/analysis/summary.h"
 #include "coupler.h"
 #include "scenario.h"
@@ -50,7 +47,8 @@ std::vector<bool> paretoFront(const std::vector<double>& cost, const std::vector
 namespace {
 
 struct Variant {
-  std::vector<std::string> sets;  // the varied assignments
+  std::vector<std::string> sets;    // the varied assignments, key=value
+  std::vector<std::string> values;  // the varied values
   std::string label;
   fs::path folder;
   int exit_code = 0;
@@ -69,7 +67,7 @@ bool reuseCompleted(const fs::path& folder, const Scenario& sc, Variant& v) {
   a << ry.rdbuf();
   const std::string resolved = a.str();
   const auto nl = resolved.find('\n');
-  std::ostringstream expected;  // written the way the coupler writes it
+  std::ostringstream expected;  // written the way the coupler writes it (YAML emitter)
   expected << sc.resolved << "\n";
   if (nl == std::string::npos || resolved.substr(nl + 1) != expected.str()) return false;
   analysis::Summary summary;
@@ -104,78 +102,11 @@ bool reuseCompleted(const fs::path& folder, const Scenario& sc, Variant& v) {
   return true;
 }
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << std::setprecision(6) << v;
-  return os.str();
-}
+std::string g6(double v) { return fmt::format("{:.6g}", v); }
 
-}  // namespace
-
-void to_json(analysis::Json& j, const StudyRecord& s) {
-  j = analysis::Json::object();
-  j["scenario"] = s.scenario;
-  j["vary"] = s.vary;
-  analysis::Json& refs = j["references"] = analysis::Json::object();
-  for (const auto& [name, kind] : s.references) refs[name] = kind;
-  analysis::Json& rows = j["variants"] = analysis::Json::array();
-  for (const auto& v : s.variants) {
-    analysis::Json& r = rows.emplace_back(analysis::Json::object());
-    r["label"] = v.label;
-    r["folder"] = v.folder;
-    r["wall_s"] = v.wall_s;
-    r["ok"] = v.ok;
-    if (!v.ok) r["message"] = v.message;
-    r["pareto"] = v.pareto;
-    analysis::Json& obs = r["observables"] = analysis::Json::object();
-    for (const auto& o : v.observables) {
-      analysis::Json& x = obs[o.name] = analysis::Json::object();
-      x["value"] = o.value;
-      if (o.error) x["error"] = *o.error;
-    }
-  }
-}
-
-void from_json(const analysis::Json& j, StudyRecord& s) {
-  s = StudyRecord{};
-  j.at("scenario").get_to(s.scenario);
-  j.at("vary").get_to(s.vary);
-  for (const auto& [name, kind] : j.at("references").items())
-    s.references.emplace_back(name, kind.get<std::string>());
-  for (const auto& r : j.at("variants")) {
-    StudyRecord::Variant& v = s.variants.emplace_back();
-    r.at("label").get_to(v.label);
-    r.at("folder").get_to(v.folder);
-    r.at("wall_s").get_to(v.wall_s);
-    r.at("ok").get_to(v.ok);
-    v.message = r.value("message", std::string());
-    r.at("pareto").get_to(v.pareto);
-    for (const auto& [name, o] : r.at("observables").items()) {
-      StudyRecord::Observable& x = v.observables.emplace_back();
-      x.name = name;
-      const auto& value = o.at("value");
-      x.value = value.is_null() ? std::numeric_limits<double>::quiet_NaN() : value.get<double>();
-      if (const auto e = o.find("error"); e != o.end()) x.error = e->get<double>();
-    }
-  }
-}
-
-int runStudy(const StudyOptions& opt) {
-  if (opt.vary.empty())
-    throw std::runtime_error("cosim study needs at least one --vary key=v1,v2,...");
-  // Validate the base scenario first (clear errors before any run starts).
-  Scenario base = loadScenario(opt.scenario, opt.sets, opt.unsets);
-  if (base.observables.empty()) {
-    throw std::runtime_error(
-        base.file.string() +
-        ": observables: the scenario defines no observables, so a study has nothing to measure; "
-        "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
-  }
-  fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study")
-                                       : fs::absolute(opt.output);
-  fs::create_directories(folder);
-
-  // Cartesian product of the varied values.
+// Every combination of the varied values, in the order the keys were given (the last varies
+// fastest).
+std::vector<Variant> combinations(const StudyOptions& opt) {
   std::vector<Variant> variants(1);
   for (const auto& [key, values] : opt.vary) {
     std::vector<Variant> next;
@@ -183,50 +114,48 @@ int runStudy(const StudyOptions& opt) {
       for (const auto& value : values) {
         Variant n = v;
         n.sets.push_back(key + "=" + value);
+        n.values.push_back(value);
         n.label += (n.label.empty() ? "" : " ") + key + "=" + value;
         next.push_back(n);
       }
     }
     variants = next;
   }
-  for (std::size_t i = 0; i < variants.size(); ++i) {
-    auto& v = variants[i];
-    std::ostringstream name;
-    name << "variant-" << std::setw(2) << std::setfill('0') << i;
-    v.folder = folder / name.str();
-    std::vector<std::string> sets = opt.sets;
-    sets.insert(sets.end(), v.sets.begin(), v.sets.end());
-    if (!opt.quiet)
-      std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
-    Scenario sc = loadScenario(opt.scenario, sets, opt.unsets);
-    if (!opt.rerun && reuseCompleted(v.folder, sc, v)) {
-      if (!opt.quiet) {
-        std::cout << "study:   done before (" << v.folder.string() << "): wall " << fmt(v.wall)
-                  << " s";
-        for (const auto& o : v.observables) std::cout << ", " << o.name << " = " << fmt(o.value);
-        std::cout << std::endl;
-      }
-      continue;
-    }
-    RunOptions ro;
-    ro.quiet = true;
-    ro.output = v.folder;
-    ro.overwrite = true;
-    Coupler c(std::move(sc), ro);
-    RunResult r = c.run();
-    v.exit_code = r.exit_code;
-    v.message = r.message;
-    v.wall = r.wall_seconds;
-    v.observables = r.observables;
-    if (!opt.quiet) {
-      std::cout << "study:   wall " << fmt(v.wall) << " s";
-      for (const auto& o : v.observables) std::cout << ", " << o.name << " = " << fmt(o.value);
-      if (r.exit_code != 0) std::cout << "  FAILED: " << r.message.substr(0, r.message.find('\n'));
-      std::cout << std::endl;
-    }
-  }
+  return variants;
+}
 
-  // Reference per observable: analytic, else the finest variant.
+void printOutcome(const Variant& v, const std::string& before) {
+  std::cout << "study:   " << before << "wall " << g6(v.wall) << " s";
+  for (const auto& o : v.observables) std::cout << ", " << o.name << " = " << g6(o.value);
+  if (v.exit_code != 0) std::cout << "  FAILED: " << v.message.substr(0, v.message.find('\n'));
+  std::cout << std::endl;
+}
+
+// Runs one variant in its folder, or reads it back when it completed before with the same scene.
+void runVariant(const StudyOptions& opt, Variant& v) {
+  std::vector<std::string> sets = opt.sets;
+  sets.insert(sets.end(), v.sets.begin(), v.sets.end());
+  Scenario sc = loadScenario(opt.scenario, sets, opt.unsets);
+  if (!opt.rerun && reuseCompleted(v.folder, sc, v)) {
+    if (!opt.quiet) printOutcome(v, "done before (" + v.folder.string() + "): ");
+    return;
+  }
+  RunOptions ro;
+  ro.quiet = true;
+  ro.output = v.folder;
+  ro.overwrite = true;
+  Coupler c(std::move(sc), ro);
+  RunResult r = c.run();
+  v.exit_code = r.exit_code;
+  v.message = r.message;
+  v.wall = r.wall_seconds;
+  v.observables = r.observables;
+  if (!opt.quiet) printOutcome(v, "");
+}
+
+// The variant that is the reference where an observable has no analytic one: --finest, else the
+// slowest completed variant; -1 if none completed.
+int finestVariant(const StudyOptions& opt, const std::vector<Variant>& variants) {
   int finest = opt.finest;
   if (finest < 0) {
     double slowest = -1;
@@ -239,142 +168,104 @@ int runStudy(const StudyOptions& opt) {
   }
   if (finest >= static_cast<int>(variants.size()))
     throw std::runtime_error("--finest is larger than the number of variants");
-  const std::size_t nobs = base.observables.size();
-  std::vector<std::string> ref_kind(nobs);
-  std::vector<double> ref(nobs, std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t k = 0; k < nobs; ++k) {
-    if (base.observables[k].reference) {
-      ref_kind[k] = "analytic";
-    } else if (finest >= 0 && variants[static_cast<std::size_t>(finest)].exit_code == 0) {
-      ref_kind[k] = "finest variant (" + variants[static_cast<std::size_t>(finest)].label + ")";
-      ref[k] = variants[static_cast<std::size_t>(finest)].observables[k].value;
-    } else {
-      ref_kind[k] = "none";
-    }
-  }
-  // errors[v][k]
-  std::vector<std::vector<double>> err(
-      variants.size(), std::vector<double>(nobs, std::numeric_limits<double>::quiet_NaN()));
-  for (std::size_t i = 0; i < variants.size(); ++i) {
-    if (variants[i].exit_code != 0) continue;
-    for (std::size_t k = 0; k < nobs; ++k) {
-      const auto& o = variants[i].observables[k];
-      std::optional<double> r = o.reference;
-      if (!r && !std::isnan(ref[k])) r = ref[k];
-      if (auto e = relativeError(o.value, r)) err[i][k] = *e;
-    }
-  }
-  // Pareto front on (wall, worst error over the observables) among successful variants.
-  std::vector<double> cost, worst;
-  std::vector<std::size_t> ok;
-  for (std::size_t i = 0; i < variants.size(); ++i) {
-    if (variants[i].exit_code != 0) continue;
-    double w = 0;
-    for (double e : err[i]) w = std::isnan(e) ? w : std::max(w, e);
-    ok.push_back(i);
-    cost.push_back(variants[i].wall);
-    worst.push_back(w);
-  }
-  std::vector<bool> front_ok = paretoFront(cost, worst);
-  std::vector<bool> front(variants.size(), false);
-  for (std::size_t j = 0; j < ok.size(); ++j) front[ok[j]] = front_ok[j];
+  return finest;
+}
 
-  // study.csv
-  {
-    std::ofstream csv(folder / "study.csv");
-    csv << "variant";
-    for (const auto& [key, values] : opt.vary) csv << "," << key;
-    csv << ",wall_s,status";
-    for (const auto& o : base.observables)
-      csv << "," << o.name << "," << o.name << "_reference," << o.name << "_error";
-    csv << ",pareto\n";
-    for (std::size_t i = 0; i < variants.size(); ++i) {
-      const auto& v = variants[i];
-      csv << i;
-      for (const auto& s : v.sets) csv << "," << s.substr(s.find('=') + 1);
-      csv << "," << std::setprecision(10) << v.wall << "," << (v.exit_code == 0 ? "ok" : "failed");
-      for (std::size_t k = 0; k < nobs; ++k) {
-        if (v.exit_code != 0) {
-          csv << ",,,";
-          continue;
-        }
-        const auto& o = v.observables[k];
-        const double r = o.reference ? *o.reference : ref[k];
-        csv << "," << std::setprecision(12) << o.value << "," << r << "," << err[i][k];
-      }
-      csv << "," << (front[i] ? 1 : 0) << "\n";
-    }
-  }
-  // study.json
+// References, errors and the Pareto front on (wall time, worst error over the observables).
+StudyRecord evaluate(const StudyOptions& opt, const Scenario& base,
+                     const std::vector<Variant>& variants) {
   StudyRecord record;
   record.scenario = base.file.string();
   for (const auto& [key, values] : opt.vary) record.vary.push_back(key);
-  for (std::size_t k = 0; k < nobs; ++k)
-    record.references.emplace_back(base.observables[k].name, ref_kind[k]);
+  const int finest = finestVariant(opt, variants);
+  const Variant* ref = finest >= 0 && variants[static_cast<std::size_t>(finest)].exit_code == 0
+                           ? &variants[static_cast<std::size_t>(finest)]
+                           : nullptr;
+  const std::size_t nobs = base.observables.size();
+  for (std::size_t k = 0; k < nobs; ++k) {
+    const std::string kind = base.observables[k].reference ? "analytic"
+                             : ref                         ? "finest variant (" + ref->label + ")"
+                                                           : "none";
+    record.references.emplace_back(base.observables[k].name, kind);
+  }
+  std::vector<double> cost, worst;
+  std::vector<std::size_t> ok;
   for (std::size_t i = 0; i < variants.size(); ++i) {
     const auto& v = variants[i];
     StudyRecord::Variant& r = record.variants.emplace_back();
     r.label = v.label;
+    r.values = v.values;
     r.folder = v.folder.string();
     r.wall_s = v.wall;
     r.ok = v.exit_code == 0;
-    if (!r.ok) r.message = v.message;
-    r.pareto = front[i];
-    for (std::size_t k = 0; k < nobs && r.ok; ++k) {
-      r.observables.push_back({base.observables[k].name, v.observables[k].value,
-                               std::isnan(err[i][k]) ? std::nullopt : std::optional(err[i][k])});
+    if (!r.ok) {
+      r.message = v.message;
+      continue;
     }
-  }
-  analysis::writeJsonFile(folder / "study.json", analysis::Json(record), 2);
-  // study.md: the table for docs/
-  {
-    std::ofstream md(folder / "study.md");
-    md << "| variant | wall [s] |";
-    for (const auto& o : base.observables) md << " " << o.name << " | error |";
-    md << " Pareto |\n|---|---|";
-    for (std::size_t k = 0; k < nobs; ++k) md << "---|---|";
-    md << "---|\n";
-    for (std::size_t i = 0; i < variants.size(); ++i) {
-      const auto& v = variants[i];
-      md << "| " << v.label << " | " << fmt(v.wall) << " |";
-      for (std::size_t k = 0; k < nobs; ++k) {
-        if (v.exit_code != 0) {
-          md << " failed | |";
-          continue;
-        }
-        md << " " << fmt(v.observables[k].value) << " | "
-           << (std::isnan(err[i][k]) ? std::string("-") : fmt(err[i][k])) << " |";
-      }
-      md << (front[i] ? " yes |" : " |") << "\n";
+    double w = 0;
+    for (std::size_t k = 0; k < nobs; ++k) {
+      const auto& o = v.observables[k];
+      std::optional<double> reference = o.reference;
+      if (!reference && !base.observables[k].reference && ref)
+        reference = ref->observables[k].value;
+      if (reference && std::isnan(*reference)) reference.reset();
+      const auto error = relativeError(o.value, reference);
+      const bool defined = error && !std::isnan(*error);
+      r.observables.push_back(
+          {base.observables[k].name, o.value, reference, defined ? error : std::nullopt});
+      if (defined) w = std::max(w, *error);
     }
-    md << "\nReferences: ";
-    for (std::size_t k = 0; k < nobs; ++k)
-      md << (k ? "; " : "") << base.observables[k].name << ": " << ref_kind[k];
-    md << ". Error = |value - reference| / |reference|; Pareto = no other variant is both faster "
-          "and more accurate (worst error over the observables).\n";
+    ok.push_back(i);
+    cost.push_back(v.wall);
+    worst.push_back(w);
   }
+  const std::vector<bool> front = paretoFront(cost, worst);
+  for (std::size_t j = 0; j < ok.size(); ++j) record.variants[ok[j]].pareto = front[j];
+  return record;
+}
+
+void drawPlot(const fs::path& folder, bool quiet) {
+  std::string why;
+  if (!analysis::drawStudyPlot(folder, why)) {
+    std::cerr << "study: the plot was not drawn: " << why << "; the tables are complete\n";
+  } else if (!quiet) {
+    std::cout << "study: plot " << (folder / "error_vs_runtime.png").string() << "\n";
+  }
+}
+
+}  // namespace
+
+int runStudy(const StudyOptions& opt) {
+  if (opt.vary.empty())
+    throw std::runtime_error("cosim study needs at least one --vary key=v1,v2,...");
+  // Validate the base scenario first (clear errors before any run starts).
+  Scenario base = loadScenario(opt.scenario, opt.sets, opt.unsets);
+  if (base.observables.empty()) {
+    throw std::runtime_error(
+        base.file.string() +
+        ": observables: the scenario defines no observables, so a study has nothing to measure; "
+        "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
+  }
+  const fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study")
+                                             : fs::absolute(opt.output);
+  fs::create_directories(folder);
+
+  std::vector<Variant> variants = combinations(opt);
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    auto& v = variants[i];
+    v.folder = folder / fmt::format("variant-{:02d}", i);
+    if (!opt.quiet)
+      std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
+    runVariant(opt, v);
+  }
+
+  const StudyRecord record = evaluate(opt, base, variants);
+  analysis::writeStudyFiles(folder, record);
   if (!opt.quiet) {
-    std::cout << "study: written " << (folder / "study.csv").string() << ", study.json, study.md\n";
-    std::ifstream md(folder / "study.md");
-    std::cout << md.rdbuf();
+    std::cout << "study: written " << (folder / "study.csv").string() << ", study.json, study.md\n"
+              << analysis::studyMarkdown(record);
   }
-  if (opt.plots) {
-    const char* env = std::getenv("COSIM_SCRIPTS");
-    fs::path script =
-        env ? fs::path(env) / "plot_study.py" : fs::path(COSIM_SCRIPTS_DIR) / "plot_study.py";
-    std::string why;
-    auto python = analysis::findPython(why);
-    const std::string cmd = python ? "MPLBACKEND=Agg '" + *python + "' '" + script.string() +
-                                         "' '" + folder.string() + "'"
-                                   : "";
-    if (!python) {
-      std::cerr << "study: the plot was not drawn: " << why << "; the tables are complete\n";
-    } else if (std::system(cmd.c_str()) != 0) {
-      std::cerr << "study: the plot script failed (" << cmd << "); the tables are complete\n";
-    } else if (!opt.quiet) {
-      std::cout << "study: plot " << (folder / "error_vs_runtime.png").string() << "\n";
-    }
-  }
+  if (opt.plots) drawPlot(folder, opt.quiet);
   for (const auto& v : variants) {
     if (v.exit_code != 0) return 3;
   }

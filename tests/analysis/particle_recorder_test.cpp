@@ -12,6 +12,7 @@
 
 #include "cosim/analysis/particle_file.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/child_process.h"
 
 namespace fs = std::filesystem;
 using namespace cosim::analysis;
@@ -149,10 +150,20 @@ TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
   EXPECT_TRUE(wellFormed(x, why)) << why << "\n" << x;
   EXPECT_NE(x.find("CollectionType=\"Temporal\""), std::string::npos);
   // An independent XML parser agrees (Python's, when there is a python3).
-  if (std::system("python3 -c 'pass' >/dev/null 2>&1") == 0) {
-    const std::string cmd = "python3 -c 'import sys, xml.etree.ElementTree as E; E.parse(sys.argv[1])' '" +
-                            (dir / kParticlesXdmf).string() + "'";
-    EXPECT_EQ(std::system(cmd.c_str()), 0) << "xml.etree could not parse " << (dir / kParticlesXdmf).string();
+  auto python = [](const std::vector<std::string>& args) {
+    std::vector<std::string> argv{"python3"};
+    argv.insert(argv.end(), args.begin(), args.end());
+    try {
+      return cosim::util::runProgram(argv, "/dev/null");
+    } catch (const std::exception&) {
+      return -1;  // no python3
+    }
+  };
+  if (python({"-c", "pass"}) == 0) {
+    EXPECT_EQ(python({"-c", "import sys, xml.etree.ElementTree as E; E.parse(sys.argv[1])",
+                      (dir / kParticlesXdmf).string()}),
+              0)
+        << "xml.etree could not parse " << (dir / kParticlesXdmf).string();
   }
   // One Uniform grid per snapshot, each with its own particle count and time.
   std::regex grid(R"re(<Time Value="([0-9.e-]+)"/>\s*<Topology TopologyType="Polyvertex" NumberOfElements="(\d+)")re");

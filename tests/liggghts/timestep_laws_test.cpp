@@ -1,28 +1,14 @@
-// Rayleigh time, Hertz contact time and the dt verdict against hand calculations.
+// Hertz contact time and the dt verdict against hand calculations.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "cosim/liggghts/hertz_contact_time.h"
-#include "cosim/liggghts/rayleigh_time.h"
 #include "cosim/liggghts/timestep_check.h"
 
 using namespace cosim::liggghts;
 
-// Paper grain: r = 0.75 mm, E = 5e6 Pa, nu = 0.3, rho = 1750 kg/m3.
-// By hand: G = 5e6/2.6 = 1.9231e6 Pa; sqrt(1750/1.9231e6) = 0.030166 s/m;
-// pi * 7.5e-4 * 0.030166 = 7.1077e-5; / (0.1631*0.3 + 0.8766 = 0.92553) = 7.680e-5 s
-// (docs/physics.md section 7 quotes ~7.7e-5 s).
-TEST(RayleighTime, PaperGrain) {
-  EXPECT_NEAR(rayleighTime(0.75e-3, 1750, 5e6, 0.3), 7.680e-5, 0.002e-5);
-}
-
-// t_R is linear in r and scales as E^-1/2.
-TEST(RayleighTime, Scaling) {
-  const double t = rayleighTime(1e-3, 2500, 1e7, 0.25);
-  EXPECT_NEAR(rayleighTime(2e-3, 2500, 1e7, 0.25), 2 * t, 1e-15);
-  EXPECT_NEAR(rayleighTime(1e-3, 2500, 4e7, 0.25), 0.5 * t, 1e-15);
-}
+// The Rayleigh time itself (cosim/util/rayleigh_time.h) is tested in tests/util.
 
 // Two paper grains at 1 m/s: m = 1750 * 4/3 pi (7.5e-4)^3 = 3.0925e-6 kg, m_eff = 1.5463e-6,
 // r_eff = 3.75e-4, E_eff = 5e6 / (2 * 0.91) = 2.7473e6 Pa.

@@ -17,22 +17,6 @@ void Batch::add(double eps, double slip, double d_real, double cg, double rho, d
   cell_size.push_back(cell);
 }
 
-ParcelBatch Batch::view() const {
-  ParcelBatch b;
-  b.n = radius.size();
-  b.position = position.data();
-  b.velocity = velocity.data();
-  b.radius = radius.data();
-  b.fluid_velocity = fluid_velocity.data();
-  b.voidage = voidage.data();
-  b.fluid_density = fluid_density.data();
-  b.fluid_viscosity = fluid_viscosity.data();
-  b.pressure_gradient = pressure_gradient.data();
-  b.precursor_fraction = precursor_fraction.data();
-  b.cell_size = cell_size.data();
-  return b;
-}
-
 SceneConstants constants(double cg, double min_voidage) {
   SceneConstants c;
   c.cg = cg;

@@ -15,15 +15,10 @@ inline constexpr double kRho = 1.12;      // kg/m3
 inline constexpr double kD = 300e-6;      // m, real diameter
 inline constexpr double kRhoP = 1750.0;   // kg/m3
 
-struct Batch {
-  std::vector<double> position, velocity, radius, fluid_velocity, voidage, fluid_density,
-      fluid_viscosity, pressure_gradient, precursor_fraction, cell_size;
-
+struct Batch : ParcelArrays {
   // Slip of magnitude `slip` along (0.6, 0, 0.8) (a non-axis direction; 0.6^2 + 0.8^2 = 1).
-  void add(double eps, double slip, double d_real, double cg, double rho = kRho,
-           double mu = kMu, double cell = 4e-3);
-  ParcelBatch view() const;
-  std::size_t size() const { return radius.size(); }
+  void add(double eps, double slip, double d_real, double cg, double rho = kRho, double mu = kMu,
+           double cell = 4e-3);
 };
 
 SceneConstants constants(double cg, double min_voidage = 0.35);

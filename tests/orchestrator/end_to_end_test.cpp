@@ -12,6 +12,8 @@
 #include <fstream>
 #include <numbers>
 #include <thread>
+#include <zmq.hpp>
+#include <atomic>
 
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/time_series.h"
@@ -152,6 +154,50 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
   const std::string id = ss.str().substr(at + 11, ss.str().find('"', at + 11) - at - 11);
   EXPECT_FALSE(fs::exists("/tmp/cosim-" + id + ".ipc"))
       << "/tmp/cosim-" << id << ".ipc left behind";
+}
+
+// A client that is not part of the run floods the orchestrator's socket: the flood is dropped
+// with one log line, and a participant killed meanwhile is still reported at once.
+TEST(EndToEnd, AFloodFromAStrangerNeitherDelaysCrashDetectionNorFillsTheLog) {
+  const std::string ep = "ipc:///tmp/cosim-flood-" + std::to_string(getpid()) + ".ipc";
+  Scenario sc = loadScenario(kScenario, {"coupling.end_time=1000", "coupling.dt=1e-4",
+                                         "transport.bind=" + ep, "transport.heartbeat_timeout=30"});
+  RunOptions o;
+  o.quiet = true;
+  o.output = freshFolder("flood");
+  Coupler c(std::move(sc), o);
+  std::atomic<bool> stop{false};
+  std::thread rogue;
+  std::chrono::steady_clock::time_point killed_at;
+  bool killed = false;
+  c.on_step = [&](double t, const link::ParticleData&) {
+    if (!rogue.joinable()) {
+      rogue = std::thread([&] {
+        zmq::context_t ctx;
+        zmq::socket_t s(ctx, zmq::socket_type::dealer);
+        s.set(zmq::sockopt::routing_id, "stranger");
+        s.set(zmq::sockopt::linger, 0);
+        s.connect(ep);
+        while (!stop) s.send(zmq::str_buffer("not a cosim message"), zmq::send_flags::dontwait);
+      });
+    }
+    if (!killed && t > 0.02) {
+      auto pids = childrenNamed("cosim-free-part");
+      ASSERT_EQ(pids.size(), 1u);
+      killed_at = std::chrono::steady_clock::now();
+      ::kill(pids[0], SIGKILL);
+      killed = true;
+    }
+  };
+  RunResult r = c.run();
+  const double detect =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
+  stop = true;
+  if (rogue.joinable()) rogue.join();
+  ASSERT_TRUE(killed);
+  EXPECT_LT(detect, 2.0) << "a dead participant must be noticed through the flood";
+  EXPECT_NE(r.message.find("killed by signal 9"), std::string::npos) << r.message;
+  EXPECT_LT(fs::file_size(r.folder / "cosim.log"), 20000u) << "one line per stranger, not per message";
 }
 
 TEST(EndToEnd, UnusedFluidIsNotStarted) {

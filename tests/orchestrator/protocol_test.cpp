@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <random>
 #include <thread>
 
@@ -9,6 +10,7 @@
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
 #include "cosim/link/transport.h"
+#include "cosim/models/parcels.h"
 
 using namespace cosim;
 
@@ -232,4 +234,71 @@ TEST(Protocol, OutOfOrderStepIsRefused) {
   EXPECT_EQ(session.nextCommand().header().step(), 2u);
   EXPECT_THROW(session.nextCommand(), link::ProtocolError);
   orch.join();
+}
+
+// The adapters' own command line (CLI11): the flags the orchestrator passes, OpenFOAM's options
+// left over in order, --help, and the usage when a required flag is missing.
+TEST(ParticipantOptions, CommandLine) {
+  auto parse = [](std::vector<std::string> args, std::vector<std::string>* rest) {
+    args.insert(args.begin(), "adapter");
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    return link::ParticipantOptions::parse(static_cast<int>(args.size()), argv.data(),
+                                           "test adapter", rest);
+  };
+  std::vector<std::string> rest;
+  const auto o =
+      parse({"--endpoint", "ipc:///tmp/x", "-parallel", "--name", "fluid", "-case", "/tmp/case",
+             "--run-id", "r1", "--heartbeat-ms", "250", "--command-timeout", "7"},
+            &rest);
+  ASSERT_TRUE(o);
+  EXPECT_EQ(o->endpoint, "ipc:///tmp/x");
+  EXPECT_EQ(o->name, "fluid");
+  EXPECT_EQ(o->run_id, "r1");
+  EXPECT_EQ(o->heartbeat_ms, 250);
+  EXPECT_EQ(o->command_timeout_ms, 7000);
+  EXPECT_EQ(rest, (std::vector<std::string>{"-parallel", "-case", "/tmp/case"}));
+  const auto defaults = parse({"--endpoint", "e", "--name", "particles"}, nullptr);
+  ASSERT_TRUE(defaults);
+  EXPECT_EQ(defaults->heartbeat_ms, 500);
+  EXPECT_EQ(defaults->command_timeout_ms, 600000);
+  testing::internal::CaptureStdout();
+  EXPECT_FALSE(parse({"--help"}, nullptr));
+  const std::string help = testing::internal::GetCapturedStdout();
+  EXPECT_NE(help.find("test adapter"), std::string::npos) << help;
+  EXPECT_NE(help.find("--endpoint"), std::string::npos) << help;
+  try {
+    parse({"--endpoint", "e"}, nullptr);
+    ADD_FAILURE() << "no --name accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("--name PARTICIPANT"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(parse({"--endpoint", "e", "--name", "n", "--heartbeat-ms", "x"}, nullptr),
+               std::runtime_error);
+}
+
+// The models' batch is bound by wire field name (models/include/cosim/models/parcels.h): every
+// name is a wire field, vectors have 3 components, and each array lands in its own member.
+TEST(ParcelFields, AreWireFieldsAndBindToTheirMembers) {
+  const auto& known = field::all();
+  models::ParcelArrays arrays;
+  double tag = 1.0;
+  for (const auto& f : models::kParcelFields) {
+    EXPECT_NE(std::find(known.begin(), known.end(), f.name), known.end()) << f.name;
+    const bool vector = std::string(f.name) == field::position ||
+                        std::string(f.name) == field::velocity ||
+                        std::string(f.name) == field::fluid_velocity ||
+                        std::string(f.name) == field::pressure_gradient;
+    EXPECT_EQ(field::components(f.name), vector ? 3u : 1u) << f.name;
+    arrays.*f.arrays = std::vector<double>(1, tag++);
+  }
+  const models::ParcelBatch b = arrays.view();
+  EXPECT_EQ(b.n, 1u);
+  EXPECT_EQ(b.position[0], 1.0);
+  EXPECT_EQ(b.radius[0], 3.0);
+  EXPECT_EQ(b.fluid_density[0], 6.0);
+  EXPECT_EQ(b.cell_size[0], 10.0);
+  arrays.precursor_fraction.clear();  // a field the scene does not carry
+  EXPECT_EQ(arrays.view().precursor_fraction, nullptr);
 }

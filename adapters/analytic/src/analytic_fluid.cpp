@@ -162,9 +162,13 @@ class AnalyticFluid final : public link::Solver {
 
 int main(int argc, char** argv) {
   try {
-    auto opts = cosim::link::ParticipantOptions::parse(argc, argv);
+    const auto opts = cosim::link::ParticipantOptions::parse(
+        argc, argv,
+        "cosim-analytic-fluid: a prescribed gas flow (a cosim fluid participant, normally started "
+        "by `cosim run`)");
+    if (!opts) return 0;  // --help
     cosim::analytic::AnalyticFluid fluid;
-    return cosim::link::runParticipant(fluid, opts);
+    return cosim::link::runParticipant(fluid, *opts);
   } catch (const std::exception& e) {
     std::cerr << "cosim-analytic-fluid: " << e.what() << "\n";
     return 2;

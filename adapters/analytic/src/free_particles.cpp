@@ -232,9 +232,13 @@ class FreeParticles final : public link::Solver {
 
 int main(int argc, char** argv) {
   try {
-    auto opts = cosim::link::ParticipantOptions::parse(argc, argv);
+    const auto opts = cosim::link::ParticipantOptions::parse(
+        argc, argv,
+        "cosim-free-particles: non-colliding particles under gravity and the coupling forces (a "
+        "cosim particle participant, normally started by `cosim run`)");
+    if (!opts) return 0;  // --help
     cosim::analytic::FreeParticles particles;
-    return cosim::link::runParticipant(particles, opts);
+    return cosim::link::runParticipant(particles, *opts);
   } catch (const std::exception& e) {
     std::cerr << "cosim-free-particles: " << e.what() << "\n";
     return 2;

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <iostream>
 
+#include "CLI/CLI.hpp"
 #include "cosim/link/errors.h"
 
 namespace cosim::link {
@@ -31,34 +32,37 @@ const char* bodyName(const wire::Envelope& e) {
 }
 }  // namespace
 
-ParticipantOptions ParticipantOptions::parse(int argc, char** argv,
-                                             std::vector<std::string>* rest) {
+std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** argv,
+                                                            const std::string& about,
+                                                            std::vector<std::string>* rest) {
+  const std::string program = argc > 0 ? argv[0] : "adapter";
+  const std::string usage = "usage: " + program +
+                            " --endpoint ENDPOINT --name PARTICIPANT [--run-id ID] (normally "
+                            "started by `cosim run`)";
   ParticipantOptions o;
-  auto need = [&](int& i, const char* flag) -> std::string {
-    if (i + 1 >= argc) throw std::runtime_error(std::string("option ") + flag + " needs a value");
-    return argv[++i];
-  };
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--endpoint") {
-      o.endpoint = need(i, "--endpoint");
-    } else if (a == "--name") {
-      o.name = need(i, "--name");
-    } else if (a == "--run-id") {
-      o.run_id = need(i, "--run-id");
-    } else if (a == "--heartbeat-ms") {
-      o.heartbeat_ms = std::stoi(need(i, "--heartbeat-ms"));
-    } else if (a == "--command-timeout") {
-      o.command_timeout_ms = 1000 * std::stoi(need(i, "--command-timeout"));
-    } else if (rest != nullptr) {
-      rest->push_back(a);
-    }
+  int command_timeout_s = o.command_timeout_ms / 1000;
+  CLI::App app(about, program);
+  app.set_help_flag("--help", "print this help and exit");
+  app.allow_extras();
+  app.add_option("--endpoint", o.endpoint, "the orchestrator's ZeroMQ address (ipc:// or tcp://)");
+  app.add_option("--name", o.name, "this participant's name in the scenario (fluid, particles)");
+  app.add_option("--run-id", o.run_id, "the run's id, checked against the orchestrator's Welcome");
+  app.add_option("--heartbeat-ms", o.heartbeat_ms, "heartbeat interval [ms]")
+      ->capture_default_str();
+  app.add_option("--command-timeout", command_timeout_s,
+                 "give up when the orchestrator is silent this long [s]")
+      ->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp&) {
+    std::cout << app.help();
+    return std::nullopt;
+  } catch (const CLI::ParseError& e) {
+    throw std::runtime_error(std::string(e.what()) + "; " + usage);
   }
-  if (o.endpoint.empty() || o.name.empty()) {
-    throw std::runtime_error(
-        "usage: " + std::string(argc > 0 ? argv[0] : "adapter") +
-        " --endpoint ENDPOINT --name PARTICIPANT [--run-id ID] (normally started by `cosim run`)");
-  }
+  o.command_timeout_ms = 1000 * command_timeout_s;
+  if (rest != nullptr) *rest = app.remaining();
+  if (o.endpoint.empty() || o.name.empty()) throw std::runtime_error(usage);
   return o;
 }
 

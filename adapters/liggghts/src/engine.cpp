@@ -23,7 +23,6 @@
 #include "cosim/liggghts/drag_relaxation_fix.h"
 #include "cosim/liggghts/hertz_contact_time.h"
 #include "cosim/liggghts/liggghts_error.h"
-#include "cosim/liggghts/rayleigh_time.h"
 
 namespace cosim::liggghts {
 
@@ -137,6 +136,63 @@ void Engine::runScript(const std::filesystem::path& script) {
   need_setup_ = true;
 }
 
+namespace {
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> w;
+  for (std::string x; in >> x;) w.push_back(x);
+  return w;
+}
+
+// The command a logical line of the script asks for, rewritten for a resume; "" leaves it out.
+std::string forResume(const std::string& command, const std::filesystem::path& restart) {
+  const auto w = words(command);
+  if (w.empty()) return command;
+  const std::string& verb = w[0];
+  if (verb == "create_box" || verb == "read_data" || verb == "read_restart")
+    return "read_restart " + restart.string();
+  if (verb == "create_atoms" || verb == "run" || verb == "write_restart") return "";
+  if (verb == "fix" && w.size() > 2 && w[2].rfind("insert/", 0) == 0) {
+    for (std::size_t i = 3; i + 1 < w.size(); ++i)
+      if (w[i] == "insert_every" && w[i + 1] == "once") return "";
+  }
+  return command;
+}
+
+}  // namespace
+
+void Engine::resumeScript(const std::filesystem::path& script,
+                          const std::filesystem::path& restart) {
+  if (!std::filesystem::exists(script))
+    throw std::runtime_error("LIGGGHTS script '" + script.string() + "' does not exist");
+  if (!std::filesystem::exists(restart))
+    throw std::runtime_error("cannot resume: the checkpoint has no LIGGGHTS restart file " +
+                             restart.string());
+  script_ = script;
+  std::ifstream in(script);
+  std::string logical, line;
+  auto flush = [&] {
+    const auto hash = logical.find('#');
+    const std::string cmd = trim(hash == std::string::npos ? logical : logical.substr(0, hash));
+    logical.clear();
+    if (cmd.empty()) return;
+    const std::string now = forResume(cmd, restart);
+    if (!now.empty()) command(now);
+  };
+  while (std::getline(in, line)) {
+    const std::string t = trim(line);
+    if (!t.empty() && t.back() == '&') {
+      logical += t.substr(0, t.size() - 1) + " ";
+      continue;
+    }
+    logical += line;
+    flush();
+  }
+  flush();
+  need_setup_ = true;
+}
+
 void Engine::command(const std::string& line) {
   guarded("executing '" + line + "'", [&] { lmp_->input->one(line.c_str()); });
   need_setup_ = true;  // the command may have changed fixes or atoms: next run re-initialises
@@ -221,7 +277,7 @@ TimestepReport Engine::timestepReport(double impact_speed) const {
     const double density = atom->rmass[i] / (4.0 / 3.0 * std::numbers::pi * r * r * r);
     const double e = E->compute_vector(t - 1), p = nu->compute_vector(t - 1);
     local[0] = std::min(local[0], r);
-    local[1] = std::min(local[1], rayleighTime(r, density, e, p));
+    local[1] = std::min(local[1], util::rayleighTime(r, density, e, p));
     local[2] = std::min(local[2], hertzContactTimeRigidWall(r, density, e, p, impact_speed));
   }
   double global[3];

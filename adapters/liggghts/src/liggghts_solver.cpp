@@ -193,7 +193,11 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
       std::filesystem::current_path(welcome.workdir());
   }
   engine_ = std::make_unique<Engine>(comm_, std::filesystem::current_path());
-  engine_->runScript(options_.script);
+  if (welcome.restart_from().empty())
+    engine_->runScript(options_.script);
+  else
+    engine_->resumeScript(options_.script,
+                          std::filesystem::path(welcome.restart_from()) / "liggghts.restart");
   engine_->installCoupling();
 
   const double dt = engine_->timestep();

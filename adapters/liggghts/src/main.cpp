@@ -19,12 +19,17 @@ int main(int argc, char** argv) {
   if (rank == 0) {
     try {
       std::vector<std::string> rest;
-      const auto options = cosim::link::ParticipantOptions::parse(argc, argv, &rest);
-      if (!rest.empty())
+      const auto options = cosim::link::ParticipantOptions::parse(
+          argc, argv,
+          "cosim-liggghts: the LIGGGHTS particle participant; runs the scene's LIGGGHTS script "
+          "(options: in the scenario, docs/liggghts.md). Normally started by `cosim run`, under "
+          "mpirun for several ranks.",
+          &rest);
+      if (options && !rest.empty())
         throw std::runtime_error("unknown argument '" + rest.front() +
                                  "'; usage: cosim-liggghts --endpoint <addr> --name <participant> "
-                                 "--run-id <id>");
-      rc = cosim::link::runParticipant(solver, options);
+                                 "--run-id <id> (--help for all options)");
+      if (options) rc = cosim::link::runParticipant(solver, *options);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "cosim-liggghts: %s\n", e.what());
       rc = 2;

@@ -7,11 +7,15 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <cmath>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 
 #include "cosim/link/fields.h"
+#include "cosim/util/child_process.h"
+#include "cosim/util/text_file.h"
 
 namespace cosim::foam {
 namespace fs = std::filesystem;
@@ -37,24 +41,23 @@ struct Argv {
   std::vector<char*> ptrs;
 };
 
-std::string tail(const fs::path& log, std::size_t lines) {
-  std::ifstream in(log);
-  std::vector<std::string> all;
-  for (std::string l; std::getline(in, l);) all.push_back(l);
-  std::ostringstream out;
-  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) {
-    out << all[i] << "\n";
-  }
-  return out.str();
-}
-
-void runTool(const std::string& tool, const std::string& args) {
+// An OpenFOAM utility run in the case folder from an argument vector (no shell), its output in
+// log.<tool>.
+void runTool(const std::vector<std::string>& argv) {
+  const std::string& tool = argv.front();
   const std::string log = "log." + tool;
-  const std::string cmd = tool + " " + args + " > " + log + " 2>&1";
-  const int rc = std::system(cmd.c_str());
+  int rc = 0;
+  std::string why;
+  try {
+    rc = util::runProgram(argv, log);
+  } catch (const std::exception& e) {
+    rc = 127;
+    why = std::string(": ") + e.what();
+  }
   if (rc != 0) {
-    throw std::runtime_error("cosimFoam: `" + tool + " " + args + "` failed in " +
-                             fs::current_path().string() + " (see " + log + "):\n" + tail(log, 15));
+    throw std::runtime_error("cosimFoam: `" + util::displayCommand(argv) + "` failed in " +
+                             fs::current_path().string() + why + " (see " + log + "):\n" +
+                             util::tailOfFile(log, 15));
   }
 }
 
@@ -88,7 +91,7 @@ void prepareCase(const AdapterSettings& settings, int ranks) {
                                " has no mesh (constant/polyMesh) and no system/blockMeshDict "
                                "to make one");
     }
-    runTool("blockMesh", "");
+    runTool({"blockMesh"});
     meshed = true;
   } else if (!haveMesh) {
     throw std::runtime_error("cosimFoam: options.mesh is 'existing' but " + here.string() +
@@ -111,8 +114,43 @@ void prepareCase(const AdapterSettings& settings, int ranks) {
       if (!fs::exists("processor" + std::to_string(r) + "/constant/polyMesh")) decomposed = false;
     }
     if (fs::exists("processor" + std::to_string(ranks))) decomposed = false;
-    if (meshed || !decomposed) runTool("decomposePar", "-force");
+    if (meshed || !decomposed) runTool({"decomposePar", "-force"});
   }
+}
+
+// A folder name that is a time (OpenFOAM's time folders); nullopt for anything else.
+std::optional<double> timeOfFolder(const fs::path& p) {
+  const std::string name = p.filename().string();
+  char* end = nullptr;
+  const double t = std::strtod(name.c_str(), &end);
+  if (name.empty() || *end != '\0' || !fs::is_directory(p)) return std::nullopt;
+  return t;
+}
+
+// Resume: the checkpoint's time folder becomes the case's latest one (folders written after it
+// by the stopped run are removed), so OpenFOAM starts from it (startFrom latestTime). `from`
+// holds <time>/ for a serial case, processorN/<time>/ for a decomposed one. Returns the time.
+double restoreTimeFolder(const fs::path& from, int ranks) {
+  double restored = -1.0;
+  for (int r = 0; r < std::max(ranks, 1); ++r) {
+    const fs::path sub = ranks > 1 ? fs::path("processor" + std::to_string(r)) : fs::path();
+    std::optional<fs::path> saved;
+    if (fs::is_directory(from / sub))
+      for (const auto& e : fs::directory_iterator(from / sub))
+        if (timeOfFolder(e.path())) saved = e.path();
+    if (!saved)
+      throw std::runtime_error("cosimFoam: cannot resume: " + (from / sub).string() +
+                               " holds no time folder (was the checkpoint written by cosimFoam?)");
+    restored = *timeOfFolder(*saved);
+    const fs::path caseDir = sub.empty() ? fs::current_path() : fs::current_path() / sub;
+    for (const auto& e : fs::directory_iterator(caseDir)) {
+      if (auto t = timeOfFolder(e.path()); t && *t > restored) fs::remove_all(e.path());
+    }
+    const fs::path to = caseDir / saved->filename();
+    fs::remove_all(to);
+    fs::copy(*saved, to, fs::copy_options::recursive);
+  }
+  return restored;
 }
 
 void moveTo(const std::string& workdir) {
@@ -171,9 +209,22 @@ void FoamParticipant::configure(const wire::Welcome& welcome) {
   std::string yaml = welcome.config_yaml();
   const AdapterSettings settings = parseAdapterSettings(yaml, species_);  // errors early
   prepareCase(settings, bridge_.size());
+  std::optional<double> resumeAt;
+  if (!welcome.restart_from().empty())
+    resumeAt = restoreTimeFolder(welcome.restart_from(), bridge_.size());
   double species = species_ ? 1.0 : 0.0;
   bridge_.command(RankCommand::configure);
   gas_ = makeGas(bridge_, foamArgs_, yaml, species, workdir);
+  if (resumeAt && std::abs(gas_->time() - *resumeAt) > 1e-9 * std::max(1.0, *resumeAt)) {
+    throw std::runtime_error(
+        "cosimFoam: cannot resume: OpenFOAM started at t = " + std::to_string(gas_->time()) +
+        " s, not at the checkpoint's " + std::to_string(*resumeAt) +
+        " s; system/controlDict must say `startFrom latestTime;`");
+  }
+}
+
+void FoamParticipant::restore(const std::string& /*path*/) {
+  // Done while configuring: the checkpoint's time folder is the one OpenFOAM started from.
 }
 
 void FoamParticipant::sample(const cosim::link::ParticleData& particles,

@@ -26,6 +26,7 @@ class FoamParticipant : public cosim::link::Solver {
   void advance(const cosim::wire::Advance& cmd, const cosim::link::ParticleData& terms,
                cosim::wire::Advanced& out, cosim::link::ParticleData& state) override;
   std::vector<std::string> checkpoint(const std::string& path) override;
+  void restore(const std::string& path) override;
   void finish() override;
 
  private:

@@ -34,7 +34,14 @@ int main(int argc, char** argv) {
   std::vector<std::string> rest;
   cosim::link::ParticipantOptions options;
   try {
-    options = cosim::link::ParticipantOptions::parse(argc, argv, &rest);
+    const auto parsed = cosim::link::ParticipantOptions::parse(
+        argc, argv,
+        "cosimFoam: the OpenFOAM v1912 fluid participant; solves the gas and the precursor in the "
+        "case of the current folder (docs/openfoam.md). Normally started by `cosim run`. "
+        "OpenFOAM options (-parallel, -case DIR) may follow.",
+        &rest);
+    if (!parsed) return 0;  // --help
+    options = *parsed;
   } catch (const std::exception& e) {
     std::cerr << "cosimFoam: " << e.what() << "\n"
               << "  OpenFOAM options (-parallel, -case DIR) may follow.\n";

@@ -98,13 +98,18 @@ std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOption
 int runReport(const ReportOptions& options);
 
 // Plotting helpers (report_plots.cpp).
-// The plot script: $COSIM_SCRIPTS/plot_report.py, else next to the executable
+// A script of scripts/: $COSIM_SCRIPTS/<name>, else next to the executable
 // (<exe>/../share/cosim/scripts, <exe>/../../scripts), else the source tree's scripts/.
-std::optional<std::filesystem::path> findPlotScript();
+std::optional<std::filesystem::path> findScript(const std::string& name);
+std::optional<std::filesystem::path> findPlotScript();  // findScript("plot_report.py")
 // A python3 that imports matplotlib and numpy: $COSIM_PYTHON if set (only that one), else
 // python3 on the PATH, else /usr/bin/python3.
 std::optional<std::string> findPython(std::string& why_not);
-// Runs the script on a report folder; returns true on success, else message says why.
+// Runs `python3 <script> <folder>` (argument vector, no shell; MPLBACKEND=Agg) with its output
+// in log; returns true on success, else message says why (with the log's tail).
+bool runPlotScript(const std::string& script, const std::filesystem::path& folder,
+                   const std::filesystem::path& log, std::string& message);
+// Runs plot_report.py on a report folder; returns true on success, else message says why.
 bool drawPlots(const std::filesystem::path& folder, std::string& message);
 
 }  // namespace cosim::analysis

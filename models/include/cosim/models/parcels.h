@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 namespace cosim::models {
 
@@ -34,5 +35,46 @@ struct ParcelBatch {
 
   bool isLost(std::size_t i) const { return lost != nullptr && lost[i] != 0; }
 };
+
+// Per-parcel arrays owned together (tests, benchmarks); view() is a ParcelBatch over them, an
+// empty array being a field the batch does not carry.
+struct ParcelArrays {
+  std::vector<double> position, velocity, radius, fluid_velocity, voidage, fluid_density,
+      fluid_viscosity, pressure_gradient, precursor_fraction, cell_size;
+
+  ParcelBatch view() const;
+  std::size_t size() const { return radius.size(); }
+};
+
+// The one map between the per-particle field names of the wire (cosim/link/fields.h) and the
+// members of ParcelBatch and ParcelArrays.
+struct ParcelField {
+  const char* name;
+  const double* ParcelBatch::*batch;
+  std::vector<double> ParcelArrays::*arrays;
+};
+inline constexpr ParcelField kParcelFields[] = {
+    {"position", &ParcelBatch::position, &ParcelArrays::position},
+    {"velocity", &ParcelBatch::velocity, &ParcelArrays::velocity},
+    {"radius", &ParcelBatch::radius, &ParcelArrays::radius},
+    {"fluid_velocity", &ParcelBatch::fluid_velocity, &ParcelArrays::fluid_velocity},
+    {"voidage", &ParcelBatch::voidage, &ParcelArrays::voidage},
+    {"fluid_density", &ParcelBatch::fluid_density, &ParcelArrays::fluid_density},
+    {"fluid_viscosity", &ParcelBatch::fluid_viscosity, &ParcelArrays::fluid_viscosity},
+    {"pressure_gradient", &ParcelBatch::pressure_gradient, &ParcelArrays::pressure_gradient},
+    {"precursor_fraction", &ParcelBatch::precursor_fraction, &ParcelArrays::precursor_fraction},
+    {"cell_size", &ParcelBatch::cell_size, &ParcelArrays::cell_size},
+};
+
+// A batch of n parcels over the arrays lookup(name) returns (const double*, nullptr for a field
+// the scene does not carry), e.g. the orchestrator's per-particle data received from the
+// participants.
+template <class Lookup>
+ParcelBatch bindParcelBatch(std::size_t n, Lookup&& lookup) {
+  ParcelBatch b;
+  b.n = n;
+  for (const auto& f : kParcelFields) b.*f.batch = lookup(f.name);
+  return b;
+}
 
 }  // namespace cosim::models

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -26,8 +27,14 @@ struct ParticipantOptions {
   int heartbeat_ms = 500;
   int handshake_timeout_ms = 30000;
   int command_timeout_ms = 600000;  // orchestrator silent this long: give up
-  // Parse --endpoint/--name/--run-id/--heartbeat-ms; unknown args are left in `rest`.
-  static ParticipantOptions parse(int argc, char** argv, std::vector<std::string>* rest = nullptr);
+  // The adapter's command line, parsed with CLI11: --endpoint, --name, --run-id,
+  // --heartbeat-ms, --command-timeout (seconds), --help. `--help` prints `about` and the options
+  // to stdout and returns nullopt (the adapter then exits 0). Arguments it does not know are
+  // left in `rest` in their order (e.g. OpenFOAM's -parallel, -case DIR), or ignored when rest is
+  // null. Throws std::runtime_error with the usage when --endpoint or --name is missing or a
+  // value is malformed.
+  static std::optional<ParticipantOptions> parse(int argc, char** argv, const std::string& about,
+                                                 std::vector<std::string>* rest = nullptr);
 };
 
 struct Capabilities {

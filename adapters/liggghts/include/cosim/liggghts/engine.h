@@ -60,6 +60,12 @@ class Engine {
 
   // Runs the user's script (which sets up box, materials, walls, insertion, integration).
   void runScript(const std::filesystem::path& script);
+  // Resume: runs the scene's script with the commands that build and fill the box replaced by
+  // `read_restart restart` (create_box, read_data -> read_restart; create_atoms, one-off
+  // insertions `insert_every once`, run and write_restart left out), so the particles, their
+  // coating and their contact history continue from the restart file. Other fixes, walls,
+  // continuous insertions and dumps are defined again as written and pick up their restart data.
+  void resumeScript(const std::filesystem::path& script, const std::filesystem::path& restart);
   // One LIGGGHTS command.
   void command(const std::string& line);
   // Adds the coupling (per-atom properties and the cosim/drag fix). Call once, after the script.

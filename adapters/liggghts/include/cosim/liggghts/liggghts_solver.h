@@ -31,6 +31,8 @@ class LiggghtsSolver : public cosim::link::Solver {
   void advance(const cosim::wire::Advance& cmd, const cosim::link::ParticleData& terms,
                cosim::wire::Advanced& out, cosim::link::ParticleData& state) override;
   std::vector<std::string> checkpoint(const std::string& path) override;
+  // The restart file was read while configuring (Engine::resumeScript): nothing left to do.
+  void restore(const std::string& /*path*/) override {}
   void finish() override;
 
   // ranks > 0: execute broadcast commands until Finish/Quit or an error. Returns the exit code.

@@ -7,6 +7,8 @@
 
 #include <string>
 
+#include "cosim/util/rayleigh_time.h"
+
 namespace cosim::liggghts {
 
 // DEM time step against the contact time scales of the current particles.
@@ -21,9 +23,10 @@ struct TimestepReport {
   double dtOverHertz() const { return dt / hertz_time; }
 };
 
-inline constexpr double kRefuseRayleighFraction = 0.3;
+// The Rayleigh limits are the orchestrator's too (cosim/util/rayleigh_time.h).
+using util::kRefuseRayleighFraction;
+using util::kWarnRayleighFraction;
 inline constexpr double kRefuseHertzFraction = 1.0 / 3.0;
-inline constexpr double kWarnRayleighFraction = 0.2;
 inline constexpr double kWarnHertzFraction = 0.2;
 
 enum class Verdict { ok, doubtful, unstable };

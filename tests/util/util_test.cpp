@@ -1,0 +1,78 @@
+// cosim_util: programs run from argument vectors (no shell), the tail of a log, the Rayleigh time.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cosim/util/child_process.h"
+#include "cosim/util/rayleigh_time.h"
+#include "cosim/util/text_file.h"
+
+namespace fs = std::filesystem;
+using namespace cosim::util;
+
+namespace {
+fs::path scratch(const std::string& tag) {
+  const fs::path p = fs::temp_directory_path() / ("cosim-util-" + tag + std::to_string(getpid()));
+  fs::remove_all(p);
+  fs::create_directories(p);
+  return p;
+}
+std::string slurp(const fs::path& f) {
+  std::ifstream in(f);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+}  // namespace
+
+TEST(RunProgram, ArgumentsReachTheProgramVerbatimAndNoShellRunsThem) {
+  const fs::path dir = scratch("argv-");
+  const std::string hostile = "a b'$(touch X1)'\"$(touch X2)\"`touch X3`;touch X4|touch X5 > X6";
+  const int rc = runProgram({"printf", "%s|%s", hostile, "$HOME"}, dir / "out.log", {}, dir);
+  EXPECT_EQ(rc, 0);
+  EXPECT_EQ(slurp(dir / "out.log"), hostile + "|$HOME");
+  for (const char* f : {"X1", "X2", "X3", "X4", "X5", "X6"}) EXPECT_FALSE(fs::exists(dir / f)) << f;
+  fs::remove_all(dir);
+}
+
+TEST(RunProgram, ExitCodeEnvironmentAndMissingProgram) {
+  const fs::path dir = scratch("exit-");
+  EXPECT_EQ(runProgram({"sh", "-c", "exit 7"}, "/dev/null"), 7);
+  EXPECT_EQ(runProgram({"sh", "-c", "kill -9 $$"}, "/dev/null"), 128 + 9);
+  EXPECT_EQ(runProgram({"sh", "-c", "printf %s \"$COSIM_UTIL_TEST\""}, dir / "env.log",
+                       {{"COSIM_UTIL_TEST", "x y"}}),
+            0);
+  EXPECT_EQ(slurp(dir / "env.log"), "x y");
+  EXPECT_THROW(runProgram({"/nonexistent/cosim-no-such-program"}, "/dev/null"), std::runtime_error);
+  fs::remove_all(dir);
+}
+
+TEST(DisplayCommand, QuotesWhatAShellWouldReadOtherwise) {
+  EXPECT_EQ(displayCommand({"blockMesh"}), "blockMesh");
+  EXPECT_EQ(displayCommand({"decomposePar", "-force"}), "decomposePar -force");
+  EXPECT_EQ(displayCommand({"ls", "a b", "it's"}), "ls 'a b' 'it'\\''s'");
+  EXPECT_EQ(displayCommand({"echo", ""}), "echo ''");
+}
+
+TEST(TailOfFile, LastLinesOldestFirst) {
+  const fs::path dir = scratch("tail-");
+  std::ofstream(dir / "log") << "one\ntwo\nthree\nfour";
+  EXPECT_EQ(tailOfFile(dir / "log", 2), "three\nfour\n");
+  EXPECT_EQ(tailOfFile(dir / "log", 10), "one\ntwo\nthree\nfour\n");
+  EXPECT_EQ(*lastLines(dir / "log", 1), std::vector<std::string>{"four"});
+  EXPECT_FALSE(lastLines(dir / "missing", 3));
+  EXPECT_EQ(tailOfFile(dir / "missing", 3), "");
+  fs::remove_all(dir);
+}
+
+TEST(RayleighTime, HandValueAndScaling) {
+  // r = 0.75 mm, rho = 1750, E = 5 MPa, nu = 0.3: G = 5e6 / 2.6 = 1.923e6 Pa,
+  // t_R = pi 0.75e-3 sqrt(1750 / 1.923e6) / (0.1631 0.3 + 0.8766) = 7.680e-5 s
+  EXPECT_NEAR(rayleighTime(0.75e-3, 1750, 5e6, 0.3), 7.680e-5, 0.002e-5);
+  const double t = rayleighTime(1e-3, 2500, 1e7, 0.25);
+  EXPECT_NEAR(rayleighTime(2e-3, 2500, 1e7, 0.25), 2 * t, 1e-15);    // ~ r
+  EXPECT_NEAR(rayleighTime(1e-3, 2500, 4e7, 0.25), 0.5 * t, 1e-15);  // ~ 1/sqrt(E)
+}
