@@ -91,7 +91,7 @@ Coupler::Coupler(Scenario scenario, RunOptions options)
 Coupler::~Coupler() { shutdown(false); }
 
 void Coupler::prepareFolder() {
-  fs::path base = opt_.output.empty() ? sc_.output_folder : fs::absolute(opt_.output);
+  fs::path base = opt_.output.empty() ? sc_.output.folder : fs::absolute(opt_.output);
   folder_ = base;
   if (!opt_.overwrite && fs::exists(folder_) && !fs::is_empty(folder_)) {
     // Never overwrite a previous result: take the next free suffix.
@@ -112,10 +112,10 @@ void Coupler::prepareFolder() {
 }
 
 void Coupler::startParticipants() {
-  std::string endpoint = sc_.bind_endpoint;
+  std::string endpoint = sc_.transport.bind;
   if (endpoint.empty()) endpoint = "ipc:///tmp/cosim-" + run_id_ + ".ipc";
   hub_ = std::make_unique<link::Hub>(endpoint);
-  std::string connect = sc_.connect_endpoint.empty() ? hub_->endpoint() : sc_.connect_endpoint;
+  std::string connect = sc_.transport.connect.empty() ? hub_->endpoint() : sc_.transport.connect;
 
   for (const auto& [name, spec] : sc_.participants) {
     const bool used = name == "particles" || (name == "fluid" && plan_.fluid);
@@ -272,7 +272,7 @@ std::map<std::string, wire::Envelope> Coupler::await(
                                    std::to_string(step_));
       }
       const double silent = std::chrono::duration<double>(now - p.last_seen).count();
-      if (p.connected && silent > sc_.heartbeat_timeout) {
+      if (p.connected && silent > sc_.transport.heartbeat_timeout) {
         throw RunFailure(name, "silent for " + std::to_string(static_cast<int>(silent)) +
                                    " s (no heartbeat; hung, or its host is gone)");
       }
@@ -353,10 +353,10 @@ void Coupler::handshake() {
       em << p.spec.options;
       wel->set_config_yaml(em.c_str());
       wel->set_workdir(fs::absolute(p.workdir).string());
-      wel->set_cfd_dt(sc_.dt);
-      wel->set_dem_steps(sc_.dem_steps);
-      wel->set_end_time(sc_.end_time);
-      wel->set_start_time(sc_.start_time);
+      wel->set_cfd_dt(sc_.coupling.dt);
+      wel->set_dem_steps(sc_.coupling.dem_steps);
+      wel->set_end_time(sc_.coupling.end_time);
+      wel->set_start_time(sc_.coupling.start_time);
       for (const auto& [k, v] : sc_.parameters) (*wel->mutable_parameters())[k] = v;
       wel->set_species(plan_.coating);
       send(who, w);
@@ -375,15 +375,15 @@ void Coupler::handshake() {
                                 p.process->exitDescription() + " before connecting");
       }
     }
-    if (std::chrono::duration<double>(Clock::now() - start).count() > sc_.handshake_timeout) {
+    if (std::chrono::duration<double>(Clock::now() - start).count() > sc_.transport.handshake_timeout) {
       std::string who = *waiting.begin();
       throw RunFailure(
           who,
-          "did not connect within " + std::to_string(static_cast<int>(sc_.handshake_timeout)) +
+          "did not connect within " + std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
               " s (transport.handshake_timeout)" +
               (peers_.at(who)->spec.launch == "external"
                    ? "; start it with --endpoint " +
-                         (sc_.connect_endpoint.empty() ? hub_->endpoint() : sc_.connect_endpoint) +
+                         (sc_.transport.connect.empty() ? hub_->endpoint() : sc_.transport.connect) +
                          " --name " + who + " --run-id " + run_id_
                    : ""));
     }
@@ -409,11 +409,11 @@ void Coupler::checkState(const link::ParticleData& s, const std::string& where) 
     for (std::size_t p = 0; p < s.size(); ++p) {
       const double speed = std::sqrt(v[3 * p] * v[3 * p] + v[3 * p + 1] * v[3 * p + 1] +
                                      v[3 * p + 2] * v[3 * p + 2]);
-      if (speed > sc_.max_particle_speed) {
+      if (speed > sc_.checks.max_particle_speed) {
         std::ostringstream os;
         os << where << ": particle " << s.ids[p] << " moves at " << speed << " m/s at step "
            << step_ << " (t = " << time_
-           << " s), above checks.max_particle_speed = " << sc_.max_particle_speed
+           << " s), above checks.max_particle_speed = " << sc_.checks.max_particle_speed
            << " m/s: the run is unstable (DEM dt too large, or drag too stiff for the coupling "
               "interval?)";
         throw RunFailure(where, os.str());
@@ -442,7 +442,7 @@ void Coupler::appendRow(double time, const std::vector<double>& row) {
 void Coupler::record(double time, bool force) {
   if (!force && time + 1e-12 * std::max(1.0, std::fabs(time)) < next_output_) return;
   rec_->particles->write(time, heldState());
-  next_output_ = time + sc_.output_interval;
+  next_output_ = time + sc_.output.interval;
 }
 
 link::ParticleData Coupler::heldState() const {
@@ -462,7 +462,7 @@ void Coupler::writeSummary(const RunResult& r, const std::string& status) {
   s.run_id = run_id_;
   s.status = status;
   s.message = r.message;
-  s.start_time = sc_.start_time;
+  s.start_time = sc_.coupling.start_time;
   s.end_time = time_;
   s.steps = static_cast<std::int64_t>(r.steps);
   for (const auto& [k, v] : totals_) s.headline.emplace_back(k, v);
@@ -471,8 +471,8 @@ void Coupler::writeSummary(const RunResult& r, const std::string& status) {
   for (const auto& [n, w] : wall_) s.timings.emplace_back(n + "_compute", w);
   for (const auto& [n, w] : phase_) s.timings.emplace_back("step_" + n, w);
   s.parameters.assign(sc_.parameters.begin(), sc_.parameters.end());
-  s.coupling_dt = sc_.dt;
-  s.dem_steps = static_cast<std::int64_t>(sc_.dem_steps);
+  s.coupling_dt = sc_.coupling.dt;
+  s.dem_steps = static_cast<std::int64_t>(sc_.coupling.dem_steps);
   s.cg = sc_.constants.cg;
   s.coating = plan_.coating;
   s.observables = observables_;
@@ -528,13 +528,13 @@ void Coupler::shutdown(bool clean) {
 RunResult Coupler::run() {
   RunResult result;
   const auto wall0 = Clock::now();
-  time_ = sc_.start_time;
-  next_output_ = sc_.start_time;
+  time_ = sc_.coupling.start_time;
+  next_output_ = sc_.coupling.start_time;
   prepareFolder();
   result.folder = folder_;
   const auto nsteps =
-      static_cast<std::uint64_t>(std::llround((sc_.end_time - sc_.start_time) / sc_.dt));
-  Progress progress(sc_.start_time, sc_.end_time, opt_.quiet);
+      static_cast<std::uint64_t>(std::llround((sc_.coupling.end_time - sc_.coupling.start_time) / sc_.coupling.dt));
+  Progress progress(sc_.coupling.start_time, sc_.coupling.end_time, opt_.quiet);
   std::string status = "completed";
   try {
     rec_ = std::make_unique<Recorders>();
@@ -578,7 +578,7 @@ RunResult Coupler::run() {
         if (!opt_.quiet) std::cout << "cosim: check: " << line << "\n";
         std::ofstream(folder_ / "cosim.log", std::ios::app) << "check: " << line << "\n";
       }
-      if (!rep.refusals.empty() && sc_.stability == "refuse") {
+      if (!rep.refusals.empty() && sc_.checks.stability == "refuse") {
         std::string msg = "unstable settings refused:";
         for (const auto& r : rep.refusals) msg += "\n  - " + r;
         msg += "\n  (set checks.stability: warn to run anyway)";
@@ -617,7 +617,7 @@ RunResult Coupler::run() {
     std::vector<char> lost;
     for (std::uint64_t k = 0; k < nsteps; ++k) {
       step_ = k + 1;
-      time_ = stepTime(sc_.start_time, sc_.dt, k);
+      time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, k);
       link::ParticleData samples;
       lost.assign(state_.size(), 0);
       auto tick = Clock::now();
@@ -668,8 +668,8 @@ RunResult Coupler::run() {
       {
         wire::Envelope e;
         auto* a = e.mutable_advance();
-        a->set_dt(sc_.dt);
-        a->set_substeps(sc_.dem_steps);
+        a->set_dt(sc_.coupling.dt);
+        a->set_substeps(sc_.coupling.dem_steps);
         terms.forcing.select(plan_.particles_receive).toWire(*a->mutable_terms());
         send("particles", e);
         wait["particles"] = wire::Envelope::kAdvanced;
@@ -678,7 +678,7 @@ RunResult Coupler::run() {
       if (plan_.fluid) {
         wire::Envelope e;
         auto* a = e.mutable_advance();
-        a->set_dt(sc_.dt);
+        a->set_dt(sc_.coupling.dt);
         a->set_substeps(1);
         terms.exchange.select(plan_.fluid_receive).toWire(*a->mutable_terms());
         send("fluid", e);
@@ -687,7 +687,7 @@ RunResult Coupler::run() {
       }
       auto replies = await(wait, timeout);
       lap("advance");
-      time_ = stepTime(sc_.start_time, sc_.dt, k + 1);
+      time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, k + 1);
       const auto& pa = replies.at("particles").advanced();
       peers_.at("particles")->wall += pa.wall_seconds();
       {
@@ -776,7 +776,7 @@ RunResult Coupler::run() {
           else
             row0.push_back(0.0);
         }
-        appendRow(sc_.start_time, row0);
+        appendRow(sc_.coupling.start_time, row0);
         initial_row_written = true;
       }
       // The row and the snapshot at time_ hold what the particles have at time_: the coating of

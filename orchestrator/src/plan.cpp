@@ -11,10 +11,13 @@ namespace cosim::orchestrator {
 SceneModels makeModels(const Scenario& sc) {
   auto& r = models::Registry::instance();
   SceneModels m;
-  if (sc.drag) m.drag = r.makeDrag(sc.drag->law, sc.drag->params);
-  for (const auto& f : sc.forces) m.forces.push_back(r.makeForce(f.law, f.params));
-  if (sc.mass_transfer) m.mass_transfer = r.makeMassTransfer(sc.mass_transfer->law, sc.mass_transfer->params);
-  if (sc.coating_zone) m.zone = r.makeZone(sc.coating_zone->law, sc.coating_zone->params);
+  if (sc.models.drag) m.drag = r.makeDrag(sc.models.drag->law, sc.models.drag->params);
+  for (const auto& f : sc.models.forces) m.forces.push_back(r.makeForce(f.law, f.params));
+  if (sc.models.mass_transfer)
+    m.mass_transfer =
+        r.makeMassTransfer(sc.models.mass_transfer->law, sc.models.mass_transfer->params);
+  if (sc.models.coating_zone)
+    m.zone = r.makeZone(sc.models.coating_zone->law, sc.models.coating_zone->params);
   return m;
 }
 
@@ -46,8 +49,9 @@ Plan makePlan(const Scenario& sc, const SceneModels& m) {
 
   if (p.fluid) {
     static const std::vector<std::string> fluid_side = {
-        field::fluid_velocity, field::voidage, field::fluid_density, field::fluid_viscosity,
-        field::pressure_gradient, field::precursor_fraction, field::cell_size};
+        field::fluid_velocity,  field::voidage,           field::fluid_density,
+        field::fluid_viscosity, field::pressure_gradient, field::precursor_fraction,
+        field::cell_size};
     for (const auto& f : fluid_side) {
       if (needed.count(f)) p.fluid_send.push_back(f);
     }
@@ -58,7 +62,9 @@ Plan makePlan(const Scenario& sc, const SceneModels& m) {
   }
 
   if (!p.fluid && sc.participants.count("fluid")) {
-    p.notes.push_back("participant 'fluid' is configured but no model needs the fluid (no drag, forces or mass transfer): it is not started");
+    p.notes.push_back(
+        "participant 'fluid' is configured but no model needs the fluid (no drag, forces or mass "
+        "transfer): it is not started");
   }
   if (p.fluid && !p.coating) {
     p.notes.push_back("no mass transfer configured: no precursor species is solved or sent");

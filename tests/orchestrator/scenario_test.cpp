@@ -64,8 +64,8 @@ void expectError(const std::string& text, const std::vector<std::string>& fragme
 TEST(Scenario, GoodScenarioParsesWithParametersAndExpressions) {
   Scenario sc = parse(kGood);
   EXPECT_EQ(sc.name, "good");
-  EXPECT_DOUBLE_EQ(sc.dt, 1e-4);
-  EXPECT_EQ(sc.dem_steps, 10u);
+  EXPECT_DOUBLE_EQ(sc.coupling.dt, 1e-4);
+  EXPECT_EQ(sc.coupling.dem_steps, 10u);
   EXPECT_NEAR(sc.parameters.at("u"), 50.0 / 60000.0 / 0.01, 1e-15);
   EXPECT_NEAR(sc.participants.at("fluid").options["velocity"][2].as<double>(),
               50.0 / 60000.0 / 0.01, 1e-12);
@@ -74,7 +74,7 @@ TEST(Scenario, GoodScenarioParsesWithParametersAndExpressions) {
 TEST(Scenario, SetOverridesParametersAndKeys) {
   Scenario sc = parse(kGood, {"flow_lpm=100", "coupling.end_time=0.02"});
   EXPECT_NEAR(sc.parameters.at("u"), 100.0 / 60000.0 / 0.01, 1e-15);
-  EXPECT_DOUBLE_EQ(sc.end_time, 0.02);
+  EXPECT_DOUBLE_EQ(sc.coupling.end_time, 0.02);
 }
 
 // kGood with coating: a box zone of two keys (min, max) that a cylinder does not take.
@@ -96,15 +96,15 @@ std::vector<std::string> zoneKeys(const Scenario& sc) {
 
 TEST(Scenario, SetWithAMapReplacesTheWholeNode) {
   Scenario sc = parse(kZoned, {kCylinder});
-  ASSERT_TRUE(sc.coating_zone);
-  EXPECT_EQ(sc.coating_zone->law, "cylinder");
+  ASSERT_TRUE(sc.models.coating_zone);
+  EXPECT_EQ(sc.models.coating_zone->law, "cylinder");
   EXPECT_EQ(zoneKeys(sc), (std::vector<std::string>{"axis", "base", "length", "radius", "shape"}));
   EXPECT_EQ(sc.resolved["models"]["coating_zone"]["radius"].as<double>(), 0.01);
   EXPECT_EQ(sc.resolved["models"]["coating_zone"]["base"][2].as<double>(), 0.004);
   // The zone is built: a point on the axis 1 cm above the base is inside, one beyond the radius
   // is not.
-  auto zone =
-      cosim::models::Registry::instance().makeZone(sc.coating_zone->law, sc.coating_zone->params);
+  auto zone = cosim::models::Registry::instance().makeZone(sc.models.coating_zone->law,
+                                                           sc.models.coating_zone->params);
   const double in[3] = {0, 0, 0.014}, out[3] = {0.011, 0, 0.014};
   EXPECT_TRUE(zone->contains(in));
   EXPECT_FALSE(zone->contains(out));
@@ -116,15 +116,15 @@ TEST(Scenario, SetWithAMapReplacesTheWholeNode) {
 
 TEST(Scenario, UnsetRemovesANodeBeforeTheSetsRebuildIt) {
   Scenario none = parse(kZoned, {}, {"models.coating_zone"});
-  EXPECT_FALSE(none.coating_zone);  // coat everywhere
+  EXPECT_FALSE(none.models.coating_zone);  // coat everywhere
   EXPECT_FALSE(none.resolved["models"]["coating_zone"]);
   Scenario sc =
       parse(kZoned,
             {"models.coating_zone.shape=sphere", "models.coating_zone.center=[0, 0, 0.01]",
              "models.coating_zone.radius=0.005"},
             {"models.coating_zone"});
-  ASSERT_TRUE(sc.coating_zone);
-  EXPECT_EQ(sc.coating_zone->law, "sphere");
+  ASSERT_TRUE(sc.models.coating_zone);
+  EXPECT_EQ(sc.models.coating_zone->law, "sphere");
   EXPECT_EQ(zoneKeys(sc), (std::vector<std::string>{"center", "radius", "shape"}));
   // A parameter by its bare name, as for --set.
   EXPECT_FALSE(parse(kGood, {}, {"d"}).parameters.count("d"));
