@@ -540,15 +540,7 @@ RunResult Coupler::run() {
     rec_ = std::make_unique<Recorders>();
     std::vector<std::string> pfields = plan_.particles_send;
     rec_->particles = std::make_unique<analysis::ParticleRecorder>(folder_, pfields);
-    rec_->columns = {"particle_count", "wall_seconds"};
-    if (plan_.coating) {
-      for (const char* c : {analysis::column::precursor_in, analysis::column::precursor_out,
-                            analysis::column::precursor_held, analysis::column::precursor_removed,
-                            analysis::column::coated_mass}) {
-        rec_->columns.push_back(c);
-      }
-    }
-    if (plan_.fluid) rec_->columns.push_back("pressure_drop");
+    rec_->columns = timeSeriesColumns(plan_);
     rec_->series = std::make_unique<analysis::TimeSeriesRecorder>(
         folder_ / analysis::kTimeSeriesFile, rec_->columns);
 

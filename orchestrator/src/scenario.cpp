@@ -72,8 +72,13 @@ std::string joinPath(const std::vector<std::string>& parts) {
 
 // "a.b.c=value" -> node a/b/c = value. The value is YAML: numbers, text, lists and maps work;
 // a list or map replaces the whole node (nothing of the old one is kept).
+// How an override is named in messages: as given, cut if very long.
+std::string shownOverride(const std::string& flag, const std::string& arg) {
+  return flag + " " + (arg.size() > 200 ? arg.substr(0, 200) + "..." : arg);
+}
+
 void applySet(YAML::Node root, const std::string& set, Context& ctx) {
-  const std::string shown = "--set " + set;
+  const std::string shown = shownOverride("--set", set);
   auto eq = set.find('=');
   if (eq == std::string::npos || eq == 0) {
     ctx.failTop(shown,
@@ -100,7 +105,7 @@ void applySet(YAML::Node root, const std::string& set, Context& ctx) {
                            " (a map is written {key: value, ...}, a list [a, b, ...]; quote the "
                            "whole argument for the shell)");
   }
-  checkYamlTree(parsed, ctx.origin().string() + ": " + shown, false);
+  checkYamlTree(parsed, ctx.origin().string() + ": " + shown, false, joinPath(parts));
   std::vector<YAML::Node> chain{root};
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     YAML::Node next = chain.back()[parts[i]];
@@ -115,7 +120,7 @@ void applySet(YAML::Node root, const std::string& set, Context& ctx) {
 
 // "a.b.c" -> node a/b/c removed (with everything below it); an error if it does not exist.
 void applyUnset(YAML::Node root, const std::string& key, Context& ctx) {
-  const std::string shown = "--unset " + key;
+  const std::string shown = shownOverride("--unset", key);
   std::vector<std::string> parts = keyPath(key, shown, ctx);
   YAML::Node node = root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {

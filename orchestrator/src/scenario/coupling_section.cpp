@@ -1,6 +1,7 @@
 #include "scenario/coupling_section.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "scenario/limits.h"
@@ -56,8 +57,12 @@ CouplingSection parseCoupling(const YAML::Node& coupling, const Context& ctx) {
   const double steps = span / c.dt;
   if (!(steps <= limits::kMaxSteps)) {
     std::ostringstream os;
-    os << "gives " << steps << " coupling steps ((end_time - start_time) / dt), more than the "
-       << limits::kMaxSteps << " a run may take; use a larger dt or a shorter run";
+    if (std::isfinite(steps))
+      os << "gives " << steps;
+    else
+      os << "gives more than " << std::numeric_limits<double>::max();
+    os << " coupling steps ((end_time - start_time) / dt); a run may take at most "
+       << limits::kMaxSteps << ": use a larger dt or a shorter run";
     ctx.fail(coupling["dt"], "coupling.dt", os.str());
   }
   return c;

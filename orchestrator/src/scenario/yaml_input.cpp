@@ -86,8 +86,9 @@ YAML::Node loadYaml(const std::string& text, const std::string& where, bool line
   return root;
 }
 
-void checkYamlTree(const YAML::Node& root, const std::string& where, bool lines) {
-  Walk(where, lines).node(root, "", 0);
+void checkYamlTree(const YAML::Node& root, const std::string& where, bool lines,
+                   const std::string& path) {
+  Walk(where, lines).node(root, path, 0);
 }
 
 }  // namespace cosim::orchestrator

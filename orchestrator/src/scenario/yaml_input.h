@@ -16,7 +16,9 @@ namespace cosim::orchestrator {
 // Throws ScenarioError.
 YAML::Node loadYaml(const std::string& text, const std::string& where, bool lines);
 
-// The walk of loadYaml alone, for a tree parsed elsewhere.
-void checkYamlTree(const YAML::Node& root, const std::string& where, bool lines);
+// The walk of loadYaml alone, for a tree parsed elsewhere; `path`: the key the tree is the value
+// of ("" for a whole file).
+void checkYamlTree(const YAML::Node& root, const std::string& where, bool lines,
+                   const std::string& path = "");
 
 }  // namespace cosim::orchestrator
