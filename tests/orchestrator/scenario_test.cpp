@@ -334,3 +334,28 @@ TEST(Expression, DoubleDollarIsALiteral) {
   EXPECT_EQ(substitute("variable vz equal $${vel} + ${u}", v), "variable vz equal ${vel} + 0.1");
   EXPECT_EQ(substitute("$${a}$${b}", v), "${a}${b}");
 }
+
+// ---- the keys each section declares are the documented ones
+// ----------------------------------------------------------
+
+TEST(ScenarioDocs, EveryDeclaredKeyIsInScenarioMd) {
+  std::ifstream in(std::string(COSIM_SOURCE_DIR) + "/docs/scenario.md");
+  ASSERT_TRUE(in);
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<std::pair<std::string, const std::vector<KeySpec>*>> sections = {
+      {"coupling", &CouplingSection::keys()},    {"constants", &ConstantsSection::keys()},
+      {"participants", &ParticipantSpec::keys()}, {"models", &ModelsSection::keys()},
+      {"output", &OutputSection::keys()},        {"transport", &TransportSection::keys()},
+      {"checks", &ChecksSection::keys()},        {"observables", &observableKeys()}};
+  for (const auto& [section, keys] : sections) {
+    EXPECT_FALSE(keys->empty()) << section;
+    for (const auto& k : *keys) {
+      EXPECT_FALSE(k.doc.empty()) << section << "." << k.name;
+      // In the key table ("`coupling.dt`", "`youngs_modulus`") or in an example ("  mpi: 1").
+      const bool found = doc.find("`" + section + "." + k.name + "`") != std::string::npos ||
+                         doc.find("`" + k.name + "`") != std::string::npos ||
+                         doc.find(" " + k.name + ":") != std::string::npos;
+      EXPECT_TRUE(found) << section << "." << k.name << " is not in docs/scenario.md";
+    }
+  }
+}
