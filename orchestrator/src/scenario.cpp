@@ -179,12 +179,13 @@ Variables parseParameters(const YAML::Node& params, const Context& ctx) {
 YAML::Node applyExtends(YAML::Node root, const fs::path& origin, const Context& ctx) {
   if (!root["extends"]) return root;
   const fs::path base = fs::absolute(origin).parent_path() / ctx.text(root["extends"], "extends");
-  std::ifstream in(base);
-  if (!in || !fs::is_regular_file(base))
-    ctx.fail(root["extends"], "extends", "cannot open '" + base.string() + "'");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  YAML::Node b = loadYaml(ss.str(), base.string(), true);
+  std::string text;
+  try {
+    text = readScenarioFile(base);
+  } catch (const ScenarioError& e) {
+    ctx.fail(root["extends"], "extends", e.what());
+  }
+  YAML::Node b = loadYaml(text, base.string(), true);
   if (!b.IsMap()) {
     ctx.fail(root["extends"], "extends",
              "'" + base.string() + "' is not a scenario (expected a map of sections)");
@@ -283,25 +284,7 @@ Scenario loadScenario(const fs::path& file, const std::vector<std::string>& sets
                       const std::vector<std::string>& unsets) {
   fs::path path = file;
   if (fs::is_directory(path)) path /= "scenario.yaml";
-  std::ifstream in(path);
-  if (!in) {
-    throw ScenarioError(
-        path.string() +
-        ": cannot open the scenario file (does it exist? a scenario folder needs a scenario.yaml)");
-  }
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    throw ScenarioError(path.string() + ": not a regular file; give a scenario.yaml");
-  }
-  const auto size = fs::file_size(path, ec);
-  if (!ec && size > limits::kMaxFileBytes) {
-    throw ScenarioError(path.string() + ": " + std::to_string(size) + " bytes, more than the " +
-                        std::to_string(limits::kMaxFileBytes) +
-                        " a scenario may have; is this the right file?");
-  }
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parseScenario(ss.str(), path, sets, unsets);
+  return parseScenario(readScenarioFile(path), path, sets, unsets);
 }
 
 }  // namespace cosim::orchestrator

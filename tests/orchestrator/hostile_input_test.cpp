@@ -148,6 +148,9 @@ TEST(HostileYaml, HugeFilesAreRefused) {
   } catch (const ScenarioError& e) {
     expectFragments(e.what(), {"/dev/zero", "not a regular file"});
   }
+  // Nor through extends: (a device or /proc file is never read past the limit).
+  expectFragments(errorOf(withLine("extends: /dev/zero\n")),
+                  {"hostile.yaml:11: extends: /dev/zero: not a regular file"});
 }
 
 TEST(HostileYaml, ScalarWhereASectionBelongsNamesTheCommandLineAndTheKey) {

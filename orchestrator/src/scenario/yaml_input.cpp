@@ -1,5 +1,6 @@
 #include "scenario/yaml_input.h"
 
+#include <fstream>
 #include <map>
 
 #include "scenario/context.h"
@@ -67,6 +68,27 @@ class Walk {
 };
 
 }  // namespace
+
+std::string readScenarioFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw ScenarioError(
+        path.string() +
+        ": cannot open the scenario file (does it exist? a scenario folder needs a scenario.yaml)");
+  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    throw ScenarioError(path.string() + ": not a regular file; give a scenario.yaml");
+  }
+  std::string text(limits::kMaxFileBytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (text.size() > limits::kMaxFileBytes) {
+    throw ScenarioError(path.string() + ": more than the " + std::to_string(limits::kMaxFileBytes) +
+                        " bytes a scenario may have; is this the right file?");
+  }
+  return text;
+}
 
 YAML::Node loadYaml(const std::string& text, const std::string& where, bool lines) {
   if (text.size() > limits::kMaxFileBytes) {

@@ -7,6 +7,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <filesystem>
 #include <string>
 
 namespace cosim::orchestrator {
@@ -15,6 +16,10 @@ namespace cosim::orchestrator {
 // `lines`: whether line numbers mean something to the user (a file) or not (a --set value).
 // Throws ScenarioError.
 YAML::Node loadYaml(const std::string& text, const std::string& where, bool lines);
+
+// The text of a scenario file (or an extends: file): a regular file, read up to the size limit
+// (never more, whatever the file claims: /proc, /dev). Throws ScenarioError naming the file.
+std::string readScenarioFile(const std::filesystem::path& path);
 
 // The walk of loadYaml alone, for a tree parsed elsewhere; `path`: the key the tree is the value
 // of ("" for a whole file).
