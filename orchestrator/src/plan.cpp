@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <set>
+#include <sstream>
 
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
@@ -126,10 +127,12 @@ void checkObservables(const Scenario& sc, const Plan& plan) {
       what = "the particles report no field '" + name + "' in this scene (they report: ";
     }
     if (std::find(known.begin(), known.end(), name) != known.end()) continue;
-    std::string msg = sc.file.string();
-    if (o.line > 0) msg += ":" + std::to_string(o.line);
-    throw ScenarioError(msg + ": observables." + o.name + ".quantity: '" + o.quantity +
-                        "': " + what + join(known) + "); check the spelling");
+    std::ostringstream msg;
+    msg << sc.file.string();
+    if (o.line > 0) msg << ":" << o.line;
+    msg << ": observables." << o.name << ".quantity: '" << o.quantity << "': " << what
+        << join(known) << "); check the spelling";
+    throw ScenarioError(msg.str());
   }
 }
 
