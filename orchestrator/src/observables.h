@@ -29,7 +29,7 @@ struct ObservableSpec {
   std::string quantity;
   std::optional<double> reference;
   double after = -1e300;  // series: only rows with t >= after
-  int line = 0;           // of the scenario file (for messages), 0 if unknown
+  std::string where;      // "FILE:LINE" or "FILE: --set ..." of its quantity (for messages)
 };
 
 // A quantity that has no value for this run's outcome (no particle left for a mean, a CV of

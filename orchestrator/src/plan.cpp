@@ -128,10 +128,8 @@ void checkObservables(const Scenario& sc, const Plan& plan) {
     }
     if (std::find(known.begin(), known.end(), name) != known.end()) continue;
     std::ostringstream msg;
-    msg << sc.file.string();
-    if (o.line > 0) msg << ":" << o.line;
-    msg << ": observables." << o.name << ".quantity: '" << o.quantity << "': " << what
-        << join(known) << "); check the spelling";
+    msg << (o.where.empty() ? sc.file.string() : o.where) << ": observables." << o.name
+        << ".quantity: '" << o.quantity << "': " << what << join(known) << "); check the spelling";
     throw ScenarioError(msg.str());
   }
 }

@@ -276,6 +276,17 @@ TEST(HostileObservables, TypoInATimeSeriesColumnFailsValidation) {
     expectFragments(e.what(), {"hostile.yaml:12: observables.dp.quantity",
                                "no column 'pressure_drp'", "pressure_drop", "spelling"});
   }
+  // Set on the command line: the message names the override, not a line of the file.
+  Scenario set = parse(kScene, {"observables.x={quantity: series.pressure_drp.mean}"});
+  auto ms = makeModels(set);
+  try {
+    makePlan(set, ms);
+    FAIL() << "accepted";
+  } catch (const ScenarioError& e) {
+    expectFragments(e.what(), {"hostile.yaml: --set observables.x={quantity: series.pressure_drp",
+                               "observables.x.quantity", "no column 'pressure_drp'"});
+    EXPECT_EQ(std::string(e.what()).find("hostile.yaml:1"), std::string::npos) << e.what();
+  }
   // The right column, a total and a particle field pass.
   Scenario ok =
       parse(withLine("observables:\n  dp: { quantity: series.pressure_drop.mean }\n"

@@ -13,6 +13,16 @@ bool Context::within(const std::string& key, const std::string& path) {
          (key.size() == path.size() || key[path.size()] == '.' || key[path.size()] == '[');
 }
 
+std::string Context::where(const YAML::Node& node, const std::string& key) const {
+  for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
+    if (within(key, o->first)) return origin_.string() + ": " + o->second;
+  }
+  std::ostringstream out;
+  out << origin_.string();
+  if (node.IsDefined() && node.Mark().line >= 0) out << ":" << node.Mark().line + 1;
+  return out.str();
+}
+
 void Context::fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
   std::ostringstream os;
   os << origin_.string();

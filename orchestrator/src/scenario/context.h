@@ -34,6 +34,9 @@ class Context {
 
   [[noreturn]] void fail(const YAML::Node& node, const std::string& key,
                          const std::string& what) const;
+  // Where `key` (at `node`) came from, as fail() names it: "FILE:LINE", or "FILE: --set ..." when
+  // a command-line override set it.
+  std::string where(const YAML::Node& node, const std::string& key) const;
   [[noreturn]] void failTop(const std::string& key, const std::string& what) const;
   // An override of the command line ("--set KEY=VALUE", "--unset KEY") that changed `path`.
   void addOverride(const std::string& path, const std::string& shown) {

@@ -27,7 +27,7 @@ ObservablesSection parseObservables(const YAML::Node& obs, const Context& ctx) {
     ObservableSpec spec;
     spec.name = name;
     spec.quantity = ctx.text(o["quantity"], key + ".quantity");
-    spec.line = o["quantity"].Mark().line + 1;
+    spec.where = ctx.where(o["quantity"], key + ".quantity");
     try {
       checkQuantity(spec.quantity);
     } catch (const std::exception& e) {
