@@ -24,6 +24,7 @@ packages=(
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   python3 python3-numpy python3-scipy python3-matplotlib python3-h5py
   dpkg-dev
+  clang libclang-rt-14-dev    # libFuzzer targets (scripts/fuzz.sh)
 )
 
 missing=()

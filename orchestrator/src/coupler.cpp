@@ -60,12 +60,12 @@ Coupler::~Coupler() { participants_.shutdown(false); }
 RunResult Coupler::run() {
   RunResult result;
   wall0_ = Clock::now();
-  time_ = sc_.start_time;
-  nsteps_ = static_cast<std::uint64_t>(std::llround((sc_.end_time - sc_.start_time) / sc_.dt));
+  time_ = sc_.coupling.start_time;
+  nsteps_ = sc_.coupling.steps();
   result.folder =
       opt_.resume.empty() ? record_.open(opt_.output, opt_.overwrite) : record_.reopen(opt_.resume);
   checkpoints_.emplace(record_.folder());
-  next_checkpoint_ = sc_.start_time + sc_.checkpoint_interval;
+  next_checkpoint_ = sc_.coupling.start_time + sc_.checkpoint.interval;
   std::optional<Progress> progress;
   std::string status = "completed";
   try {
@@ -78,7 +78,7 @@ RunResult Coupler::run() {
     } else {
       done = resumeFromCheckpoint();
     }
-    progress.emplace(time_, sc_.end_time, opt_.quiet);
+    progress.emplace(time_, sc_.coupling.end_time, opt_.quiet);
     result.steps = done;
     bool interrupted = false;
     for (std::uint64_t k = done; k < nsteps_ && !interrupted; ++k) {
@@ -197,15 +197,15 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   phases_.seconds = saved.phases;
   for (const auto& [name, seconds] : saved.compute) participants_.addComputeSeconds(name, seconds);
   wall_before_ = saved.wall_seconds;
-  next_checkpoint_ = saved.time + sc_.checkpoint_interval;
+  next_checkpoint_ = saved.time + sc_.checkpoint.interval;
   log_.show("resumed from " + checkpoint->string() + " (t = " +
             analysis::formatShortest(saved.time) + " s, step " + std::to_string(saved.step) + ")");
   return saved.step;
 }
 
 bool Coupler::checkpointDue(bool last) const {
-  if (sc_.checkpoint_interval <= 0.0) return false;
-  return last || time_ + 1e-9 * sc_.dt >= next_checkpoint_;
+  if (sc_.checkpoint.interval <= 0.0) return false;
+  return last || time_ + 1e-9 * sc_.coupling.dt >= next_checkpoint_;
 }
 
 void Coupler::writeCheckpoint() {
@@ -228,8 +228,8 @@ void Coupler::writeCheckpoint() {
   YAML::Emitter em;
   em << sc_.resolved;
   s.scene = em.c_str();
-  const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint_keep);
-  next_checkpoint_ = time_ + sc_.checkpoint_interval;
+  const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint.keep);
+  next_checkpoint_ = time_ + sc_.checkpoint.interval;
   log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());
   phases_.lap("checkpoint");
 }
@@ -250,7 +250,7 @@ void Coupler::reportInitialState() {
 
 void Coupler::beginStep(std::uint64_t k) {
   step_ = k + 1;
-  time_ = stepTime(sc_.start_time, sc_.dt, k);
+  time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, k);
   participants_.setClock(step_, time_);
   phases_.start();
 }
@@ -293,7 +293,7 @@ CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
 AdvanceReplies Coupler::advanceBoth(const CouplingTerms& terms) {
   AdvanceReplies replies = scheme_->advance(participants_, terms);
   phases_.lap("advance");
-  time_ = stepTime(sc_.start_time, sc_.dt, step_);
+  time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_);
   participants_.setClock(step_, time_);
   return replies;
 }
@@ -364,9 +364,10 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
   if (plan_.coating && !initial_row_written_) {
     // The state at the start for the mass balance, written once the fluid has said what it
     // holds at the start. Quantities that only exist over a step (pressure drop) are NaN.
-    record_.row(sc_.start_time, {{col::particle_count, static_cast<double>(initial_count_)},
-                                 {col::precursor_held, b.held_start},
-                                 {col::pressure_drop, std::numeric_limits<double>::quiet_NaN()}});
+    record_.row(sc_.coupling.start_time,
+                {{col::particle_count, static_cast<double>(initial_count_)},
+                 {col::precursor_held, b.held_start},
+                 {col::pressure_drop, std::numeric_limits<double>::quiet_NaN()}});
     initial_row_written_ = true;
   }
   Row row{{col::particle_count, static_cast<double>(state_.size())},
@@ -409,13 +410,13 @@ void Coupler::finishRun() {
 }
 
 void Coupler::check(const link::ParticleData& s, const std::string& where) const {
-  if (auto problem = checkParticleState(s, where, sc_.max_particle_speed, step_, time_))
+  if (auto problem = checkParticleState(s, where, sc_.checks.max_particle_speed, step_, time_))
     throw RunFailure(where, *problem);
 }
 
 void Coupler::refuseOrWarn(const StabilityReport& rep) {
   for (const auto& line : rep.lines) log_.show("check: " + line);
-  if (!rep.refusals.empty() && sc_.stability == "refuse") {
+  if (!rep.refusals.empty() && sc_.checks.stability == "refuse") {
     std::string msg = "unstable settings refused:";
     for (const auto& r : rep.refusals) msg += "\n  - " + r;
     msg += "\n  (set checks.stability: warn to run anyway)";
@@ -438,7 +439,7 @@ analysis::Summary Coupler::summarize(const RunResult& r, const std::string& stat
   s.run_id = run_id_;
   s.status = status;
   s.message = r.message;
-  s.start_time = sc_.start_time;
+  s.start_time = sc_.coupling.start_time;
   s.end_time = time_;
   s.steps = static_cast<std::int64_t>(r.steps);
   for (const auto& [k, v] : totals_) s.headline.emplace_back(k, v);
@@ -448,8 +449,8 @@ analysis::Summary Coupler::summarize(const RunResult& r, const std::string& stat
     s.timings.emplace_back(n + "_compute", w);
   for (const auto& [n, w] : phases_.seconds) s.timings.emplace_back("step_" + n, w);
   s.parameters.assign(sc_.parameters.begin(), sc_.parameters.end());
-  s.coupling_dt = sc_.dt;
-  s.dem_steps = static_cast<std::int64_t>(sc_.dem_steps);
+  s.coupling_dt = sc_.coupling.dt;
+  s.dem_steps = static_cast<std::int64_t>(sc_.coupling.dem_steps);
   s.cg = sc_.constants.cg;
   s.coating = plan_.coating;
   s.observables = r.observables;

@@ -6,13 +6,13 @@ AdvanceReplies ParallelScheme::advance(Participants& participants, const Couplin
   std::map<std::string, wire::Envelope> messages;
   {
     auto* a = messages["particles"].mutable_advance();
-    a->set_dt(sc_.dt);
-    a->set_substeps(sc_.dem_steps);
+    a->set_dt(sc_.coupling.dt);
+    a->set_substeps(sc_.coupling.dem_steps);
     terms.forcing.select(plan_.particles_receive).toWire(*a->mutable_terms());
   }
   if (plan_.fluid) {
     auto* a = messages["fluid"].mutable_advance();
-    a->set_dt(sc_.dt);
+    a->set_dt(sc_.coupling.dt);
     a->set_substeps(1);
     terms.exchange.select(plan_.fluid_advance_terms).toWire(*a->mutable_terms());
   }

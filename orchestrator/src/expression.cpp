@@ -24,8 +24,25 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& why) const {
-    throw ExpressionError("in expression '" + s_ + "': " + why);
+    // A long expression is shown by its start: the message stays readable.
+    const std::string shown = s_.size() > 80 ? s_.substr(0, 80) + "..." : s_;
+    throw ExpressionError("in expression '" + shown + "': " + why);
   }
+  // Every recursion (parentheses, signs, ^, function arguments) goes one level down; a
+  // pathological expression is refused instead of overflowing the stack.
+  struct Level {
+    explicit Level(Parser& p) : p_(p) {
+      if (++p_.depth_ > kMaxExpressionDepth) {
+        p_.fail("nested more than " + std::to_string(kMaxExpressionDepth) +
+                " levels deep (parentheses, signs, ^ or function calls); write it in simpler "
+                "steps, e.g. as several parameters");
+      }
+    }
+    ~Level() { --p_.depth_; }
+    Level(const Level&) = delete;
+    Level& operator=(const Level&) = delete;
+    Parser& p_;
+  };
   void skip() {
     while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
   }
@@ -38,6 +55,7 @@ class Parser {
     return false;
   }
   double sum() {
+    Level level(*this);
     double v = product();
     while (true) {
       if (eat('+'))
@@ -64,6 +82,7 @@ class Parser {
   }
   // Unary minus binds looser than ^ (-a^2 = -(a^2)); ^ is right associative.
   double unary() {
+    Level level(*this);
     if (eat('-')) return -unary();
     if (eat('+')) return unary();
     return power();
@@ -179,6 +198,7 @@ class Parser {
   const std::string& s_;
   const Variables& vars_;
   std::size_t pos_ = 0;
+  int depth_ = 0;
 };
 
 }  // namespace

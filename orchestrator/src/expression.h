@@ -15,8 +15,13 @@ class ExpressionError : public std::runtime_error {
 
 using Variables = std::map<std::string, double>;
 
+// How deep an expression may nest (parentheses, unary signs, ^, function calls), counted in the
+// parser's levels: far more than any real expression needs, far less than overflows the stack.
+inline constexpr int kMaxExpressionDepth = 200;
+
 // Evaluates + - * / ^ ( ), unary minus, numbers (1e-3), variables, constants pi and e, and the
-// functions sqrt, exp, log, sin, cos, tan, abs, min, max, pow.
+// functions sqrt, exp, log, sin, cos, tan, abs, min, max, pow, round, ceil, floor. Throws
+// ExpressionError, also for an expression nested deeper than kMaxExpressionDepth.
 double evaluate(const std::string& expr, const Variables& vars);
 
 // Formats a number so that OpenFOAM and LIGGGHTS read back the same double.

@@ -63,9 +63,11 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
   SceneModels m = makeModels(sc);
   Plan p = makePlan(sc, m);
   std::cout << "scenario '" << sc.name << "' is valid (" << sc.file.string() << ")\n";
-  std::cout << "  coupling: dt " << sc.dt << " s x " << sc.dem_steps
-            << " DEM steps, t = " << sc.start_time << " .. " << sc.end_time << " s ("
-            << static_cast<long long>(std::llround((sc.end_time - sc.start_time) / sc.dt))
+  std::cout << "  coupling: dt " << sc.coupling.dt << " s x " << sc.coupling.dem_steps
+            << " DEM steps, t = " << sc.coupling.start_time << " .. " << sc.coupling.end_time
+            << " s ("
+            << static_cast<long long>(
+                   std::llround((sc.coupling.end_time - sc.coupling.start_time) / sc.coupling.dt))
             << " steps)\n";
   std::cout << "  particles: " << sc.participants.at("particles").adapter << "; sends "
             << join(p.particles_send) << "; receives " << join(p.particles_receive) << "\n";
@@ -73,12 +75,13 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
     std::cout << "  fluid: " << sc.participants.at("fluid").adapter << "; sends "
               << join(p.fluid_send) << "; receives " << join(p.fluid_receive) << "\n";
   }
-  std::cout << "  models: drag " << (sc.drag ? sc.drag->law : "none") << ", forces "
-            << sc.forces.size() << ", mass transfer "
-            << (sc.mass_transfer ? sc.mass_transfer->law : "none") << ", coating zone "
-            << (sc.coating_zone ? sc.coating_zone->law : "none") << "\n";
+  std::cout << "  models: drag " << (sc.models.drag ? sc.models.drag->law : "none") << ", forces "
+            << sc.models.forces.size() << ", mass transfer "
+            << (sc.models.mass_transfer ? sc.models.mass_transfer->law : "none")
+            << ", coating zone " << (sc.models.coating_zone ? sc.models.coating_zone->law : "none")
+            << "\n";
   for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
-  std::cout << "  output: " << sc.output_folder.string() << "\n";
+  std::cout << "  output: " << sc.output.folder.string() << "\n";
   return 0;
 }
 

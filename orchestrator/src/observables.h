@@ -29,6 +29,7 @@ struct ObservableSpec {
   std::string quantity;
   std::optional<double> reference;
   double after = -1e300;  // series: only rows with t >= after
+  std::string where;      // "FILE:LINE" or "FILE: --set ..." of its quantity (for messages)
 };
 
 // A quantity that has no value for this run's outcome (no particle left for a mean, a CV of

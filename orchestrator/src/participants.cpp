@@ -82,11 +82,11 @@ Participants::Participants(const Scenario& sc, const Plan& plan, std::string run
 Participants::~Participants() { shutdown(false); }
 
 std::string Participants::connectEndpoint() const {
-  return sc_.connect_endpoint.empty() ? hub_->endpoint() : sc_.connect_endpoint;
+  return sc_.transport.connect.empty() ? hub_->endpoint() : sc_.transport.connect;
 }
 
 void Participants::start(const fs::path& run_folder) {
-  std::string endpoint = sc_.bind_endpoint;
+  std::string endpoint = sc_.transport.bind;
   if (endpoint.empty()) endpoint = "ipc:///tmp/cosim-" + run_id_ + ".ipc";
   hub_ = std::make_unique<link::Hub>(endpoint);
   const std::string connect = connectEndpoint();
@@ -283,7 +283,7 @@ void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCa
                                    std::to_string(step_));
       }
       const double silent = std::chrono::duration<double>(now - p.last_seen).count();
-      if (p.connected && silent > sc_.heartbeat_timeout) {
+      if (p.connected && silent > sc_.transport.heartbeat_timeout) {
         throw RunFailure(name, "silent for " + std::to_string(static_cast<int>(silent)) +
                                    " s (no heartbeat; hung, or its host is gone)");
       }
@@ -324,10 +324,11 @@ void Participants::handshake() {
                                 p.process->exitDescription() + " before connecting");
       }
     }
-    if (std::chrono::duration<double>(Clock::now() - start).count() > sc_.handshake_timeout) {
+    if (std::chrono::duration<double>(Clock::now() - start).count() >
+        sc_.transport.handshake_timeout) {
       const std::string who = *waiting.begin();
       throw RunFailure(who, "did not connect within " +
-                                std::to_string(static_cast<int>(sc_.handshake_timeout)) +
+                                std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
                                 " s (transport.handshake_timeout)" +
                                 (peers_.at(who)->spec.launch == "external"
                                      ? "; start it with --endpoint " + connectEndpoint() +
@@ -384,10 +385,10 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env) {
   em << p.spec.options;
   wel->set_config_yaml(em.c_str());
   wel->set_workdir(fs::absolute(p.workdir).string());
-  wel->set_cfd_dt(sc_.dt);
-  wel->set_dem_steps(sc_.dem_steps);
-  wel->set_end_time(sc_.end_time);
-  wel->set_start_time(sc_.start_time);
+  wel->set_cfd_dt(sc_.coupling.dt);
+  wel->set_dem_steps(sc_.coupling.dem_steps);
+  wel->set_end_time(sc_.coupling.end_time);
+  wel->set_start_time(sc_.coupling.start_time);
   for (const auto& [k, v] : sc_.parameters) (*wel->mutable_parameters())[k] = v;
   wel->set_species(plan_.coating);
   if (!restart_from_.empty()) wel->set_restart_from(fs::absolute(restart_from_ / who).string());
@@ -429,15 +430,7 @@ void Participants::shutdown(bool clean) {
     compute_[n] += 0.0;  // every participant appears in the summary's timings
   }
   peers_.clear();
-  if (hub_) {
-    // An ipc:// endpoint is a socket file that zmq leaves behind: remove it with the hub.
-    const std::string ep = hub_->endpoint();
-    hub_.reset();
-    if (ep.rfind("ipc://", 0) == 0) {
-      std::error_code ec;
-      fs::remove(ep.substr(6), ec);
-    }
-  }
+  hub_.reset();  // the hub removes the ipc:// socket file it created
 }
 
 }  // namespace cosim::orchestrator

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <set>
+#include <sstream>
 
+#include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
 #include "cosim/models/registry.h"
 
@@ -11,11 +13,13 @@ namespace cosim::orchestrator {
 SceneModels makeModels(const Scenario& sc) {
   auto& r = models::Registry::instance();
   SceneModels m;
-  if (sc.drag) m.drag = r.makeDrag(sc.drag->law, sc.drag->params);
-  for (const auto& f : sc.forces) m.forces.push_back(r.makeForce(f.law, f.params));
-  if (sc.mass_transfer)
-    m.mass_transfer = r.makeMassTransfer(sc.mass_transfer->law, sc.mass_transfer->params);
-  if (sc.coating_zone) m.zone = r.makeZone(sc.coating_zone->law, sc.coating_zone->params);
+  if (sc.models.drag) m.drag = r.makeDrag(sc.models.drag->law, sc.models.drag->params);
+  for (const auto& f : sc.models.forces) m.forces.push_back(r.makeForce(f.law, f.params));
+  if (sc.models.mass_transfer)
+    m.mass_transfer =
+        r.makeMassTransfer(sc.models.mass_transfer->law, sc.models.mass_transfer->params);
+  if (sc.models.coating_zone)
+    m.zone = r.makeZone(sc.models.coating_zone->law, sc.models.coating_zone->params);
   return m;
 }
 
@@ -73,7 +77,67 @@ Plan makePlan(const Scenario& sc, const SceneModels& m) {
   if (p.fluid && !p.coating) {
     p.notes.push_back("no mass transfer configured: no precursor species is solved or sent");
   }
+  checkObservables(sc, p);
   return p;
+}
+
+std::vector<std::string> timeSeriesColumns(const Plan& plan) {
+  std::vector<std::string> columns = {"particle_count", "wall_seconds"};
+  if (plan.coating) {
+    for (const char* c : {analysis::column::precursor_in, analysis::column::precursor_out,
+                          analysis::column::precursor_held, analysis::column::precursor_removed,
+                          analysis::column::coated_mass}) {
+      columns.push_back(c);
+    }
+  }
+  if (plan.fluid) columns.push_back("pressure_drop");
+  return columns;
+}
+
+std::vector<std::string> runTotals(const Plan& plan) {
+  std::vector<std::string> totals = {"particles_inserted", "particles_deleted"};
+  if (plan.coating) {
+    for (const char* t :
+         {"precursor_in_kg", "precursor_out_kg", "precursor_held_start_kg", "precursor_held_kg",
+          "precursor_removed_kg", "coating_credited_kg", "coating_on_particles_kg",
+          "coating_on_deleted_particles_kg", "coating_left_domain_kg"}) {
+      totals.push_back(t);
+    }
+  }
+  return totals;
+}
+
+void checkObservables(const Scenario& sc, const Plan& plan) {
+  auto join = [](const std::vector<std::string>& v) {
+    std::string out;
+    for (const auto& x : v) out += (out.empty() ? "" : ", ") + x;
+    return out;
+  };
+  for (const auto& o : sc.observables) {
+    // checkQuantity has vetted the grammar: <kind>.<name>[...].
+    const auto dot = o.quantity.find('.');
+    const std::string kind = o.quantity.substr(0, dot);
+    const auto end = o.quantity.find('.', dot + 1);
+    const std::string name =
+        o.quantity.substr(dot + 1, end == std::string::npos ? std::string::npos : end - dot - 1);
+    std::vector<std::string> known;
+    std::string what;
+    if (kind == "series") {
+      known = timeSeriesColumns(plan);
+      what = "the run's time series has no column '" + name + "' (this scene records: ";
+    } else if (kind == "totals") {
+      known = runTotals(plan);
+      what = "the run has no total '" + name + "' (this scene has: ";
+    } else {
+      known = plan.particles_send;
+      what = "the particles report no field '" + name + "' in this scene (they report: ";
+    }
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::ostringstream msg;
+    msg << (o.where.empty() ? sc.file.string() : o.where) << ": observables." << o.name
+        << ".quantity: '" << o.quantity << "': " << what << join(known) << "); check the spelling";
+    throw ScenarioError(msg.str());
+  }
 }
 
 }  // namespace cosim::orchestrator

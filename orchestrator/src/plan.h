@@ -38,6 +38,15 @@ struct SceneModels {
 };
 
 SceneModels makeModels(const Scenario& sc);
+// Throws ScenarioError when an observable names a particle field, time-series column or total
+// this plan does not record (checkObservables), so that `cosim validate` catches the typo.
 Plan makePlan(const Scenario& sc, const SceneModels& m);
+
+// The columns of timeseries.csv after "time", in order, for this plan.
+std::vector<std::string> timeSeriesColumns(const Plan& plan);
+// The names of the run totals (totals.<name>) a run with this plan can have.
+std::vector<std::string> runTotals(const Plan& plan);
+// Every observable against what the plan records; ScenarioError naming file, line and key.
+void checkObservables(const Scenario& sc, const Plan& plan);
 
 }  // namespace cosim::orchestrator

@@ -19,7 +19,7 @@ RunRecord::RunRecord(const Scenario& sc, const Plan& plan, RunLog& log)
 RunRecord::~RunRecord() = default;
 
 const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
-  const fs::path base = output.empty() ? sc_.output_folder : fs::absolute(output);
+  const fs::path base = output.empty() ? sc_.output.folder : fs::absolute(output);
   folder_ = base;
   if (!overwrite && fs::exists(folder_) && !fs::is_empty(folder_)) {
     // Never overwrite a previous result: take the next free suffix.
@@ -34,7 +34,7 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
   fs::create_directories(folder_);
   writeResolvedScene();
   log_.open(folder_ / "cosim.log");
-  next_output_ = sc_.start_time;
+  next_output_ = sc_.coupling.start_time;
   return folder_;
 }
 
@@ -73,17 +73,7 @@ void RunRecord::startRecorders() {
       std::make_unique<analysis::TimeSeriesRecorder>(folder_ / analysis::kTimeSeriesFile, columns_);
 }
 
-void RunRecord::makeColumns() {
-  columns_ = {analysis::column::particle_count, analysis::column::wall_seconds};
-  if (plan_.coating) {
-    for (const char* c : {analysis::column::precursor_in, analysis::column::precursor_out,
-                          analysis::column::precursor_held, analysis::column::precursor_removed,
-                          analysis::column::coated_mass}) {
-      columns_.push_back(c);
-    }
-  }
-  if (plan_.fluid) columns_.push_back(analysis::column::pressure_drop);
-}
+void RunRecord::makeColumns() { columns_ = timeSeriesColumns(plan_); }
 
 void RunRecord::row(double time, const Row& values) {
   std::vector<double> r;
@@ -100,7 +90,7 @@ void RunRecord::row(double time, const Row& values) {
 void RunRecord::snapshot(double time, const link::ParticleData& held, bool force) {
   if (!force && time + 1e-12 * std::max(1.0, std::fabs(time)) < next_output_) return;
   particles_->write(time, held);
-  next_output_ = time + sc_.output_interval;
+  next_output_ = time + sc_.output.interval;
 }
 
 std::vector<ObservableValue> RunRecord::observables(

@@ -21,25 +21,26 @@ std::string g(double v) { return fmt::format("{:.3g}", v); }
 StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/,
                                const Plan& /*plan*/, const link::ParticleData& s) {
   StabilityReport r;
-  const double dem_dt = sc.dt / sc.dem_steps;
-  r.lines.push_back("coupling interval " + g(sc.dt) + " s = " + std::to_string(sc.dem_steps) +
-                    " DEM steps of " + g(dem_dt) + " s; " + std::to_string(s.size()) +
-                    " particles at start");
+  const double dem_dt = sc.coupling.dt / sc.coupling.dem_steps;
+  r.lines.push_back("coupling interval " + g(sc.coupling.dt) +
+                    " s = " + std::to_string(sc.coupling.dem_steps) + " DEM steps of " + g(dem_dt) +
+                    " s; " + std::to_string(s.size()) + " particles at start");
   if (s.size() == 0)
     r.lines.push_back("warning: the particle participant reports no particles at start");
-  if (s.has(field::radius) && s.size() > 0 && sc.material.particle_density > 0 &&
-      sc.material.youngs_modulus > 0) {
+  if (s.has(field::radius) && s.size() > 0 && sc.constants.material.particle_density > 0 &&
+      sc.constants.material.youngs_modulus > 0) {
     const auto& rad = s.get(field::radius);
     const double rmin = *std::min_element(rad.begin(), rad.end());
-    const double tR = rayleighTime(rmin, sc.material.particle_density, sc.material.youngs_modulus,
-                                   sc.material.poisson_ratio);
+    const double tR =
+        rayleighTime(rmin, sc.constants.material.particle_density,
+                     sc.constants.material.youngs_modulus, sc.constants.material.poisson_ratio);
     const double ratio = dem_dt / tR;
     std::string line = "DEM dt / Rayleigh time = " + g(ratio) + " (t_R = " + g(tR) +
                        " s for r = " + g(rmin) + " m)";
     if (ratio > util::kRefuseRayleighFraction) {
       const double dt_max = util::kWarnRayleighFraction * tR;
       r.refusals.push_back(line + ": unstable contacts; use coupling.dem_steps >= " +
-                           std::to_string(static_cast<long long>(std::ceil(sc.dt / dt_max))) +
+                           std::to_string(static_cast<long long>(std::ceil(sc.coupling.dt / dt_max))) +
                            " (DEM dt <= 0.2 t_R = " + g(dt_max) + " s)");
       line += " REFUSED";
     } else if (ratio > util::kWarnRayleighFraction) {
@@ -56,16 +57,16 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
                                const link::ParticleData& samples,
                                const link::ParticleData& forcing) {
   StabilityReport r;
-  const double dem_dt = sc.dt / sc.dem_steps;
+  const double dem_dt = sc.coupling.dt / sc.coupling.dem_steps;
   if (forcing.has(field::drag_coefficient) && state.has(field::radius) &&
-      sc.material.particle_density > 0) {
+      sc.constants.material.particle_density > 0) {
     const auto& K = forcing.get(field::drag_coefficient);
     const auto& rad = state.get(field::radius);
     double tmin = INFINITY;
     std::int64_t who = -1;
     for (std::size_t i = 0; i < state.size(); ++i) {
-      const double m =
-          sc.material.particle_density * 4.0 / 3.0 * std::numbers::pi * std::pow(rad[i], 3);
+      const double m = sc.constants.material.particle_density * 4.0 / 3.0 * std::numbers::pi *
+                       std::pow(rad[i], 3);
       const double t = relaxationTime(m, K[i]);
       if (t < tmin) {
         tmin = t;
@@ -74,9 +75,10 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
     }
     if (std::isfinite(tmin)) {
       std::string line = "shortest particle relaxation time tau_p = " + g(tmin) + " s (particle " +
-                         std::to_string(who) + "): coupling interval = " + g(sc.dt / tmin) +
+                         std::to_string(who) +
+                         "): coupling interval = " + g(sc.coupling.dt / tmin) +
                          " tau_p, DEM dt = " + g(dem_dt / tmin) + " tau_p";
-      if (sc.dt > tmin) {
+      if (sc.coupling.dt > tmin) {
         line +=
             "; drag is stiff: it stays stable because the particle adapter relaxes the velocity "
             "exactly over each DEM step and the fluid treats K implicitly, but the fluid velocity "
@@ -149,11 +151,11 @@ void StepMonitor::checkParticleLedger(const std::vector<std::int64_t>& before,
 }
 
 std::optional<std::string> StepMonitor::checkCourant(double co, std::uint64_t step, double time) {
-  if (co > sc_.max_courant) {
+  if (co > sc_.checks.max_courant) {
     std::ostringstream os;
     os << "fluid: Courant number " << co << " at step " << step << " (t = " << time
-       << " s) exceeds checks.max_courant = " << sc_.max_courant << ": reduce coupling.dt to about "
-       << sc_.dt * 0.5 / co << " s (Courant 0.5)";
+       << " s) exceeds checks.max_courant = " << sc_.checks.max_courant
+       << ": reduce coupling.dt to about " << sc_.coupling.dt * 0.5 / co << " s (Courant 0.5)";
     throw std::runtime_error(os.str());
   }
   if (co > 1.0 && !courant_warned_) {
@@ -183,12 +185,12 @@ void StepMonitor::checkMassBalance(double in, double out, double held, double re
   removed -= (*baseline_)[3];
   const double scale = std::max({in, held, removed, 1e-300});
   const double err = (in - out - held - removed) / scale;
-  if (std::fabs(err) > sc_.mass_balance_tolerance) {
+  if (std::fabs(err) > sc_.checks.mass_balance_tolerance) {
     std::ostringstream os;
     os << "precursor mass balance drifts at step " << step << " (t = " << time << " s): in " << in
        << " kg - out " << out << " kg - change held " << held << " kg - removed by particles "
        << removed << " kg = " << in - out - held - removed << " kg, relative " << err
-       << " > checks.mass_balance_tolerance = " << sc_.mass_balance_tolerance;
+       << " > checks.mass_balance_tolerance = " << sc_.checks.mass_balance_tolerance;
     throw std::runtime_error(os.str());
   }
 }

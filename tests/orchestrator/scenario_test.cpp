@@ -64,8 +64,8 @@ void expectError(const std::string& text, const std::vector<std::string>& fragme
 TEST(Scenario, GoodScenarioParsesWithParametersAndExpressions) {
   Scenario sc = parse(kGood);
   EXPECT_EQ(sc.name, "good");
-  EXPECT_DOUBLE_EQ(sc.dt, 1e-4);
-  EXPECT_EQ(sc.dem_steps, 10u);
+  EXPECT_DOUBLE_EQ(sc.coupling.dt, 1e-4);
+  EXPECT_EQ(sc.coupling.dem_steps, 10u);
   EXPECT_NEAR(sc.parameters.at("u"), 50.0 / 60000.0 / 0.01, 1e-15);
   EXPECT_NEAR(sc.participants.at("fluid").options["velocity"][2].as<double>(),
               50.0 / 60000.0 / 0.01, 1e-12);
@@ -74,7 +74,7 @@ TEST(Scenario, GoodScenarioParsesWithParametersAndExpressions) {
 TEST(Scenario, SetOverridesParametersAndKeys) {
   Scenario sc = parse(kGood, {"flow_lpm=100", "coupling.end_time=0.02"});
   EXPECT_NEAR(sc.parameters.at("u"), 100.0 / 60000.0 / 0.01, 1e-15);
-  EXPECT_DOUBLE_EQ(sc.end_time, 0.02);
+  EXPECT_DOUBLE_EQ(sc.coupling.end_time, 0.02);
 }
 
 // kGood with coating: a box zone of two keys (min, max) that a cylinder does not take.
@@ -96,15 +96,15 @@ std::vector<std::string> zoneKeys(const Scenario& sc) {
 
 TEST(Scenario, SetWithAMapReplacesTheWholeNode) {
   Scenario sc = parse(kZoned, {kCylinder});
-  ASSERT_TRUE(sc.coating_zone);
-  EXPECT_EQ(sc.coating_zone->law, "cylinder");
+  ASSERT_TRUE(sc.models.coating_zone);
+  EXPECT_EQ(sc.models.coating_zone->law, "cylinder");
   EXPECT_EQ(zoneKeys(sc), (std::vector<std::string>{"axis", "base", "length", "radius", "shape"}));
   EXPECT_EQ(sc.resolved["models"]["coating_zone"]["radius"].as<double>(), 0.01);
   EXPECT_EQ(sc.resolved["models"]["coating_zone"]["base"][2].as<double>(), 0.004);
   // The zone is built: a point on the axis 1 cm above the base is inside, one beyond the radius
   // is not.
-  auto zone =
-      cosim::models::Registry::instance().makeZone(sc.coating_zone->law, sc.coating_zone->params);
+  auto zone = cosim::models::Registry::instance().makeZone(sc.models.coating_zone->law,
+                                                           sc.models.coating_zone->params);
   const double in[3] = {0, 0, 0.014}, out[3] = {0.011, 0, 0.014};
   EXPECT_TRUE(zone->contains(in));
   EXPECT_FALSE(zone->contains(out));
@@ -116,15 +116,15 @@ TEST(Scenario, SetWithAMapReplacesTheWholeNode) {
 
 TEST(Scenario, UnsetRemovesANodeBeforeTheSetsRebuildIt) {
   Scenario none = parse(kZoned, {}, {"models.coating_zone"});
-  EXPECT_FALSE(none.coating_zone);  // coat everywhere
+  EXPECT_FALSE(none.models.coating_zone);  // coat everywhere
   EXPECT_FALSE(none.resolved["models"]["coating_zone"]);
   Scenario sc =
       parse(kZoned,
             {"models.coating_zone.shape=sphere", "models.coating_zone.center=[0, 0, 0.01]",
              "models.coating_zone.radius=0.005"},
             {"models.coating_zone"});
-  ASSERT_TRUE(sc.coating_zone);
-  EXPECT_EQ(sc.coating_zone->law, "sphere");
+  ASSERT_TRUE(sc.models.coating_zone);
+  EXPECT_EQ(sc.models.coating_zone->law, "sphere");
   EXPECT_EQ(zoneKeys(sc), (std::vector<std::string>{"center", "radius", "shape"}));
   // A parameter by its bare name, as for --set.
   EXPECT_FALSE(parse(kGood, {}, {"d"}).parameters.count("d"));
@@ -333,4 +333,30 @@ TEST(Expression, DoubleDollarIsALiteral) {
   // LIGGGHTS and shell variables survive templating when written $${...}
   EXPECT_EQ(substitute("variable vz equal $${vel} + ${u}", v), "variable vz equal ${vel} + 0.1");
   EXPECT_EQ(substitute("$${a}$${b}", v), "${a}${b}");
+}
+
+// ---- the keys each section declares are the documented ones
+// ----------------------------------------------------------
+
+TEST(ScenarioDocs, EveryDeclaredKeyIsInScenarioMd) {
+  std::ifstream in(std::string(COSIM_SOURCE_DIR) + "/docs/scenario.md");
+  ASSERT_TRUE(in);
+  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<std::pair<std::string, const std::vector<KeySpec>*>> sections = {
+      {"coupling", &CouplingSection::keys()},    {"constants", &ConstantsSection::keys()},
+      {"participants", &ParticipantSpec::keys()}, {"models", &ModelsSection::keys()},
+      {"output", &OutputSection::keys()},        {"transport", &TransportSection::keys()},
+      {"checks", &ChecksSection::keys()},        {"observables", &observableKeys()},
+      {"checkpoint", &CheckpointSection::keys()}};
+  for (const auto& [section, keys] : sections) {
+    EXPECT_FALSE(keys->empty()) << section;
+    for (const auto& k : *keys) {
+      EXPECT_FALSE(k.doc.empty()) << section << "." << k.name;
+      // In the key table ("`coupling.dt`", "`youngs_modulus`") or in an example ("  mpi: 1").
+      const bool found = doc.find("`" + section + "." + k.name + "`") != std::string::npos ||
+                         doc.find("`" + k.name + "`") != std::string::npos ||
+                         doc.find(" " + k.name + ":") != std::string::npos;
+      EXPECT_TRUE(found) << section << "." << k.name << " is not in docs/scenario.md";
+    }
+  }
 }

@@ -1,4 +1,6 @@
 // Stability checks and monitors against hand-computed values.
+#include "stability.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -6,9 +8,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "coupler.h"
 #include "cosim/link/fields.h"
-#include "stability.h"
+#include "coupler.h"
 
 using namespace cosim;
 using namespace cosim::orchestrator;
@@ -33,7 +34,8 @@ participants:
   particles: { adapter: free-particles }
 coupling: { dt: 1.0e-4, dem_steps: 1, end_time: 0.01 }
 constants: { particle_density: 1750, youngs_modulus: 5.0e6, poisson_ratio: 0.3 }
-)", fs::temp_directory_path() / "s.yaml");
+)",
+                       fs::temp_directory_path() / "s.yaml");
 }
 link::ParticleData grains(double r) {
   link::ParticleData d;
@@ -49,7 +51,7 @@ TEST(Stability, StiffContactsAreRefusedWithTheStepThatWouldWork) {
   ASSERT_EQ(rep.refusals.size(), 1u);
   // dem_steps >= ceil(1e-4 / (0.2 * 7.681e-5)) = ceil(6.51) = 7
   EXPECT_NE(rep.refusals[0].find("dem_steps >= 7"), std::string::npos) << rep.refusals[0];
-  sc.dem_steps = 10;  // ratio 0.13: fine
+  sc.coupling.dem_steps = 10;  // ratio 0.13: fine
   EXPECT_TRUE(checkBeforeRun(sc, {}, {}, grains(0.75e-3)).refusals.empty());
 }
 
@@ -112,8 +114,9 @@ TEST(Monitor, CourantWarnsOnceThenStops) {
 TEST(Monitor, MassBalanceDriftStops) {
   Scenario sc = baseScenario();
   StepMonitor m(sc);
-  m.checkMassBalance(1.0, 0.2, 0.3, 0.5, 1, 0.0);           // baseline (initial content unknown)
-  EXPECT_NO_THROW(m.checkMassBalance(2.0, 0.6, 0.5, 0.9, 2, 0.0));  // +1 in = +0.4 out +0.2 held +0.4 removed
+  m.checkMassBalance(1.0, 0.2, 0.3, 0.5, 1, 0.0);  // baseline (initial content unknown)
+  EXPECT_NO_THROW(
+      m.checkMassBalance(2.0, 0.6, 0.5, 0.9, 2, 0.0));  // +1 in = +0.4 out +0.2 held +0.4 removed
   EXPECT_THROW(m.checkMassBalance(3.0, 1.0, 0.7, 1.0, 3, 0.0), std::runtime_error);  // 0.2 missing
 }
 
@@ -139,6 +142,7 @@ constants: { particle_density: 1750, youngs_modulus: 5.0e9, poisson_ratio: 0.3 }
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(steps, 0u);
   EXPECT_NE(r.message.find("refused"), std::string::npos) << r.message;
-  // t_R scales as E^-1/2: 7.681e-5 / sqrt(1000) = 2.429e-6 s; dem_steps >= ceil(1e-4/4.858e-7) = 206
+  // t_R scales as E^-1/2: 7.681e-5 / sqrt(1000) = 2.429e-6 s; dem_steps >= ceil(1e-4/4.858e-7) =
+  // 206
   EXPECT_NE(r.message.find("dem_steps >= 206"), std::string::npos) << r.message;
 }

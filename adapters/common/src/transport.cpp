@@ -1,6 +1,7 @@
 #include "cosim/link/transport.h"
 
 #include <cerrno>
+#include <filesystem>
 #include <zmq.hpp>
 
 #include "cosim/link/errors.h"
@@ -89,9 +90,23 @@ std::optional<wire::Envelope> Channel::receive(Millis timeout) {
 struct Hub::Impl {
   zmq::socket_t socket{context(), zmq::socket_type::router};
   std::string endpoint;
+  std::string ipc_file;  // the socket file this hub created, removed with it
 };
 
 Hub::Hub(const std::string& endpoint) : impl_(std::make_unique<Impl>()) {
+  // ZeroMQ unlinks whatever file an ipc:// endpoint names before it binds: never bind a path
+  // that exists, so that no address can make cosim delete a file it did not create.
+  if (endpoint.rfind("ipc://", 0) == 0) {
+    const std::string path = endpoint.substr(6);
+    std::error_code ec;
+    if (path.empty() ||
+        std::filesystem::symlink_status(path, ec).type() != std::filesystem::file_type::not_found) {
+      throw PeerError("refusing to bind '" + endpoint +
+                      "': the file exists (ZeroMQ would delete it); give an ipc path that does "
+                      "not exist");
+    }
+    impl_->ipc_file = path;
+  }
   configure(impl_->socket);
   // Fail loudly when sending to a peer that is not (or no longer) connected.
   impl_->socket.set(zmq::sockopt::router_mandatory, true);
@@ -99,7 +114,16 @@ Hub::Hub(const std::string& endpoint) : impl_(std::make_unique<Impl>()) {
   impl_->endpoint = impl_->socket.get(zmq::sockopt::last_endpoint);
 }
 
-Hub::~Hub() = default;
+Hub::~Hub() {
+  if (!impl_ || impl_->ipc_file.empty()) return;
+  impl_->socket.close();
+  // Only the socket this hub bound: a socket file, at the path nothing existed at before.
+  std::error_code ec;
+  if (std::filesystem::symlink_status(impl_->ipc_file, ec).type() ==
+      std::filesystem::file_type::socket) {
+    std::filesystem::remove(impl_->ipc_file, ec);
+  }
+}
 
 const std::string& Hub::endpoint() const { return impl_->endpoint; }
 

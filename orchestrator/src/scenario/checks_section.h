@@ -1,0 +1,23 @@
+// checks: whether unstable settings are refused or only reported, and the monitors' limits.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scenario/context.h"
+
+namespace cosim::orchestrator {
+
+struct ChecksSection {
+  // "refuse" (default) stops unstable settings; "warn" only reports.
+  std::string stability = "refuse";
+  double max_particle_speed = 50.0;      // m/s; a faster particle stops the run
+  double mass_balance_tolerance = 1e-4;  // relative drift that stops the run (coating scenes)
+  double max_courant = 5.0;              // fluid Courant number that stops the run
+
+  static const std::vector<KeySpec>& keys();
+};
+
+ChecksSection parseChecks(const YAML::Node& node, const Context& ctx);
+
+}  // namespace cosim::orchestrator

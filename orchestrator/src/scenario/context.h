@@ -1,0 +1,74 @@
+// What every section parser of a scenario shares: the error that names the file, the line, the
+// key, what was expected and what to do; the readers of numbers, texts and sections; the
+// declaration of a section's keys (name, default, what it means), checked against the file.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace cosim::orchestrator {
+
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One key of a section, declared next to the code that reads it: its name, its default
+// ("required" if it has none) and what it means, with its unit and the values it allows.
+struct KeySpec {
+  std::string name;
+  std::string default_value;
+  std::string doc;
+};
+
+// Error helper: "<file>:<line>: <key>: <what>", or "<file>: --set ...: <key>: <what>" for a value
+// that came from the command line.
+class Context {
+ public:
+  explicit Context(std::filesystem::path origin) : origin_(std::move(origin)) {}
+
+  [[noreturn]] void fail(const YAML::Node& node, const std::string& key,
+                         const std::string& what) const;
+  // Where `key` (at `node`) came from, as fail() names it: "FILE:LINE", or "FILE: --set ..." when
+  // a command-line override set it.
+  std::string where(const YAML::Node& node, const std::string& key) const;
+  [[noreturn]] void failTop(const std::string& key, const std::string& what) const;
+  // An override of the command line ("--set KEY=VALUE", "--unset KEY") that changed `path`.
+  void addOverride(const std::string& path, const std::string& shown) {
+    overrides_.emplace_back(path, shown);
+  }
+
+  // Refuses keys of `map` not declared in `keys` (a typo), naming the allowed ones.
+  void allowOnly(const YAML::Node& map, const std::string& where,
+                 const std::vector<std::string>& keys) const;
+  void allowOnly(const YAML::Node& map, const std::string& where,
+                 const std::vector<KeySpec>& keys) const;
+  // The name of a map key; a list or map used as a key is an error.
+  std::string keyName(const YAML::Node& key, const std::string& where) const;
+  // A section: false if absent or empty; an error if it is anything but a map.
+  bool section(const YAML::Node& n, const std::string& key, const std::string& expected) const;
+
+  double number(const YAML::Node& n, const std::string& key) const;
+  double positive(const YAML::Node& n, const std::string& key, const std::string& unit) const;
+  // A finite number in [lo, hi].
+  double inRange(const YAML::Node& n, const std::string& key, double lo, double hi,
+                 const std::string& unit) const;
+  std::string text(const YAML::Node& n, const std::string& key) const;
+
+  const std::filesystem::path& origin() const { return origin_; }
+
+ private:
+  static bool within(const std::string& key, const std::string& path);
+  std::filesystem::path origin_;
+  std::vector<std::pair<std::string, std::string>> overrides_;  // path, as given
+};
+
+// Names of the keys of a declaration, for allowOnly and messages.
+std::vector<std::string> keyNames(const std::vector<KeySpec>& keys);
+
+}  // namespace cosim::orchestrator

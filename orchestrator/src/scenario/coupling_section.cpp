@@ -1,0 +1,71 @@
+#include "scenario/coupling_section.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "scenario/limits.h"
+
+namespace cosim::orchestrator {
+
+const std::vector<KeySpec>& CouplingSection::keys() {
+  static const std::vector<KeySpec> k = {
+      {"dt", "required", "coupling interval = CFD time step [s]; > 0"},
+      {"dem_steps", "1", "DEM steps per coupling interval; a whole number in 1 .. 1e7"},
+      {"end_time", "required", "simulated time at the end [s]; later than start_time"},
+      {"start_time", "0", "simulated time at the start [s]"},
+  };
+  return k;
+}
+
+std::uint64_t CouplingSection::steps() const {
+  return static_cast<std::uint64_t>(std::llround((end_time - start_time) / dt));
+}
+
+CouplingSection parseCoupling(const YAML::Node& coupling, const Context& ctx) {
+  if (!coupling)
+    ctx.failTop("coupling",
+                "missing section; expected { dt: SECONDS, dem_steps: N, end_time: SECONDS }");
+  ctx.section(coupling, "coupling", "{ dt: SECONDS, dem_steps: N, end_time: SECONDS }");
+  ctx.allowOnly(coupling, "coupling", CouplingSection::keys());
+  CouplingSection c;
+  c.dt =
+      ctx.positive(coupling["dt"], "coupling.dt", "(coupling interval = CFD time step, seconds)");
+  c.end_time = ctx.positive(coupling["end_time"], "coupling.end_time", "(seconds)");
+  if (coupling["start_time"])
+    c.start_time = ctx.number(coupling["start_time"], "coupling.start_time");
+  if (coupling["dem_steps"]) {
+    double n = ctx.number(coupling["dem_steps"], "coupling.dem_steps");
+    if (n < 1 || n != std::floor(n) || n > 1e7) {
+      ctx.fail(coupling["dem_steps"], "coupling.dem_steps",
+               "expected a whole number of DEM steps per coupling interval (>= 1), got " +
+                   coupling["dem_steps"].Scalar());
+    }
+    c.dem_steps = static_cast<unsigned>(n);
+  }
+  if (c.end_time <= c.start_time) {
+    ctx.fail(coupling["end_time"], "coupling.end_time", "must be later than start_time");
+  }
+  const double span = c.end_time - c.start_time;
+  if (!std::isfinite(span)) {
+    ctx.fail(coupling["end_time"], "coupling.end_time",
+             "end_time - start_time is not a finite number of seconds; give a shorter run");
+  }
+  if (c.dt > span) {
+    ctx.fail(coupling["dt"], "coupling.dt", "is longer than the whole run (end_time - start_time)");
+  }
+  const double steps = span / c.dt;
+  if (!(steps <= limits::kMaxSteps)) {
+    std::ostringstream os;
+    if (std::isfinite(steps))
+      os << "gives " << steps;
+    else
+      os << "gives more than " << std::numeric_limits<double>::max();
+    os << " coupling steps ((end_time - start_time) / dt); a run may take at most "
+       << limits::kMaxSteps << ": use a larger dt or a shorter run";
+    ctx.fail(coupling["dt"], "coupling.dt", os.str());
+  }
+  return c;
+}
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,39 @@
+// models: the coupling laws of a scene (drag, other fluid forces, mass transfer, coating zone),
+// each a registered name with its parameters, and the plugins that register more.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cosim/models/parameters.h"
+#include "scenario/context.h"
+
+namespace cosim::orchestrator {
+
+struct ModelSpec {
+  std::string law;  // registered name
+  models::Parameters params;
+  int line = 0;
+};
+
+struct ModelsSection {
+  std::optional<ModelSpec> drag;
+  std::vector<ModelSpec> forces;
+  std::optional<ModelSpec> mass_transfer;
+  std::optional<ModelSpec> coating_zone;
+  std::vector<std::filesystem::path> plugins;
+
+  // The scene needs fluid fields (drag, forces or mass transfer).
+  bool needsFluid() const { return drag || !forces.empty() || mass_transfer; }
+
+  static const std::vector<KeySpec>& keys();
+};
+
+// Every law is built once here, so that unknown names and parameters are errors of the file.
+// `dir`: the scenario's folder (plugins: is relative to it).
+ModelsSection parseModels(const YAML::Node& node, const Context& ctx,
+                          const std::filesystem::path& dir);
+
+}  // namespace cosim::orchestrator

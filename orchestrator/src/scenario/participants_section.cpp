@@ -1,0 +1,130 @@
+#include "scenario/participants_section.h"
+
+#include <cmath>
+
+#include "scenario/limits.h"
+
+namespace cosim::orchestrator {
+
+namespace fs = std::filesystem;
+
+const std::map<std::string, AdapterInfo>& knownAdapters() {
+  static const std::map<std::string, AdapterInfo> m = {
+      {"analytic-fluid", {"cosim-analytic-fluid", wire::FLUID}},
+      {"openfoam", {"cosimFoam", wire::FLUID}},
+      {"free-particles", {"cosim-free-particles", wire::PARTICLES}},
+      {"liggghts", {"cosim-liggghts", wire::PARTICLES}},
+  };
+  return m;
+}
+
+const std::vector<KeySpec>& ParticipantSpec::keys() {
+  static const std::vector<KeySpec> k = {
+      {"adapter", "required",
+       "analytic-fluid | openfoam (fluid), free-particles | liggghts (particles), or any name "
+       "with command:"},
+      {"command", "the adapter's executable", "executable to run (found next to cosim or in PATH)"},
+      {"args", "[]", "extra command-line arguments, a list of texts"},
+      {"launch", "local", "local (cosim starts it) | external (started elsewhere, connects)"},
+      {"mpi", "1", "MPI ranks, a whole number in 1 .. 4096 (> 1: run under mpirun)"},
+      {"files", "none", "case folder, relative to the scenario file, copied and templated"},
+      {"timeout", "300", "seconds one step may take before it counts as hung; > 0, <= 1e6"},
+      {"options", "{}", "adapter settings, sent to the adapter as they are"},
+  };
+  return k;
+}
+
+namespace {
+
+ParticipantSpec parseParticipant(const std::string& pname, const YAML::Node& p, const Context& ctx,
+                                 const fs::path& dir) {
+  const std::string key = "participants." + pname;
+  if (!p.IsMap()) ctx.fail(p, key, "expected a map with at least 'adapter:'");
+  ctx.allowOnly(p, key, ParticipantSpec::keys());
+  ParticipantSpec ps;
+  ps.name = pname;
+  ps.adapter = ctx.text(p["adapter"], key + ".adapter");
+  ps.role = pname == "fluid" ? wire::FLUID : wire::PARTICLES;
+  auto known = knownAdapters().find(ps.adapter);
+  if (p["command"]) {
+    ps.command = ctx.text(p["command"], key + ".command");
+  } else if (known == knownAdapters().end()) {
+    std::string list;
+    for (const auto& [k, i] : knownAdapters()) list += (list.empty() ? "" : ", ") + k;
+    ctx.fail(p["adapter"], key + ".adapter",
+             "unknown adapter '" + ps.adapter + "' (known: " + list +
+                 "; a custom adapter also needs 'command: /path/to/executable')");
+  } else {
+    if (known->second.role != ps.role) {
+      ctx.fail(p["adapter"], key + ".adapter",
+               "adapter '" + ps.adapter + "' simulates " +
+                   (known->second.role == wire::FLUID ? "the fluid" : "particles") +
+                   " and cannot be the '" + pname + "' participant");
+    }
+    ps.command = known->second.executable;
+  }
+  if (p["args"]) {
+    if (!p["args"].IsSequence()) ctx.fail(p["args"], key + ".args", "expected a list of arguments");
+    for (std::size_t i = 0; i < p["args"].size(); ++i)
+      ps.args.push_back(ctx.text(p["args"][i], key + ".args[" + std::to_string(i) + "]"));
+  }
+  if (p["launch"]) {
+    ps.launch = ctx.text(p["launch"], key + ".launch");
+    if (ps.launch != "local" && ps.launch != "external") {
+      ctx.fail(p["launch"], key + ".launch",
+               "expected 'local' (cosim starts it) or 'external' (started elsewhere, connects to "
+               "the orchestrator)");
+    }
+  }
+  if (p["mpi"]) {
+    double n = ctx.number(p["mpi"], key + ".mpi");
+    if (n < 1 || n != std::floor(n) || n > 4096) {
+      ctx.fail(p["mpi"], key + ".mpi",
+               "expected a whole number of MPI ranks >= 1, got " + p["mpi"].Scalar());
+    }
+    ps.mpi = static_cast<int>(n);
+  }
+  if (p["timeout"]) {
+    ps.timeout = ctx.positive(p["timeout"], key + ".timeout", "(seconds one step may take)");
+    ps.timeout = ctx.inRange(p["timeout"], key + ".timeout", 0, limits::kMaxTimeout, "seconds");
+  }
+  if (p["files"]) {
+    ps.files = dir / ctx.text(p["files"], key + ".files");
+    if (!fs::is_directory(ps.files)) {
+      ctx.fail(p["files"], key + ".files",
+               "folder '" + ps.files.string() +
+                   "' does not exist (paths are relative to the scenario file)");
+    }
+  }
+  ps.options = p["options"] ? YAML::Clone(p["options"]) : YAML::Node(YAML::NodeType::Map);
+  if (!ps.options.IsMap())
+    ctx.fail(p["options"], key + ".options", "expected a map of adapter settings");
+  return ps;
+}
+
+}  // namespace
+
+ParticipantsSection parseParticipants(const YAML::Node& parts, const Context& ctx,
+                                      const fs::path& dir) {
+  if (!parts || !parts.IsMap() || parts.size() == 0) {
+    ctx.failTop("participants",
+                "missing; expected at least 'particles: { adapter: ... }' (and 'fluid:' for "
+                "coupled scenes)");
+  }
+  ParticipantsSection out;
+  for (const auto& kv : parts) {
+    const std::string pname = ctx.keyName(kv.first, "participants");
+    if (pname != "fluid" && pname != "particles") {
+      ctx.fail(kv.first, "participants." + pname,
+               "unknown participant; a scene has 'fluid' and/or 'particles'");
+    }
+    out[pname] = parseParticipant(pname, kv.second, ctx, dir);
+  }
+  if (!out.count("particles")) {
+    ctx.failTop("participants.particles",
+                "missing; every scene has particles (adapter: liggghts or free-particles)");
+  }
+  return out;
+}
+
+}  // namespace cosim::orchestrator

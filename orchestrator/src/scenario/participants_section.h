@@ -1,0 +1,44 @@
+// participants: the fluid and particle solvers of a scene, the adapter each runs behind and how
+// it is started.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cosim.pb.h"
+#include "scenario/context.h"
+
+namespace cosim::orchestrator {
+
+struct ParticipantSpec {
+  std::string name;  // key under participants: "fluid" or "particles"
+  wire::Role role = wire::ROLE_UNSPECIFIED;
+  std::string adapter;            // analytic-fluid | openfoam | free-particles | liggghts | custom
+  std::string command;            // executable (resolved from adapter unless given)
+  std::vector<std::string> args;  // extra arguments for the executable
+  std::string launch = "local";   // local: cosim starts it; external: it connects by itself
+  int mpi = 1;                    // ranks; > 1 runs it under mpirun -np
+  std::filesystem::path files;    // case folder to copy and template into the run folder
+  double timeout = 300.0;         // seconds one step may take before it counts as hung
+  YAML::Node options;             // adapter-specific, sent verbatim in Welcome.config_yaml
+
+  static const std::vector<KeySpec>& keys();
+};
+
+// As written, by name (may include one the plan does not start).
+using ParticipantsSection = std::map<std::string, ParticipantSpec>;
+
+// `dir`: the scenario's folder (files: is relative to it).
+ParticipantsSection parseParticipants(const YAML::Node& node, const Context& ctx,
+                                      const std::filesystem::path& dir);
+
+// Adapter name -> default executable name and role.
+struct AdapterInfo {
+  std::string executable;
+  wire::Role role;
+};
+const std::map<std::string, AdapterInfo>& knownAdapters();
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,28 @@
+// transport: the orchestrator's socket (the one address every participant needs) and how long
+// cosim waits for participants.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scenario/context.h"
+
+namespace cosim::orchestrator {
+
+struct TransportSection {
+  std::string bind;                 // empty: ipc in /tmp
+  std::string connect;              // what participants connect to (defaults to bind)
+  double heartbeat_timeout = 10.0;  // s without any sign of life from a participant
+  double handshake_timeout = 60.0;  // s for every participant to connect and say Hello
+
+  static const std::vector<KeySpec>& keys();
+};
+
+TransportSection parseTransport(const YAML::Node& node, const Context& ctx);
+
+// Empty if `endpoint` is an ipc:// or tcp:// address cosim can use (`binding`: the
+// orchestrator's own, where a tcp port may be '*' and an ipc file must not exist yet), else what
+// is wrong with it.
+std::string endpointProblem(const std::string& endpoint, bool binding);
+
+}  // namespace cosim::orchestrator
