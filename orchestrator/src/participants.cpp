@@ -313,6 +313,13 @@ void Participants::handshake() {
       }
       if (!in->envelope)
         throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
+      if (in->envelope->has_error()) {
+        // e.g. a participant already welcomed whose configuration failed
+        const auto& err = in->envelope->error();
+        throw RunFailure(who, "reported an error: " + err.message() +
+                                  (err.where().empty() ? "" : " (at " + err.where() + ")"));
+      }
+      if (in->envelope->has_heartbeat()) continue;
       welcome(who, *in->envelope);
       waiting.erase(who);
       continue;

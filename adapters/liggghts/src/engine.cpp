@@ -153,8 +153,9 @@ std::string forResume(const std::string& command, const std::filesystem::path& r
   if (verb == "create_box" || verb == "read_data" || verb == "read_restart")
     return "read_restart " + restart.string();
   if (verb == "create_atoms" || verb == "run" || verb == "write_restart") return "";
-  if (verb == "fix" && w.size() > 2 && w[2].rfind("insert/", 0) == 0) {
-    for (std::size_t i = 3; i + 1 < w.size(); ++i)
+  // fix ID group STYLE args
+  if (verb == "fix" && w.size() > 3 && w[3].rfind("insert/", 0) == 0) {
+    for (std::size_t i = 4; i + 1 < w.size(); ++i)
       if (w[i] == "insert_every" && w[i + 1] == "once") return "";
   }
   return command;

@@ -603,8 +603,12 @@ public:
     {
         return guarded("writing a checkpoint", [&]
         {
-            // The current time folder holds everything a restart needs; a copy goes to path
+            // The current time folder holds everything a restart needs, with the face
+            // resistances of the last pressure solve (the parcels' pressure gradient of the
+            // next Sample); a copy goes to path
             runTime_->writeNow();
+            resistance_->instance() = runTime_->timeName();
+            resistance_->write();
             const fileName from = runTime_->timePath();
             fileName to = fileName(path);
             if (Pstream::parRun())
