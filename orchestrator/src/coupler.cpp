@@ -184,11 +184,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   step_ = saved.step;
   time_ = saved.time;
   participants_.setClock(step_, time_);
-  wire::Envelope e;
-  e.mutable_advance()->set_dt(0.0);
-  const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
-  state_ = link::ParticleData::fromWire(r.advanced().state());
-  check(state_, "particles");
+  reportParticleState({});
   ledger_.restore(saved.balance, saved.pending);
   totals_ = saved.totals;
   monitor_.restore(saved.monitor);
@@ -237,11 +233,7 @@ void Coupler::writeCheckpoint() {
 void Coupler::reportInitialState() {
   step_ = 0;
   participants_.setClock(step_, time_);
-  wire::Envelope e;
-  e.mutable_advance()->set_dt(0.0);
-  const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
-  state_ = link::ParticleData::fromWire(r.advanced().state());
-  check(state_, "particles");
+  reportParticleState({});
   if (plan_.coating) ledger_.start(state_);
   initial_count_ = state_.size();
   record_.snapshot(time_, state_, true);
@@ -391,13 +383,17 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
 // The fluid reports removal after a step and the particles receive it with the next step's
 // terms, so the last step's removal needs an Advance of zero length of its own.
 void Coupler::flushCredit() {
-  wire::Envelope e;
-  auto* a = e.mutable_advance();
-  a->set_dt(0.0);
   link::ParticleData flush;
   flush.ids = state_.ids;
   ledger_.pay(flush);
-  flush.toWire(*a->mutable_terms());
+  reportParticleState(flush);
+}
+
+void Coupler::reportParticleState(const link::ParticleData& terms) {
+  wire::Envelope e;
+  auto* a = e.mutable_advance();
+  a->set_dt(0.0);
+  if (!terms.ids.empty()) terms.toWire(*a->mutable_terms());
   const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
   state_ = link::ParticleData::fromWire(r.advanced().state());
   check(state_, "particles");

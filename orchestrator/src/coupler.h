@@ -78,6 +78,9 @@ class Coupler {
   void creditAndRecord(const AdvanceReplies& replies, bool last);
   // The coating owed after the last interval, paid with an Advance of zero length.
   void flushCredit();
+  // An Advance of zero length: the particles take `terms` (none, or coating owed) and report
+  // their state into state_.
+  void reportParticleState(const link::ParticleData& terms);
   void finishRun();
 
   void check(const link::ParticleData& state, const std::string& where) const;
