@@ -1,6 +1,10 @@
 #include "participants.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <set>
 #include <thread>
@@ -74,6 +78,24 @@ std::vector<std::string> commandLine(const std::string& name, const ParticipantS
   return argv;
 }
 
+// The folder of this user's ipc:// sockets, /tmp/cosim-<uid>, that only the user can enter
+// (created with mode 0700; refused if another user owns it or others may enter it).
+fs::path privateSocketFolder() {
+  const fs::path dir = fs::temp_directory_path() / ("cosim-" + std::to_string(getuid()));
+  if (::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
+    throw RunFailure("", "cannot create " + dir.string() + " for the ipc:// socket: " +
+                             std::strerror(errno));
+  struct stat st {};
+  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != getuid() ||
+      (st.st_mode & 077) != 0) {
+    throw RunFailure("", dir.string() +
+                             " must be a folder of yours that only you can enter (mode 0700), "
+                             "since the run's ipc:// socket goes there; remove it or fix it "
+                             "(or set transport.bind)");
+  }
+  return dir;
+}
+
 }  // namespace
 
 Participants::Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log)
@@ -87,7 +109,7 @@ std::string Participants::connectEndpoint() const {
 
 void Participants::start(const fs::path& run_folder) {
   std::string endpoint = sc_.transport.bind;
-  if (endpoint.empty()) endpoint = "ipc:///tmp/cosim-" + run_id_ + ".ipc";
+  if (endpoint.empty()) endpoint = "ipc://" + (privateSocketFolder() / (run_id_ + ".ipc")).string();
   hub_ = std::make_unique<link::Hub>(endpoint);
   const std::string connect = connectEndpoint();
 

@@ -2,6 +2,7 @@
 // and the free-particle adapters run as child processes talking ZeroMQ.
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -152,8 +153,13 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
   const auto at = ss.str().find("\"run_id\": \"");
   ASSERT_NE(at, std::string::npos);
   const std::string id = ss.str().substr(at + 11, ss.str().find('"', at + 11) - at - 11);
-  EXPECT_FALSE(fs::exists("/tmp/cosim-" + id + ".ipc"))
-      << "/tmp/cosim-" << id << ".ipc left behind";
+  const fs::path socket = fs::temp_directory_path() / ("cosim-" + std::to_string(getuid())) /
+                         (id + ".ipc");
+  EXPECT_FALSE(fs::exists(socket)) << socket << " left behind";
+  // The socket's folder is the user's own and closed to others.
+  struct stat st {};
+  ASSERT_EQ(::stat(socket.parent_path().c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0700u);
 }
 
 // A client that is not part of the run floods the orchestrator's socket: the flood is dropped
