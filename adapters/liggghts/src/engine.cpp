@@ -11,6 +11,10 @@
 #include <unordered_map>
 
 #include "atom.h"
+#include "cosim/liggghts/drag_relaxation_fix.h"
+#include "cosim/liggghts/hertz_contact_time.h"
+#include "cosim/liggghts/liggghts_error.h"
+#include "cosim/liggghts/rayleigh_time.h"
 #include "fix.h"
 #include "fix_property_atom.h"
 #include "fix_property_global.h"
@@ -19,11 +23,6 @@
 #include "memory.h"
 #include "modify.h"
 #include "update.h"
-
-#include "cosim/liggghts/drag_relaxation_fix.h"
-#include "cosim/liggghts/hertz_contact_time.h"
-#include "cosim/liggghts/liggghts_error.h"
-#include "cosim/liggghts/rayleigh_time.h"
 
 namespace cosim::liggghts {
 
@@ -63,7 +62,8 @@ Fix* findProperty(LAMMPS_NS::Modify* modify, const char* name, const char* style
 
 }  // namespace
 
-Engine::Engine(MPI_Comm comm, const std::filesystem::path& workdir) : comm_(comm), workdir_(workdir) {
+Engine::Engine(MPI_Comm comm, const std::filesystem::path& workdir)
+    : comm_(comm), workdir_(workdir) {
   MPI_Comm_rank(comm_, &rank_);
   MPI_Comm_size(comm_, &size_);
   const std::string screen = (workdir_ / "liggghts.screen").string();
@@ -72,9 +72,8 @@ Engine::Engine(MPI_Comm comm, const std::filesystem::path& workdir) : comm_(comm
   std::vector<std::string> args = {"liggghts", "-screen", screen, "-log", log, "-echo", "both"};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
-  guarded("starting LIGGGHTS", [&] {
-    lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm_);
-  });
+  guarded("starting LIGGGHTS",
+          [&] { lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm_); });
 }
 
 Engine::~Engine() {
@@ -91,7 +90,8 @@ Engine::~Engine() {
 
 template <class F>
 void Engine::guarded(const std::string& what, F&& f) {
-  if (broken_) throw std::runtime_error("LIGGGHTS already stopped on an earlier error; cannot " + what);
+  if (broken_)
+    throw std::runtime_error("LIGGGHTS already stopped on an earlier error; cannot " + what);
   try {
     LiggghtsCall call;
     f();
@@ -171,9 +171,11 @@ void Engine::installCoupling() {
     if (modify->nfix == modify->maxfix) {
       modify->maxfix += 4;
       modify->fix = static_cast<Fix**>(lmp_->memory->srealloc(
-          modify->fix, static_cast<LAMMPS_NS::bigint>(modify->maxfix * sizeof(Fix*)), "modify:fix"));
+          modify->fix, static_cast<LAMMPS_NS::bigint>(modify->maxfix * sizeof(Fix*)),
+          "modify:fix"));
       modify->fmask = static_cast<int*>(lmp_->memory->srealloc(
-          modify->fmask, static_cast<LAMMPS_NS::bigint>(modify->maxfix * sizeof(int)), "modify:fmask"));
+          modify->fmask, static_cast<LAMMPS_NS::bigint>(modify->maxfix * sizeof(int)),
+          "modify:fmask"));
     }
     modify->fix[modify->nfix] = fix;
     modify->fmask[modify->nfix] = fix->setmask();
@@ -194,6 +196,20 @@ std::int64_t Engine::particleCount() const {
   long long local = lmp_->atom->nlocal, total = 0;
   MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, comm_);
   return total;
+}
+
+double Engine::minRadius() const {
+  const int ntypes = lmp_->atom->ntypes;
+  const LAMMPS_NS::Atom* atom = lmp_->atom;
+  double local = std::numeric_limits<double>::max();
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const int t = atom->type[i];
+    if (t < 1 || t > ntypes) continue;
+    local = std::min(local, atom->radius[i]);
+  }
+  double global = local;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  return global;
 }
 
 TimestepReport Engine::timestepReport(double impact_speed) const {
@@ -270,10 +286,13 @@ void Engine::applyTerms(const Terms& terms) {
   }
 
   LAMMPS_NS::Modify* modify = lmp_->modify;
-  double* K = findProperty(modify, kDragCoefficientProperty, "property/atom", "scalar")->vector_atom;
+  double* K =
+      findProperty(modify, kDragCoefficientProperty, "property/atom", "scalar")->vector_atom;
   double** uf = findProperty(modify, kFluidVelocityProperty, "property/atom", "vector")->array_atom;
-  double** fex = findProperty(modify, kExplicitForceProperty, "property/atom", "vector")->array_atom;
-  double* coating = findProperty(modify, kCoatingMassProperty, "property/atom", "scalar")->vector_atom;
+  double** fex =
+      findProperty(modify, kExplicitForceProperty, "property/atom", "vector")->array_atom;
+  double* coating =
+      findProperty(modify, kCoatingMassProperty, "property/atom", "scalar")->vector_atom;
 
   std::vector<int> found(n, 0);
   const LAMMPS_NS::Atom* atom = lmp_->atom;
@@ -297,7 +316,8 @@ void Engine::applyTerms(const Terms& terms) {
   std::string missing;
   int count = 0;
   for (std::size_t k = 0; k < n; ++k)
-    if (!found_anywhere[k] && count++ < 10) missing.append(" ").append(std::to_string(terms.ids[k]));
+    if (!found_anywhere[k] && count++ < 10)
+      missing.append(" ").append(std::to_string(terms.ids[k]));
   if (count > 0)
     throw std::runtime_error("forcing names " + std::to_string(count) +
                              " particle id(s) that LIGGGHTS does not have:" + missing +
@@ -308,7 +328,8 @@ void Engine::advance(int steps) {
   if (steps <= 0) return;
   const std::string cmd =
       "run " + std::to_string(steps) + (need_setup_ ? " pre yes post no" : " pre no post no");
-  guarded("running " + std::to_string(steps) + " DEM steps", [&] { lmp_->input->one(cmd.c_str()); });
+  guarded("running " + std::to_string(steps) + " DEM steps",
+          [&] { lmp_->input->one(cmd.c_str()); });
   need_setup_ = false;
 }
 
@@ -316,9 +337,10 @@ State Engine::state() const {
   constexpr int kPer = 11;  // id, x[3], v[3], radius, mass, coating, type
   const LAMMPS_NS::Atom* atom = lmp_->atom;
   const int nlocal = atom->nlocal;
-  const double* coating = coupled_ ? findProperty(lmp_->modify, kCoatingMassProperty,
-                                                  "property/atom", "scalar")->vector_atom
-                                   : nullptr;
+  const double* coating =
+      coupled_
+          ? findProperty(lmp_->modify, kCoatingMassProperty, "property/atom", "scalar")->vector_atom
+          : nullptr;
   std::vector<double> local(static_cast<std::size_t>(nlocal) * kPer);
   for (int i = 0; i < nlocal; ++i) {
     double* p = &local[static_cast<std::size_t>(i) * kPer];
