@@ -9,6 +9,10 @@ Foam::cosim::ParticleLocator::ParticleLocator(const polyMesh& mesh)
     // Small tolerance so points on the outer faces are not dropped by the box test
     bounds_.inflate(1e-9);
 
+    // Build the demand-driven search structures now: search() runs on several threads
+    (void)mesh.cellTree();
+    (void)mesh.tetBasePtIs();
+
     const cellList& cells = mesh.cells();
     const vectorField& Cf = mesh.faceCentres();
     const vectorField& Sf = mesh.faceAreas();
