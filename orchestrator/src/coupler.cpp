@@ -165,6 +165,7 @@ link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
   state_.select(plan_.sample_state).toWire(*e.mutable_sample()->mutable_particles());
   const auto r = participants_.request("fluid", std::move(e), wire::Envelope::kSamples);
   const auto& sm = r.samples();
+  participants_.addComputeSeconds("fluid_sample", sm.wall_seconds());
   link::ParticleData samples = link::ParticleData::fromWire(sm.at_particles());
   if (samples.ids != state_.ids) {
     throw RunFailure("fluid", "returned samples for other particles than it was sent (ids differ)");
