@@ -52,7 +52,7 @@ Coupler::Coupler(Scenario scenario, RunOptions options)
       run_id_(newRunId()),
       record_(sc_, plan_, log_),
       participants_(sc_, plan_, run_id_, log_),
-      scheme_(makeCouplingScheme(sc_, plan_)),
+      scheme_(makeCouplingScheme(sc_, plan_, opt_.scheme)),
       monitor_(sc_) {}
 
 Coupler::~Coupler() { participants_.shutdown(false); }
@@ -82,14 +82,13 @@ RunResult Coupler::run() {
     result.steps = done;
     bool interrupted = false;
     for (std::uint64_t k = done; k < nsteps_ && !interrupted; ++k) {
+      if (k == opt_.untimed_steps) resetTimings();
       beginStep(k);
-      std::vector<char> lost;
-      const link::ParticleData samples = sampleFluid(lost);       // the gas at the parcels
-      const CouplingTerms terms = evaluateModels(samples, lost);  // forcing, exchange terms
-      const AdvanceReplies replies = advanceBoth(terms);          // both solvers over dt
-      takeParticleState(replies.particles);                       // the particles' new state
-      if (replies.fluid) takeFluidResults(*replies.fluid);        // what the gas did
-      creditAndRecord(replies, k + 1 == nsteps_);                 // coating, rows, snapshots
+      const CouplingTerms terms = termsOfStep();                     // gas at parcels, models
+      const AdvanceReplies replies = advanceBoth(terms);             // both solvers over dt
+      if (replies.particles) takeParticleState(*replies.particles);  // the particles' new state
+      if (replies.fluid) takeFluidResults(*replies.fluid);           // what the gas did
+      creditAndRecord(replies, k + 1 == nsteps_);                    // coating, rows, snapshots
       progress->update(time_, k + 1, state_.size());
       result.steps = k + 1;
       interrupted = g_stop_signal != 0 && k + 1 < nsteps_;
@@ -125,6 +124,9 @@ RunResult Coupler::run() {
   result.wall_seconds = wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count();
   result.final_state = state_;
   result.totals = totals_;
+  result.phase_seconds = phases_.seconds;
+  result.compute_seconds = participants_.computeSeconds();
+  result.timed_steps = result.steps > opt_.untimed_steps ? result.steps - opt_.untimed_steps : 0;
   if (status == "completed") {
     try {
       result.observables = record_.observables(state_, totals_);
@@ -247,6 +249,22 @@ void Coupler::beginStep(std::uint64_t k) {
   phases_.start();
 }
 
+void Coupler::resetTimings() {
+  phases_.seconds.clear();
+  participants_.resetComputeSeconds();
+}
+
+// Steps 2 and 3, unless the scheme replays earlier terms (cosim bench's solver-alone runs).
+CouplingTerms Coupler::termsOfStep() {
+  if (auto replayed = scheme_->replay(state_)) {
+    phases_.lap("models");
+    return std::move(*replayed);
+  }
+  std::vector<char> lost;
+  const link::ParticleData samples = sampleFluid(lost);  // the gas at the parcels
+  return evaluateModels(samples, lost);                  // forcing, exchange terms
+}
+
 // Step 2: the gas velocity, voidage, ... at every parcel; parcels outside the mesh are `lost`.
 link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
   lost.assign(state_.size(), 0);
@@ -255,6 +273,7 @@ link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
   state_.select(plan_.sample_state).toWire(*e.mutable_sample()->mutable_particles());
   const auto r = participants_.request("fluid", std::move(e), wire::Envelope::kSamples);
   const auto& sm = r.samples();
+  participants_.addComputeSeconds("fluid_sample", sm.wall_seconds());
   link::ParticleData samples = link::ParticleData::fromWire(sm.at_particles());
   if (samples.ids != state_.ids) {
     throw RunFailure("fluid", "returned samples for other particles than it was sent (ids differ)");
@@ -344,12 +363,15 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
 // time_ hold what the parcels have at time_ (coating still owed included, as the ledger will pay
 // it with the next Advance or the final flush).
 void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
-  const auto& pa = replies.particles;
-  ledger_.leave({pa.deleted_ids().begin(), pa.deleted_ids().end()},
-                pa.particles().deleted_coating_mass());
-  if (plan_.coating && last) flushCredit();
-  if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
-  if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
+  if (replies.particles) {
+    const auto& pa = *replies.particles;
+    ledger_.leave({pa.deleted_ids().begin(), pa.deleted_ids().end()},
+                  pa.particles().deleted_coating_mass());
+    if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
+    if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
+  }
+  // (Only particles that advance are paid: not so when the fluid runs alone in cosim bench.)
+  if (plan_.coating && last && replies.particles) flushCredit();
 
   namespace col = analysis::column;
   const auto& b = ledger_.balance();

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -33,10 +34,12 @@
 namespace cosim::orchestrator {
 
 struct RunOptions {
-  bool quiet = false;            // no progress line
-  std::filesystem::path output;  // overrides scenario output.folder
-  bool overwrite = false;        // reuse an existing run folder
-  std::filesystem::path resume;  // continue the run in this folder from its newest checkpoint
+  bool quiet = false;               // no progress line
+  std::filesystem::path output;     // overrides scenario output.folder
+  bool overwrite = false;           // reuse an existing run folder
+  std::string scheme = "parallel";  // makeCouplingScheme; cosim bench runs the frozen ones too
+  std::uint64_t untimed_steps = 0;  // phase and compute timings start after this many steps
+  std::filesystem::path resume;     // continue the run in this folder from its newest checkpoint
 };
 
 struct RunResult {
@@ -48,6 +51,9 @@ struct RunResult {
   link::ParticleData final_state;
   std::map<std::string, double> totals;  // mass balance and other accumulated scalars
   std::vector<ObservableValue> observables;
+  std::map<std::string, double> phase_seconds;    // per phase of the step, after untimed_steps
+  std::map<std::string, double> compute_seconds;  // per participant, after untimed_steps
+  std::uint64_t timed_steps = 0;
 };
 
 class Coupler {
@@ -70,6 +76,7 @@ class Coupler {
   bool checkpointDue(bool last) const;
   // The five steps of one coupling interval (docs/design.md section 2).
   void beginStep(std::uint64_t k);
+  CouplingTerms termsOfStep();  // steps 2 and 3, or what the scheme replays
   link::ParticleData sampleFluid(std::vector<char>& lost);
   CouplingTerms evaluateModels(const link::ParticleData& samples, const std::vector<char>& lost);
   AdvanceReplies advanceBoth(const CouplingTerms& terms);
@@ -82,6 +89,7 @@ class Coupler {
   // their state into state_.
   void reportParticleState(const link::ParticleData& terms);
   void finishRun();
+  void resetTimings();
 
   void check(const link::ParticleData& state, const std::string& where) const;
   void refuseOrWarn(const StabilityReport& report);

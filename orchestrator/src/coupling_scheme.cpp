@@ -1,21 +1,57 @@
 #include "coupling_scheme.h"
 
+#include <stdexcept>
+
+#include "cosim/link/fields.h"
+
 namespace cosim::orchestrator {
+
+namespace {
+
+wire::Envelope particleAdvance(const Scenario& sc, const Plan& plan, const CouplingTerms& terms) {
+  wire::Envelope e;
+  auto* a = e.mutable_advance();
+  a->set_dt(sc.coupling.dt);
+  a->set_substeps(sc.coupling.dem_steps);
+  terms.forcing.select(plan.particles_receive).toWire(*a->mutable_terms());
+  return e;
+}
+
+wire::Envelope fluidAdvance(const Scenario& sc, const Plan& plan, const CouplingTerms& terms) {
+  wire::Envelope e;
+  auto* a = e.mutable_advance();
+  a->set_dt(sc.coupling.dt);
+  a->set_substeps(1);
+  terms.exchange.select(plan.fluid_advance_terms).toWire(*a->mutable_terms());
+  return e;
+}
+
+// `from` restricted to (and ordered as) `ids`; particles it does not hold get zero terms.
+link::ParticleData onIds(const link::ParticleData& from, const std::vector<std::int64_t>& ids) {
+  if (from.ids == ids) return from;
+  const auto where = from.index();
+  link::ParticleData out;
+  out.ids = ids;
+  for (const auto& name : from.names()) {
+    const unsigned c = field::components(name);
+    const auto& src = from.get(name);
+    auto& dst = out.field(name);
+    dst.assign(ids.size() * c, 0.0);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const auto it = where.find(ids[i]);
+      if (it == where.end()) continue;
+      for (unsigned d = 0; d < c; ++d) dst[i * c + d] = src[it->second * c + d];
+    }
+  }
+  return out;
+}
+
+}  // namespace
 
 AdvanceReplies ParallelScheme::advance(Participants& participants, const CouplingTerms& terms) {
   std::map<std::string, wire::Envelope> messages;
-  {
-    auto* a = messages["particles"].mutable_advance();
-    a->set_dt(sc_.coupling.dt);
-    a->set_substeps(sc_.coupling.dem_steps);
-    terms.forcing.select(plan_.particles_receive).toWire(*a->mutable_terms());
-  }
-  if (plan_.fluid) {
-    auto* a = messages["fluid"].mutable_advance();
-    a->set_dt(sc_.coupling.dt);
-    a->set_substeps(1);
-    terms.exchange.select(plan_.fluid_advance_terms).toWire(*a->mutable_terms());
-  }
+  messages["particles"] = particleAdvance(sc_, plan_, terms);
+  if (plan_.fluid) messages["fluid"] = fluidAdvance(sc_, plan_, terms);
   auto replies = participants.exchange(std::move(messages), wire::Envelope::kAdvanced);
   AdvanceReplies r;
   r.particles = replies.at("particles").advanced();
@@ -23,8 +59,44 @@ AdvanceReplies ParallelScheme::advance(Participants& participants, const Couplin
   return r;
 }
 
-std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan) {
-  return std::make_unique<ParallelScheme>(sc, plan);
+std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& state) {
+  if (!frozen_) return std::nullopt;
+  CouplingTerms t;
+  t.forcing = onIds(frozen_->forcing, state.ids);
+  t.exchange = frozen_->exchange;
+  return t;
+}
+
+AdvanceReplies FrozenScheme::advance(Participants& participants, const CouplingTerms& terms) {
+  if (!frozen_) {
+    frozen_ = terms;
+    // The coating owed is paid once, with the first interval.
+    if (frozen_->forcing.has(field::coating_increment))
+      frozen_->forcing.field(field::coating_increment).assign(frozen_->forcing.size(), 0.0);
+  }
+  AdvanceReplies r;
+  if (alone_ == Alone::particles) {
+    r.particles =
+        participants
+            .request("particles", particleAdvance(sc_, plan_, terms), wire::Envelope::kAdvanced)
+            .advanced();
+  } else if (plan_.fluid) {
+    r.fluid =
+        participants.request("fluid", fluidAdvance(sc_, plan_, terms), wire::Envelope::kAdvanced)
+            .advanced();
+  }
+  return r;
+}
+
+std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan,
+                                                   const std::string& name) {
+  if (name == "parallel") return std::make_unique<ParallelScheme>(sc, plan);
+  if (name == "frozen-fluid")
+    return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::particles);
+  if (name == "frozen-particles")
+    return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::fluid);
+  throw std::invalid_argument("unknown coupling scheme '" + name +
+                              "' (parallel, frozen-fluid, frozen-particles)");
 }
 
 }  // namespace cosim::orchestrator

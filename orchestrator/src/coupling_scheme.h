@@ -16,14 +16,19 @@
 namespace cosim::orchestrator {
 
 struct AdvanceReplies {
-  wire::Advanced particles;
-  std::optional<wire::Advanced> fluid;  // scenes with a fluid participant
+  std::optional<wire::Advanced> particles;  // absent when only the fluid advances (cosim bench)
+  std::optional<wire::Advanced> fluid;      // scenes with a fluid participant
 };
 
 class CouplingScheme {
  public:
   virtual ~CouplingScheme() = default;
   virtual std::string name() const = 0;
+  // Terms this scheme replays for the interval starting from `state`, instead of sampling the
+  // fluid and evaluating the models; nullopt (the default): sample and evaluate as usual.
+  virtual std::optional<CouplingTerms> replay(const link::ParticleData& /*state*/) {
+    return std::nullopt;
+  }
   virtual AdvanceReplies advance(Participants& participants, const CouplingTerms& terms) = 0;
 };
 
@@ -41,6 +46,32 @@ class ParallelScheme final : public CouplingScheme {
   const Plan& plan_;
 };
 
-std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan);
+// One solver alone, for `cosim bench`: the first interval samples the fluid and evaluates the
+// models as usual; every later interval replays those terms (coating increment paid once) without
+// sampling, and only the named solver advances. The other one idles and costs no CPU.
+//   particles alone: DEM steps under a frozen gas (K and u_f of the first interval, by id)
+//   fluid alone:     CFD steps with frozen particle terms (K, k of the first interval)
+class FrozenScheme final : public CouplingScheme {
+ public:
+  enum class Alone { particles, fluid };
+  FrozenScheme(const Scenario& sc, const Plan& plan, Alone alone)
+      : sc_(sc), plan_(plan), alone_(alone) {}
+  std::string name() const override {
+    return alone_ == Alone::particles ? "frozen-fluid" : "frozen-particles";
+  }
+  std::optional<CouplingTerms> replay(const link::ParticleData& state) override;
+  AdvanceReplies advance(Participants& participants, const CouplingTerms& terms) override;
+
+ private:
+  const Scenario& sc_;
+  const Plan& plan_;
+  Alone alone_;
+  std::optional<CouplingTerms> frozen_;
+};
+
+// `name`: "parallel" (every run), "frozen-fluid" (particles alone) or "frozen-particles" (fluid
+// alone); the last two are what `cosim bench` measures.
+std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan,
+                                                   const std::string& name = "parallel");
 
 }  // namespace cosim::orchestrator

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <map>
 
+#include "bench.h"
 #include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 #include "coupler.h"
@@ -166,6 +167,20 @@ int main(int argc, char** argv) {
       "resolved scene is read back, so an interrupted study resumes and --finest can be changed "
       "for free)");
 
+  auto* bench = app.add_subcommand(
+      "bench",
+      "Cost of a coupled step against its solvers alone, on the same scene: the particles alone "
+      "(gas frozen), the fluid alone (particle terms frozen) and coupled, per step with phases; "
+      "the last line reads 'coupled/max(dem,cfd) = R; serial share = S %'");
+  BenchOptions bopt;
+  bench->add_option("scenario", bopt.scenario, "scenario file or folder")->required();
+  bench->add_option("--steps", bopt.steps, "timed coupling steps per stage (default 50)");
+  bench->add_option("--warmup", bopt.warmup, "untimed steps before them (default 5)");
+  bench->add_option("--set", bopt.sets, "override a value (as for run)")->take_all();
+  bench->add_option("--unset", bopt.unsets, "remove a node (as for run)")->take_all();
+  bench->add_option("-o,--output", bopt.output,
+                    "folder of the stages' run folders (default runs/<scene>-bench)");
+
   auto* models = app.add_subcommand("models", "List the coupling models this build knows");
 
 #ifdef COSIM_HAVE_REPORT
@@ -259,6 +274,16 @@ int main(int argc, char** argv) {
       RunResult r = c.run();
       if (r.exit_code != 0) std::cerr << "\ncosim: run stopped\n" << r.message << "\n";
       return r.exit_code;
+    }
+    if (*bench) {
+      std::signal(SIGINT, onSignal);
+      std::signal(SIGTERM, onSignal);
+      std::signal(SIGPIPE, SIG_IGN);
+      if (bopt.steps == 0) {
+        std::cerr << "cosim bench: --steps must be >= 1\n";
+        return 2;
+      }
+      return runBench(bopt, std::cout);
     }
     if (*run) {
       Scenario sc = loadScenario(scenario, sets, unsets);

@@ -29,6 +29,10 @@ struct Participants::Peer {
   Clock::time_point last_seen = Clock::now();
   bool connected = false;
   std::vector<std::string> send, receive;
+  // Step and time of the last message sent to it; its replies must be for that step. A peer
+  // that idled (cosim bench runs one solver alone) gets its Shutdown at its own step.
+  std::uint64_t step = 0;
+  double time = 0.0;
 };
 
 namespace {
@@ -156,13 +160,22 @@ void Participants::setClock(std::uint64_t step, double time) {
   time_ = time;
 }
 
-void Participants::send(const std::string& name, wire::Envelope& env) {
+void Participants::send(const std::string& name, wire::Envelope& env, bool own_clock) {
   auto* h = env.mutable_header();
   h->set_protocol_version(wire::PROTOCOL_VERSION);
   h->set_run_id(run_id_);
   h->set_participant(name);
-  h->set_step(step_);
-  h->set_time(time_);
+  if (auto it = peers_.find(name); it != peers_.end()) {
+    if (!own_clock) {
+      it->second->step = step_;
+      it->second->time = time_;
+    }
+    h->set_step(it->second->step);
+    h->set_time(it->second->time);
+  } else {
+    h->set_step(step_);
+    h->set_time(time_);
+  }
   try {
     hub_->send(name, env);
   } catch (const std::exception& e) {
@@ -279,9 +292,10 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
         throw RunFailure(
             who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'");
       }
-      if (env.header().step() != step_) {
+      const std::uint64_t at = peers_.count(who) ? peers_.at(who)->step : step_;
+      if (env.header().step() != at) {
         throw RunFailure(who, "answered for step " + std::to_string(env.header().step()) +
-                                  " while the run is at step " + std::to_string(step_) +
+                                  " while the run is at step " + std::to_string(at) +
                                   " (out-of-order step)");
       }
       got[who] = env;
@@ -435,7 +449,7 @@ void Participants::shutdown(bool clean) {
       if (!p->connected || (p->process && !p->process->running())) continue;
       wire::Envelope e;
       e.mutable_shutdown()->set_reason("end of run");
-      send(n, e);
+      send(n, e, true);
       bye[n] = wire::Envelope::kGoodbye;
     }
     try {

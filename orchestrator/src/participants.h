@@ -73,6 +73,7 @@ class Participants {
   // Compute time a participant reported for an interval (kept for the summary).
   void addComputeSeconds(const std::string& name, double seconds);
   const std::map<std::string, double>& computeSeconds() const { return compute_; }
+  void resetComputeSeconds() { compute_.clear(); }
 
   // Its log file, for the tail shown with a failure (empty if it is not a participant).
   std::filesystem::path logOf(const std::string& name) const;
@@ -83,7 +84,8 @@ class Participants {
 
  private:
   struct Peer;
-  void send(const std::string& name, wire::Envelope& env);
+  // own_clock: the header carries the step of the peer's last message, not the run's.
+  void send(const std::string& name, wire::Envelope& env, bool own_clock = false);
   Replies await(const std::map<std::string, wire::Envelope::BodyCase>& expected,
                 double timeout_seconds);
   void welcome(const std::string& name, const wire::Envelope& hello);

@@ -204,6 +204,8 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
           auto* s = out.mutable_samples();
           samples.toWire(*s->mutable_at_particles());
           s->mutable_lost_ids()->Assign(lost.begin(), lost.end());
+          s->set_wall_seconds(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
           break;
         }
         case wire::Envelope::kAdvance: {

@@ -1,11 +1,10 @@
 #include "cosim/liggghts/drag_relaxation_fix.h"
 
 #include "atom.h"
+#include "cosim/liggghts/exponential_drag.h"
 #include "error.h"
 #include "modify.h"
 #include "update.h"
-
-#include "cosim/liggghts/exponential_drag.h"
 
 namespace cosim::liggghts {
 
@@ -30,7 +29,8 @@ void DragRelaxationFix::lookup() {
 void DragRelaxationFix::init() {
   lookup();
   if (!atom->rmass_flag || !atom->radius_flag)
-    error->all(FLERR, "cosim/drag needs spheres with per-atom mass (atom_style sphere or granular)");
+    error->all(FLERR,
+               "cosim/drag needs spheres with per-atom mass (atom_style sphere or granular)");
 }
 
 void DragRelaxationFix::setup(int) { apply(true); }
@@ -62,8 +62,10 @@ void DragRelaxationFix::apply(bool store_other_force) {
       for (int d = 0; d < 3; ++d) f[i][d] = other[i][d] + fex[i][d];
       continue;
     }
+    // phi(K dt / m) is the same for the three components: one expm1 per particle, not three
+    const double phi = exponentialDragFactor(K[i] * dt / mass[i]);
     for (int d = 0; d < 3; ++d)
-      f[i][d] = exponentialDragForce(K[i], mass[i], dt, uf[i][d], v[i][d], other[i][d] + fex[i][d]);
+      f[i][d] = phi * (K[i] * (uf[i][d] - v[i][d]) + (other[i][d] + fex[i][d]));
   }
 }
 

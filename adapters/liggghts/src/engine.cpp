@@ -255,6 +255,20 @@ std::int64_t Engine::particleCount() const {
   return total;
 }
 
+double Engine::minRadius() const {
+  const int ntypes = lmp_->atom->ntypes;
+  const LAMMPS_NS::Atom* atom = lmp_->atom;
+  double local = std::numeric_limits<double>::max();
+  for (int i = 0; i < atom->nlocal; ++i) {
+    const int t = atom->type[i];
+    if (t < 1 || t > ntypes) continue;
+    local = std::min(local, atom->radius[i]);
+  }
+  double global = local;
+  MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MIN, comm_);
+  return global;
+}
+
 TimestepReport Engine::timestepReport(double impact_speed) const {
   TimestepReport report;
   report.dt = timestep();

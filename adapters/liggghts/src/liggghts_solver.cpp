@@ -1,18 +1,18 @@
 #include "cosim/liggghts/liggghts_solver.h"
 
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <thread>
 
-#include <fmt/format.h>
-#include <spdlog/spdlog.h>
-
-#include "cosim/link/fields.h"
 #include "cosim/liggghts/liggghts_error.h"
+#include "cosim/link/fields.h"
 
 namespace cosim::liggghts {
 
@@ -29,7 +29,8 @@ cosim::link::Capabilities LiggghtsSolver::capabilities() const {
   cosim::link::Capabilities caps;
   caps.role = cosim::wire::PARTICLES;
   caps.adapter = "liggghts";
-  caps.provides = {field::position, field::velocity, field::radius, field::coating_mass, field::type};
+  caps.provides = {field::position, field::velocity, field::radius, field::coating_mass,
+                   field::type};
   caps.accepts = {field::drag_coefficient, field::fluid_velocity, field::explicit_force,
                   field::coating_increment};
   return caps;
@@ -44,8 +45,7 @@ void LiggghtsSolver::broadcast(Op op, const std::string& payload) {
   MPI_Request request;
   MPI_Ibcast(header, 2, MPI_INT, 0, comm_, &request);
   MPI_Wait(&request, MPI_STATUS_IGNORE);
-  if (header[1] > 0)
-    MPI_Bcast(const_cast<char*>(payload.data()), header[1], MPI_CHAR, 0, comm_);
+  if (header[1] > 0) MPI_Bcast(const_cast<char*>(payload.data()), header[1], MPI_CHAR, 0, comm_);
   if (op == kFinish || op == kQuit) ranks_released_ = true;
 }
 
@@ -78,8 +78,9 @@ void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData
   if (terms.has(field::coating_increment)) {
     const auto& inc = terms.get(field::coating_increment);
     for (std::size_t k = 0; k < terms.size(); ++k) {
-      auto it = last_coating_.find(terms.ids[k]);
-      if (it != last_coating_.end()) it->second += inc[k];
+      const auto it = std::lower_bound(last_ids_.begin(), last_ids_.end(), terms.ids[k]);
+      if (it != last_ids_.end() && *it == terms.ids[k])
+        last_coating_[it - last_ids_.begin()] += inc[k];
     }
   }
 
@@ -88,25 +89,37 @@ void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData
   state.ids = s.ids;
   for (const auto& name : send_) {
     auto& v = state.field(name);
-    if (name == field::position) v = s.position;
-    else if (name == field::velocity) v = s.velocity;
-    else if (name == field::radius) v = s.radius;
-    else if (name == field::coating_mass) v = s.coating_mass;
-    else if (name == field::type) v = s.type;
+    if (name == field::position)
+      v = s.position;
+    else if (name == field::velocity)
+      v = s.velocity;
+    else if (name == field::radius)
+      v = s.radius;
+    else if (name == field::coating_mass)
+      v = s.coating_mass;
+    else if (name == field::type)
+      v = s.type;
   }
-  std::map<std::int64_t, double> now;
-  for (std::size_t k = 0; k < s.ids.size(); ++k) now.emplace(s.ids[k], s.coating_mass[k]);
+  // Inserted and deleted ids, ascending: one merge of the last and the new id lists (both sorted)
   double deleted_coating = 0;
   if (reported_once_) {
-    for (const auto& [id, c] : now)
-      if (!last_coating_.count(id)) out.add_inserted_ids(id);
-    for (const auto& [id, c] : last_coating_)
-      if (!now.count(id)) {
-        out.add_deleted_ids(id);
-        deleted_coating += c;
+    std::vector<std::int64_t> deleted;
+    std::size_t a = 0, b = 0;
+    while (a < last_ids_.size() || b < s.ids.size()) {
+      if (b == s.ids.size() || (a < last_ids_.size() && last_ids_[a] < s.ids[b])) {
+        deleted.push_back(last_ids_[a]);
+        deleted_coating += last_coating_[a++];
+      } else if (a == last_ids_.size() || s.ids[b] < last_ids_[a]) {
+        out.add_inserted_ids(s.ids[b++]);
+      } else {
+        ++a;
+        ++b;
       }
+    }
+    for (const auto id : deleted) out.add_deleted_ids(id);
   }
-  last_coating_ = std::move(now);
+  last_ids_ = s.ids;
+  last_coating_ = s.coating_mass;
   reported_once_ = true;
 
   auto& report = *out.mutable_particles();
@@ -209,7 +222,8 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
       if (std::abs(steps - std::round(steps)) < 1e-6 && steps >= 1)
         hint = fmt::format(" or set coupling.dem_steps: {:.0f} in the scenario", std::round(steps));
       throw std::runtime_error(fmt::format(
-          "LIGGGHTS script {}: `timestep {:.6g}` does not match the coupling: coupling.dt {:.6g} s / "
+          "LIGGGHTS script {}: `timestep {:.6g}` does not match the coupling: coupling.dt {:.6g} s "
+          "/ "
           "coupling.dem_steps {} = {:.6g} s per DEM step. Write `timestep {:.6g}` in the script{}",
           options_.script, dt, welcome.cfd_dt(), welcome.dem_steps(), wanted, wanted, hint));
     }
@@ -219,6 +233,8 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
 
 void LiggghtsSolver::checkTimestep() {
   if (options_.dt_check == DtCheckPolicy::off) return;
+  // Judged again only when a smaller particle appears (cheap test first, every step)
+  if (dt_reported_ && engine_->minRadius() >= checked_radius_) return;
   const TimestepReport report = engine_->timestepReport(options_.impact_speed);
   if (!report.has_particles) return;
   if (dt_reported_ && report.min_radius >= checked_radius_) return;
@@ -234,7 +250,8 @@ void LiggghtsSolver::checkTimestep() {
         "coupling.dem_steps, or set options.dt_check: warn to run anyway",
         options_.script, v.summary, v.suggested_dt));
   if (rank_ == 0) {
-    if (v.verdict == Verdict::ok) spdlog::info("[liggghts] {}", v.summary);
+    if (v.verdict == Verdict::ok)
+      spdlog::info("[liggghts] {}", v.summary);
     else
       spdlog::warn("[liggghts] {} -- {}; a safe value is {:.3g} s", v.summary,
                    v.verdict == Verdict::unstable ? "UNSTABLE" : "doubtful", v.suggested_dt);
@@ -249,7 +266,8 @@ void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
   if (terms.has(field::drag_coefficient)) t.drag_coefficient = terms.get(field::drag_coefficient);
   if (terms.has(field::fluid_velocity)) t.fluid_velocity = terms.get(field::fluid_velocity);
   if (terms.has(field::explicit_force)) t.explicit_force = terms.get(field::explicit_force);
-  if (terms.has(field::coating_increment)) t.coating_increment = terms.get(field::coating_increment);
+  if (terms.has(field::coating_increment))
+    t.coating_increment = terms.get(field::coating_increment);
   if (!t.drag_coefficient.empty() && t.fluid_velocity.empty())
     throw std::runtime_error("Advance carries drag_coefficient without fluid_velocity");
 

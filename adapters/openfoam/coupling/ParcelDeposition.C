@@ -3,11 +3,19 @@
 #include "ops.H"
 #include "mathematicalConstants.H"
 
+#include <algorithm>
+#include <thread>
+#include <vector>
+
 Foam::cosim::ParcelDeposition::ParcelDeposition(const fvMesh& mesh, label divisions)
 :
     mesh_(mesh),
     locator_(mesh),
-    satellites_(divisions)
+    satellites_(divisions),
+    threads_
+    (
+        label(std::min(4u, std::max(1u, std::thread::hardware_concurrency())))
+    )
 {}
 
 
@@ -62,40 +70,57 @@ void Foam::cosim::ParcelDeposition::place
         }
     }
 
-    // 2. satellite points, seeded by the centre cell
+    // 2. satellite points, seeded by the centre cell. Independent per parcel, so on one
+    //    processor they are split over threads: the DEM waits for these samples, its core is
+    //    free. Each point is located exactly as by one thread (same cells, same order of work
+    //    within a parcel).
     labelList satCell(n*nSat, label(-1));
     labelList satOwner(n*nSat, nobody);
-    for (label i = 0; i < n; ++i)
+    auto satellitesOf = [&](label begin, label end)
     {
-        if (lost_[i])
+        for (label i = begin; i < end; ++i)
         {
-            continue;
-        }
-        const point c = centreOf(i);
-        const scalar r = radius[i];
-        const bool near = centreCell_[i] >= 0 || locator_.inBounds(c, r);
-        if (!near)
-        {
-            continue;
-        }
-        for (label j = 0; j < nSat; ++j)
-        {
-            const point x = c + r*satellites_.offsets()[j];
-            label celli = -1;
-            if (centreCell_[i] >= 0)
+            if (lost_[i])
             {
-                celli = locator_.walk(x, centreCell_[i]);
+                continue;
             }
-            if (celli < 0)
+            const point c = centreOf(i);
+            const scalar r = radius[i];
+            const bool near = centreCell_[i] >= 0 || locator_.inBounds(c, r);
+            if (!near)
             {
-                celli = locator_.search(x);
+                continue;
             }
-            if (celli >= 0)
+            for (label j = 0; j < nSat; ++j)
             {
-                satCell[i*nSat + j] = celli;
-                satOwner[i*nSat + j] = me;
+                const point x = c + r*satellites_.offsets()[j];
+                label celli = -1;
+                if (centreCell_[i] >= 0)
+                {
+                    celli = locator_.walk(x, centreCell_[i]);
+                }
+                if (celli < 0)
+                {
+                    celli = locator_.search(x);
+                }
+                if (celli >= 0)
+                {
+                    satCell[i*nSat + j] = celli;
+                    satOwner[i*nSat + j] = me;
+                }
             }
         }
+    };
+    const label nThreads = (Pstream::parRun() || n < 512) ? 1 : threads_;
+    std::vector<std::thread> helpers;
+    for (label t = 1; t < nThreads; ++t)
+    {
+        helpers.emplace_back(satellitesOf, n*t/nThreads, n*(t + 1)/nThreads);
+    }
+    satellitesOf(0, n/nThreads);
+    for (std::thread& h : helpers)
+    {
+        h.join();
     }
     if (Pstream::parRun())
     {

@@ -8,6 +8,54 @@ Foam::cosim::ParticleLocator::ParticleLocator(const polyMesh& mesh)
 {
     // Small tolerance so points on the outer faces are not dropped by the box test
     bounds_.inflate(1e-9);
+
+    // Build the demand-driven search structures now: search() runs on several threads
+    (void)mesh.cellTree();
+    (void)mesh.tetBasePtIs();
+
+    const cellList& cells = mesh.cells();
+    const vectorField& Cf = mesh.faceCentres();
+    const vectorField& Sf = mesh.faceAreas();
+    const labelList& own = mesh.faceOwner();
+    const labelList& nei = mesh.faceNeighbour();
+    faceStart_.setSize(cells.size() + 1);
+    label n = 0;
+    forAll(cells, c)
+    {
+        faceStart_[c] = n;
+        n += cells[c].size();
+    }
+    faceStart_[cells.size()] = n;
+    faceCentre_.setSize(n);
+    faceOut_.setSize(n);
+    across_.setSize(n);
+    forAll(cells, c)
+    {
+        label k = faceStart_[c];
+        for (const label facei : cells[c])
+        {
+            const bool owned = (own[facei] == c);
+            faceCentre_[k] = Cf[facei];
+            faceOut_[k] = owned ? Sf[facei] : -Sf[facei];
+            across_[k] =
+                mesh.isInternalFace(facei) ? (owned ? nei[facei] : own[facei]) : -1;
+            ++k;
+        }
+    }
+}
+
+
+bool Foam::cosim::ParticleLocator::inside(const point& p, label c) const
+{
+    for (label k = faceStart_[c]; k < faceStart_[c + 1]; ++k)
+    {
+        const vector proj = p - faceCentre_[k];
+        if ((faceOut_[k] & proj) > 0)
+        {
+            return false;
+        }
+    }
+    return true;
 }
 
 
@@ -35,15 +83,10 @@ Foam::label Foam::cosim::ParticleLocator::search(const point& p) const
 Foam::label Foam::cosim::ParticleLocator::walk(const point& p, label celli) const
 {
     const vectorField& Cc = mesh_.cellCentres();
-    const vectorField& Cf = mesh_.faceCentres();
-    const vectorField& Sf = mesh_.faceAreas();
-    const labelList& own = mesh_.faceOwner();
-    const labelList& nei = mesh_.faceNeighbour();
-    const cellList& cells = mesh_.cells();
 
     for (label step = 0; step < maxSteps_; ++step)
     {
-        if (mesh_.pointInCell(p, celli, polyMesh::FACE_PLANES))
+        if (inside(p, celli))
         {
             return celli;
         }
@@ -51,28 +94,28 @@ Foam::label Foam::cosim::ParticleLocator::walk(const point& p, label celli) cons
         // Leave through the face the line centre -> p crosses first
         const point& c = Cc[celli];
         const vector d = p - c;
-        label exitFace = -1;
+        label exit = -1;
         scalar lambdaMin = GREAT;
-        for (const label facei : cells[celli])
+        for (label k = faceStart_[celli]; k < faceStart_[celli + 1]; ++k)
         {
-            const vector n = (own[facei] == celli) ? Sf[facei] : -Sf[facei];
+            const vector& n = faceOut_[k];
             const scalar along = d & n;
             if (along <= VSMALL)
             {
                 continue;
             }
-            const scalar lambda = ((Cf[facei] - c) & n)/along;
+            const scalar lambda = ((faceCentre_[k] - c) & n)/along;
             if (lambda < lambdaMin)
             {
                 lambdaMin = lambda;
-                exitFace = facei;
+                exit = k;
             }
         }
-        if (exitFace < 0 || !mesh_.isInternalFace(exitFace))
+        if (exit < 0 || across_[exit] < 0)
         {
             return -1;
         }
-        celli = (own[exitFace] == celli) ? nei[exitFace] : own[exitFace];
+        celli = across_[exit];
     }
     return -1;
 }

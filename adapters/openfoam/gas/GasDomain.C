@@ -303,6 +303,21 @@ public:
                 else if (name == "fluid_density" || name == "precursor_fraction"
                       || name == "fluid_viscosity" || name == "cell_size")
                 {
+                    if (name == "precursor_fraction" && !settings_.species)
+                    {
+                        throw std::runtime_error
+                        (
+                            "precursor_fraction was requested but the scene has no "
+                            "mass transfer (Welcome.species is false)"
+                        );
+                    }
+                    // The field read per cell, chosen once (not per particle)
+                    const scalarField& perCell =
+                        name == "fluid_density" ? rho_().primitiveField()
+                      : name == "precursor_fraction" ? Y_().primitiveField()
+                      : mesh.V().field();
+                    const bool viscosity = (name == "fluid_viscosity");
+                    const bool size = (name == "cell_size");
                     values.setSize(n, 0.0);
                     for (label i = 0; i < n; ++i)
                     {
@@ -311,30 +326,10 @@ public:
                         {
                             continue;
                         }
-                        if (name == "fluid_density")
-                        {
-                            values[i] = rho_()[c];
-                        }
-                        else if (name == "fluid_viscosity")
-                        {
-                            values[i] = mu_().value();
-                        }
-                        else if (name == "cell_size")
-                        {
-                            values[i] = Foam::cbrt(mesh.V()[c]);
-                        }
-                        else if (settings_.species)
-                        {
-                            values[i] = Y_()[c];
-                        }
-                        else
-                        {
-                            throw std::runtime_error
-                            (
-                                "precursor_fraction was requested but the scene has no "
-                                "mass transfer (Welcome.species is false)"
-                            );
-                        }
+                        values[i] =
+                            viscosity ? mu_().value()
+                          : size ? Foam::cbrt(perCell[c])
+                          : perCell[c];
                     }
                 }
                 else

@@ -37,8 +37,8 @@ struct Terms {
 // Particle state sorted by id (rank 0).
 struct State {
   std::vector<std::int64_t> ids;
-  std::vector<double> position;      // 3 per id
-  std::vector<double> velocity;      // 3 per id
+  std::vector<double> position;  // 3 per id
+  std::vector<double> velocity;  // 3 per id
   std::vector<double> radius;
   std::vector<double> mass;
   std::vector<double> coating_mass;
@@ -76,6 +76,9 @@ class Engine {
   // Rayleigh and Hertz times over all current particles, from the script's fix property/global
   // youngsModulus and poissonsRatio. Throws std::runtime_error if they are not defined.
   TimestepReport timestepReport(double impact_speed) const;
+  // The smallest radius over the particles timestepReport() looks at (a few instructions per
+  // particle: the full report is only needed when it shrinks); max() without particles.
+  double minRadius() const;
 
   // Sets the forcing of the next advance(): particles not listed get no fluid force; coating
   // increments are added to the listed particles' coating mass. Throws std::runtime_error naming

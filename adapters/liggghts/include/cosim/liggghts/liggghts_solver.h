@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "cosim/link/session.h"
 #include "cosim/liggghts/adapter_options.h"
 #include "cosim/liggghts/engine.h"
+#include "cosim/link/session.h"
 
 namespace cosim::liggghts {
 
@@ -66,7 +66,9 @@ class LiggghtsSolver : public cosim::link::Solver {
   std::optional<TimestepReport> dt_report_;
   bool dt_reported_ = false;
   // rank 0: ids and coating mass of the last report (for inserted/deleted ids)
-  std::map<std::int64_t, double> last_coating_;
+  // Coating mass of every particle at the last report, by id ascending (as state() sorts them)
+  std::vector<std::int64_t> last_ids_;
+  std::vector<double> last_coating_;
   bool reported_once_ = false;
   State last_state_;
 };

@@ -1,0 +1,126 @@
+#include "bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iomanip>
+#include <ostream>
+
+#include "coupler.h"
+#include "scenario.h"
+
+namespace cosim::orchestrator {
+
+namespace {
+
+const char* const kPhases[] = {"fluid_sample", "models", "advance", "bookkeeping"};
+
+std::string schemeOf(const std::string& stage) {
+  if (stage == "dem") return "frozen-fluid";
+  if (stage == "cfd") return "frozen-particles";
+  if (stage == "coupled") return "parallel";
+  throw std::invalid_argument("cosim bench: unknown stage '" + stage + "' (dem, cfd, coupled)");
+}
+
+std::string ms(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.2f", seconds * 1e3);
+  return buf;
+}
+
+double at(const std::map<std::string, double>& m, const std::string& key) {
+  const auto it = m.find(key);
+  return it == m.end() ? 0.0 : it->second;
+}
+
+}  // namespace
+
+double BenchStage::total() const {
+  double s = 0;
+  for (const auto& [phase, v] : phases) s += v;
+  return s;
+}
+
+double BenchStage::serial() const { return total() - at(phases, "advance"); }
+
+BenchRatios benchRatios(const std::map<std::string, BenchStage>& stages) {
+  auto total = [&](const char* n) {
+    const auto it = stages.find(n);
+    return it == stages.end() ? 0.0 : it->second.total();
+  };
+  BenchRatios r;
+  const double alone = std::max(total("dem"), total("cfd"));
+  const auto coupled = stages.find("coupled");
+  if (coupled == stages.end() || !(coupled->second.total() > 0)) return r;
+  r.coupled_over_max = alone > 0 ? coupled->second.total() / alone : 0.0;
+  r.serial_percent = 100.0 * coupled->second.serial() / coupled->second.total();
+  return r;
+}
+
+int runBench(const BenchOptions& opt, std::ostream& out) {
+  const Scenario probe = loadScenario(opt.scenario, opt.sets, opt.unsets);
+  const std::filesystem::path folder =
+      opt.output.empty() ? std::filesystem::path("runs") / (probe.name + "-bench") : opt.output;
+  const double end = probe.start_time + static_cast<double>(opt.steps + opt.warmup) * probe.dt;
+  std::vector<std::string> sets = opt.sets;
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "coupling.end_time=%.17g", end);
+  sets.emplace_back(buf);
+
+  double load[3] = {0, 0, 0};
+  const bool have_load = getloadavg(load, 3) == 3;
+  out << "cosim bench: " << probe.name << ", " << opt.steps << " steps of " << probe.dt
+      << " s per stage after " << opt.warmup << " untimed";
+  if (have_load) out << "; load average " << std::fixed << std::setprecision(2) << load[0];
+  out << std::defaultfloat << "\n  run folders under " << folder.string() << std::endl;
+
+  std::map<std::string, BenchStage> stages;
+  for (const auto& name : opt.stages) {
+    RunOptions ro;
+    ro.quiet = true;
+    ro.overwrite = true;
+    ro.output = folder / name;
+    ro.scheme = schemeOf(name);
+    ro.untimed_steps = opt.warmup;
+    Coupler c(loadScenario(opt.scenario, sets, opt.unsets), ro);
+    const RunResult r = c.run();
+    if (r.exit_code != 0) {
+      out << "cosim bench: stage " << name << " failed\n" << r.message << std::endl;
+      return r.exit_code;
+    }
+    BenchStage st;
+    st.name = name;
+    st.steps = r.timed_steps;
+    const double n = static_cast<double>(std::max<std::uint64_t>(r.timed_steps, 1));
+    for (const auto& [p, s] : r.phase_seconds) st.phases[p] = s / n;
+    for (const auto& [p, s] : r.compute_seconds) st.compute[p] = s / n;
+    stages[name] = st;
+  }
+
+  out << "\nms per step   total";
+  for (const char* p : kPhases) out << "  " << std::setw(12) << p;
+  out << "  particles_compute  fluid_compute  fluid_sample_compute\n";
+  for (const auto& name : opt.stages) {
+    const auto& st = stages.at(name);
+    out << std::left << std::setw(10) << name << std::right << std::setw(8) << ms(st.total());
+    for (const char* p : kPhases) out << "  " << std::setw(12) << ms(at(st.phases, p));
+    out << "  " << std::setw(17) << ms(at(st.compute, "particles")) << "  " << std::setw(13)
+        << ms(at(st.compute, "fluid")) << "  " << std::setw(20)
+        << ms(at(st.compute, "fluid_sample")) << "\n";
+  }
+  const BenchRatios r = benchRatios(stages);
+  auto total = [&](const char* n) { return stages.count(n) ? stages.at(n).total() : 0.0; };
+  out << "\n";
+  if (total("dem") > 0 && total("coupled") > 0)
+    out << "coupled/dem = " << std::fixed << std::setprecision(3) << total("coupled") / total("dem")
+        << "\n";
+  if (total("cfd") > 0 && total("coupled") > 0)
+    out << "coupled/cfd = " << std::fixed << std::setprecision(3) << total("coupled") / total("cfd")
+        << "\n";
+  out << "coupled/max(dem,cfd) = " << std::fixed << std::setprecision(3) << r.coupled_over_max
+      << "; serial share = " << std::setprecision(1) << r.serial_percent << " %" << std::endl;
+  return 0;
+}
+
+}  // namespace cosim::orchestrator

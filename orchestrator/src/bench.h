@@ -1,0 +1,49 @@
+// cosim bench: what a coupled step costs against its solvers alone, on the same scene.
+//   dem      the particles alone: the gas sampled and the models evaluated once, then the same
+//            forcing replayed every interval; the fluid idles (FrozenScheme, particles alone)
+//   cfd      the fluid alone: the particle terms of the first interval replayed, the particles
+//            never advance (FrozenScheme, fluid alone)
+//   coupled  the scene as `cosim run` runs it (ParallelScheme)
+// Each from the scene's initial state, timed per step after `warmup` untimed steps, with its
+// phases. The last line printed is `coupled/max(dem,cfd) = R; serial share = S %`.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace cosim::orchestrator {
+
+struct BenchOptions {
+  std::filesystem::path scenario;
+  std::vector<std::string> sets, unsets;
+  std::uint64_t steps = 50;      // timed coupling steps per stage
+  std::uint64_t warmup = 5;      // untimed steps before them
+  std::filesystem::path output;  // default runs/<scenario>-bench; one run folder per stage
+  std::vector<std::string> stages{"dem", "cfd", "coupled"};
+};
+
+// Seconds per step of one stage: its phases (fluid_sample, models, advance, bookkeeping) and the
+// compute time each participant reported.
+struct BenchStage {
+  std::string name;
+  std::uint64_t steps = 0;
+  std::map<std::string, double> phases;
+  std::map<std::string, double> compute;
+  double total() const;
+  double serial() const;  // everything but the advance
+};
+
+struct BenchRatios {
+  double coupled_over_max = 0;  // coupled / max(dem, cfd)
+  double serial_percent = 0;    // serial part of the coupled step, %
+};
+BenchRatios benchRatios(const std::map<std::string, BenchStage>& stages);
+
+// Runs the stages, prints the table and the ratios to `out`; non-zero if a stage failed.
+int runBench(const BenchOptions& options, std::ostream& out);
+
+}  // namespace cosim::orchestrator
