@@ -62,7 +62,7 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
   const Scenario probe = loadScenario(opt.scenario, opt.sets, opt.unsets);
   const std::filesystem::path folder =
       opt.output.empty() ? std::filesystem::path("runs") / (probe.name + "-bench") : opt.output;
-  const double end = probe.start_time + static_cast<double>(opt.steps + opt.warmup) * probe.dt;
+  const double end = probe.coupling.start_time + static_cast<double>(opt.steps + opt.warmup) * probe.coupling.dt;
   std::vector<std::string> sets = opt.sets;
   char buf[64];
   std::snprintf(buf, sizeof buf, "coupling.end_time=%.17g", end);
@@ -70,7 +70,7 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
 
   double load[3] = {0, 0, 0};
   const bool have_load = getloadavg(load, 3) == 3;
-  out << "cosim bench: " << probe.name << ", " << opt.steps << " steps of " << probe.dt
+  out << "cosim bench: " << probe.name << ", " << opt.steps << " steps of " << probe.coupling.dt
       << " s per stage after " << opt.warmup << " untimed";
   if (have_load) out << "; load average " << std::fixed << std::setprecision(2) << load[0];
   out << std::defaultfloat << "\n  run folders under " << folder.string() << std::endl;
