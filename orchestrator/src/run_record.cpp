@@ -1,6 +1,12 @@
 #include "run_record.h"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -16,22 +22,74 @@ namespace fs = std::filesystem;
 RunRecord::RunRecord(const Scenario& sc, const Plan& plan, RunLog& log)
     : sc_(sc), plan_(plan), log_(log) {}
 
-RunRecord::~RunRecord() = default;
+RunRecord::~RunRecord() {
+  if (!lock_.empty()) {
+    std::error_code ec;
+    fs::remove(lock_, ec);
+  }
+}
+
+namespace {
+
+constexpr const char* kLockFile = ".cosim-run.lock";
+
+// Pid in a lock file; 0 if unreadable.
+long lockHolder(const fs::path& lock) {
+  std::ifstream in(lock);
+  long pid = 0;
+  in >> pid;
+  return pid;
+}
+
+}  // namespace
+
+// The run folder is claimed with a lock file created exclusively (O_EXCL): two runs can never
+// share a folder. A lock left by a run that no longer exists (kill -9) is taken over.
+bool RunRecord::claim(const fs::path& folder) {
+  fs::create_directories(folder);
+  const fs::path lock = folder / kLockFile;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const int fd = ::open(lock.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+    if (fd >= 0) {
+      const std::string pid = std::to_string(::getpid()) + "\n";
+      const bool ok = ::write(fd, pid.data(), pid.size()) == static_cast<ssize_t>(pid.size());
+      ::close(fd);
+      if (!ok) throw std::runtime_error("cannot write " + lock.string() + " (disk full?)");
+      lock_ = lock;
+      return true;
+    }
+    if (errno != EEXIST) {
+      throw std::runtime_error("cannot claim the run folder " + folder.string() + ": " +
+                               std::strerror(errno));
+    }
+    const long holder = lockHolder(lock);
+    if (holder > 0 && (::kill(static_cast<pid_t>(holder), 0) == 0 || errno == EPERM))
+      return false;  // a run that is alive holds it
+    std::error_code ec;
+    fs::remove(lock, ec);  // stale: its run is gone
+  }
+  return false;
+}
 
 const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
   const fs::path base = output.empty() ? sc_.output.folder : fs::absolute(output);
-  folder_ = base;
-  if (!overwrite && fs::exists(folder_) && !fs::is_empty(folder_)) {
-    // Never overwrite a previous result: take the next free suffix.
-    for (int i = 2;; ++i) {
-      fs::path cand = base.string() + "-" + std::to_string(i);
-      if (!fs::exists(cand)) {
-        folder_ = cand;
-        break;
-      }
+  // Never overwrite a previous result, never share a folder with a run going on: the first
+  // free one of base, base-2, base-3, ... (with overwrite: base itself, if no run holds it).
+  for (int i = 1;; ++i) {
+    const fs::path candidate = i == 1 ? base : fs::path(base.string() + "-" + std::to_string(i));
+    const bool had_files = fs::exists(candidate) && !fs::is_empty(candidate);
+    if (had_files && !overwrite) continue;
+    if (claim(candidate)) {
+      folder_ = candidate;
+      break;
+    }
+    if (overwrite) {
+      throw std::runtime_error("the run folder " + candidate.string() +
+                               " is in use by another run (pid " +
+                               std::to_string(lockHolder(candidate / kLockFile)) +
+                               "); wait for it or choose another folder");
     }
   }
-  fs::create_directories(folder_);
   writeResolvedScene();
   log_.open(folder_ / "cosim.log");
   next_output_ = sc_.coupling.start_time;
@@ -39,6 +97,12 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
 }
 
 const fs::path& RunRecord::reopen(const fs::path& folder) {
+  if (!claim(folder)) {
+    throw std::runtime_error("the run folder " + folder.string() +
+                             " is in use by another run (pid " +
+                             std::to_string(lockHolder(folder / kLockFile)) +
+                             "); a run can be resumed once it has stopped");
+  }
   folder_ = folder;
   log_.open(folder_ / "cosim.log");
   return folder_;

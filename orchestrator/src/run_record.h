@@ -65,10 +65,14 @@ class RunRecord {
 
  private:
   void makeColumns();
+  // Claims `folder` for this run (a lock file, removed when the record is destroyed); false if
+  // a run that is still alive holds it.
+  bool claim(const std::filesystem::path& folder);
   const Scenario& sc_;
   const Plan& plan_;
   RunLog& log_;
   std::filesystem::path folder_;
+  std::filesystem::path lock_;
   std::vector<std::string> columns_;
   std::unique_ptr<analysis::ParticleRecorder> particles_;
   std::unique_ptr<analysis::TimeSeriesRecorder> series_file_;

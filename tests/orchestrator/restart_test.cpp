@@ -221,3 +221,25 @@ TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
   EXPECT_NE(text(w.dir / "nothing.out").find("not a run folder"), std::string::npos)
       << text(w.dir / "nothing.out");
 }
+
+// Runs started at the same time with the same -o never share a folder: each claims its own
+// (same, same-2, ...) and each records a complete run; no lock is left behind.
+TEST(RunFolder, RunsStartedTogetherWithTheSameFolderEachGetTheirOwn) {
+  Workspace w;
+  std::vector<ChildProcess> runs;
+  for (int i = 0; i < 5; ++i) {
+    runs.push_back(start(w, {"run", "scene.yaml", "-o", "same", "--quiet", "--set",
+                             "checkpoint.interval=0"},
+                         "same" + std::to_string(i) + ".out"));
+  }
+  for (auto& r : runs) EXPECT_EQ(finish(r), 0);
+  const auto one = analysis::readTimeSeries(w.dir / "same/timeseries.csv");
+  for (const std::string f : {"same", "same-2", "same-3", "same-4", "same-5"}) {
+    SCOPED_TRACE(f);
+    ASSERT_TRUE(fs::exists(w.dir / f / "summary.json"));
+    EXPECT_EQ(analysis::readJsonFile(w.dir / f / "summary.json").at("status"), "completed");
+    EXPECT_EQ(analysis::readTimeSeries(w.dir / f / "timeseries.csv").rows(), one.rows());
+    EXPECT_FALSE(fs::exists(w.dir / f / ".cosim-run.lock"));
+  }
+  EXPECT_FALSE(fs::exists(w.dir / "same-6"));
+}
