@@ -136,8 +136,8 @@ fs::path CheckpointStore::begin(double time, const std::vector<std::string>& par
   const fs::path partial = dir_ / (kPartialPrefix + analysis::formatShortest(time));
   std::error_code ec;
   fs::remove_all(partial, ec);  // a checkpoint that a crash interrupted
-  for (const auto& p : participants) fs::create_directories(partial / p);
   fs::create_directories(partial);
+  for (const auto& p : participants) fs::create_directories(partial / p);
   return partial;
 }
 

@@ -46,7 +46,6 @@ class CoatingLedger {
   double creditedIncludingOwed() const;
   // The particle state with what is owed added: what the parcels hold at this time.
   link::ParticleData held(const link::ParticleData& state) const;
-  bool owesAnything() const { return !pending_.empty(); }
 
   // The balance totals for the summary, with the coating now on `final_state`.
   void totals(const link::ParticleData& final_state, std::map<std::string, double>& out) const;
