@@ -6,10 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <vector>
 
 #include "cosim/analysis/report.h"
+#include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
 #include "coupler.h"
 #include "scenario.h"
@@ -79,10 +81,14 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
 
 // Resume with the real solvers (docs/restarts.md): the bed run to 0.05 s with checkpoints every
 // 0.01 s, its folder cut back to the checkpoint at 0.03 s (as after a kill), resumed. The
-// orchestrator's state comes back exactly (the balance closes across the restart); the solvers
-// agree with the uninterrupted run as far as they allow: measured at commit time 1.6e-4 relative
-// in the coated mass and 1.8e-5 m in the parcels' positions at 0.05 s, from the fluid's first
-// step after the resume, which starts without the parcels' displacement flow.
+// orchestrator's state comes back exactly (the balance closes across the restart). The fluid's
+// checkpoint carries the last step's voidage and eps rho, so the first step after the resume has
+// the parcels' displacement flow as in the uninterrupted run, and LIGGGHTS starts from the forces
+// and torques the step would have started from: its row of the time series agrees to round-off
+// (measured at commit time: 1.4e-12 relative in the pressure drop, 1e-15 in the rest). From there
+// round-off grows as the bed's contacts amplify it: at 0.05 s, measured 2e-8 to 2.5e-7 relative in
+// the coated mass and 1.1e-6 to 1.6e-6 m in the parcels' positions (before the checkpoint held
+// those fields: 1.6e-4 and 1.8e-5 m).
 TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   const fs::path base =
       fs::temp_directory_path() / ("cosim-plasma-resume-" + std::to_string(getpid()));
@@ -114,7 +120,43 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
                       t.at("precursor_removed_kg")),
             1e-4 * in);
   const double coated = full.totals.at("coating_credited_kg");
-  EXPECT_NEAR(t.at("coating_credited_kg"), coated, 1e-3 * coated);
+  EXPECT_NEAR(t.at("coating_credited_kg"), coated, 2e-6 * coated);
+
+  // The first step after the resume (t = 0.0301 s) as the uninterrupted run's, to round-off
+  const auto ta = cosim::analysis::readTimeSeries(base / "full/timeseries.csv");
+  const auto tb = cosim::analysis::readTimeSeries(base / "cut/timeseries.csv");
+  const auto row = [](const cosim::analysis::TimeSeries& ts, double time) {
+    const auto& times = ts.at("time");
+    for (std::size_t r = 0; r < times.size(); ++r)
+      if (std::fabs(times[r] - time) < 1e-9) return r;
+    ADD_FAILURE() << "no row at t = " << time;
+    return std::size_t{0};
+  };
+  // Writing a checkpoint barely changes the run: the step after the one at 0.01 s against a run
+  // without checkpoints. LIGGGHTS re-initialises at write_restart; the forces and torques the
+  // next step starts from are kept (before: 1e-5 relative in that step's pressure drop), what
+  // remains is 1e-7 (measured at commit time)
+  {
+    RunOptions no;
+    no.quiet = true;
+    no.output = base / "no-checkpoints";
+    RunResult plain = Coupler(loadScenario(scene, {"coupling.end_time=0.0102"}), no).run();
+    ASSERT_EQ(plain.exit_code, 0) << plain.message;
+    const auto tp = cosim::analysis::readTimeSeries(base / "no-checkpoints/timeseries.csv");
+    const double pa = ta.at("pressure_drop")[row(ta, 0.0102)];
+    const double pp = tp.at("pressure_drop")[row(tp, 0.0102)];
+    std::printf("step after a checkpoint vs no checkpoint: pressure drop %.3g relative\n",
+                std::fabs(pa - pp) / pp);
+    EXPECT_LE(std::fabs(pa - pp), 5e-7 * std::fabs(pp));
+  }
+
+  const std::size_t ra = row(ta, 0.0301), rb = row(tb, 0.0301);
+  for (const char* c : {"precursor_in", "precursor_out", "precursor_held", "precursor_removed",
+                        "coated_mass", "pressure_drop"}) {
+    const double va = ta.at(c)[ra], vb = tb.at(c)[rb];
+    EXPECT_LE(std::fabs(va - vb), 1e-11 * std::fabs(va))
+        << c << " at the first step after the resume";
+  }
 
   const auto& a = full.final_state;
   const auto& b = resumed.final_state;
@@ -123,6 +165,8 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   const auto& xb = b.get(cosim::field::position);
   double dx = 0.0;
   for (std::size_t i = 0; i < xa.size(); ++i) dx = std::max(dx, std::fabs(xa[i] - xb[i]));
-  EXPECT_LT(dx, 1e-4) << "largest position difference [m]";
+  const double dm = std::fabs(t.at("coating_credited_kg") - coated) / coated;
+  std::printf("resumed vs uninterrupted: coated mass %.3g relative, positions %.3g m\n", dm, dx);
+  EXPECT_LT(dx, 5e-6) << "largest position difference [m]";
   fs::remove_all(base);
 }

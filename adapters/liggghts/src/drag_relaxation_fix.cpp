@@ -24,6 +24,8 @@ void DragRelaxationFix::lookup() {
       modify->find_fix_property(kExplicitForceProperty, "property/atom", "vector", 0, 0, style);
   other_force_ =
       modify->find_fix_property(kOtherForceProperty, "property/atom", "vector", 0, 0, style);
+  last_torque_ =
+      modify->find_fix_property(kLastTorqueProperty, "property/atom", "vector", 0, 0, style);
 }
 
 void DragRelaxationFix::init() {
@@ -33,7 +35,10 @@ void DragRelaxationFix::init() {
                "cosim/drag needs spheres with per-atom mass (atom_style sphere or granular)");
 }
 
-void DragRelaxationFix::setup(int) { apply(true); }
+void DragRelaxationFix::setup(int) {
+  apply(!keep_other_);
+  keep_other_ = false;
+}
 
 void DragRelaxationFix::post_force(int) { apply(true); }
 
@@ -48,6 +53,8 @@ void DragRelaxationFix::apply(bool store_other_force) {
   double** uf = fluid_velocity_->array_atom;
   double** fex = explicit_force_->array_atom;
   double** other = other_force_->array_atom;
+  double** torque_kept = last_torque_->array_atom;
+  double** torque = atom->torque;
   double** v = atom->v;
   double** f = atom->f;
   const double* mass = atom->rmass;
@@ -55,8 +62,13 @@ void DragRelaxationFix::apply(bool store_other_force) {
   const int nlocal = atom->nlocal;
   for (int i = 0; i < nlocal; ++i) {
     if (!(amask[i] & groupbit)) continue;
-    if (store_other_force)
+    if (store_other_force) {
       for (int d = 0; d < 3; ++d) other[i][d] = f[i][d];
+      if (torque)
+        for (int d = 0; d < 3; ++d) torque_kept[i][d] = torque[i][d];
+    } else if (torque && keep_other_) {
+      for (int d = 0; d < 3; ++d) torque[i][d] = torque_kept[i][d];
+    }
     if (K[i] <= 0.0) {
       // no drag: the explicit force (if any) is simply added
       for (int d = 0; d < 3; ++d) f[i][d] = other[i][d] + fex[i][d];

@@ -171,6 +171,7 @@ void Engine::resumeScript(const std::filesystem::path& script,
     throw std::runtime_error("cannot resume: the checkpoint has no LIGGGHTS restart file " +
                              restart.string());
   script_ = script;
+  keep_restored_forces_ = std::filesystem::exists(restart.parent_path() / kOtherForcesMarker);
   std::ifstream in(script);
   std::string logical, line;
   auto flush = [&] {
@@ -214,8 +215,11 @@ void Engine::installCoupling() {
           " vector no no no 0 0 0");
   command(std::string("fix cosim_explicit_f all property/atom ") + kExplicitForceProperty +
           " vector no no no 0 0 0");
+  // Saved in restart files: the first step after a checkpoint or a resume starts from them
   command(std::string("fix cosim_other_f all property/atom ") + kOtherForceProperty +
-          " vector no no no 0 0 0");
+          " vector yes no no 0 0 0");
+  command(std::string("fix cosim_last_torque all property/atom ") + kLastTorqueProperty +
+          " vector yes no no 0 0 0");
 
   // The drag fix is not a registered LIGGGHTS style: append it to the fix list ourselves, as
   // Modify::add_fix would, so that it is the last post_force fix.
@@ -241,6 +245,7 @@ void Engine::installCoupling() {
     fix->post_create();
   });
   coupled_ = true;
+  if (keep_restored_forces_) drag_fix_->keepOtherForcesAtNextSetup();
   // LIGGGHTS sets a new fix property/atom to its default values at the first setup after its
   // creation: do that setup now, before any forcing or coating is written into them.
   guarded("setting up the coupling (run 0)", [&] { lmp_->input->one("run 0 post no"); });
@@ -448,6 +453,18 @@ std::filesystem::path Engine::writeRestart(const std::filesystem::path& file) {
     std::filesystem::create_directories(file.parent_path(), ec);
   }
   command("write_restart " + file.string());
+  // write_restart re-sorts the atoms, so the next run starts with a setup; it keeps the forces
+  // the next step would have started from (DragRelaxationFix::keepOtherForcesAtNextSetup)
+  if (drag_fix_) drag_fix_->keepOtherForcesAtNextSetup();
+  if (rank_ == 0 && coupled_) {
+    std::ofstream marker(file.parent_path() / kOtherForcesMarker);
+    marker << "the LIGGGHTS restart file beside holds " << kOtherForceProperty << " and "
+           << kLastTorqueProperty
+           << ", the last step's forces other than the fluid's and torques\n";
+    if (!marker)
+      throw std::runtime_error("cannot write " +
+                               (file.parent_path() / kOtherForcesMarker).string());
+  }
   return file;
 }
 

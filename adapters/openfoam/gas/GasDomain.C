@@ -105,6 +105,7 @@ class FoamGasDomain : public GasDomain
     autoPtr<Foam::cosim::ParcelDeposition> parcels_;
     List<vector> particleVelocity_;
     bool advanced_ = false;
+    bool resumedOldTimes_ = false;  // createFields.H read the checkpoint's old-time fields
 
 public:
 
@@ -212,7 +213,8 @@ public:
             }
 
             // Before the first step the parcels have always been there: no displacement flow
-            if (!advanced_)
+            // (after a resume the checkpoint's fields carry the last step's voidage instead)
+            if (!advanced_ && !resumedOldTimes_)
             {
                 volScalarField& eps = eps_();
                 eps.primitiveFieldRef() = epsPlaced;
@@ -600,10 +602,27 @@ public:
         {
             // The current time folder holds everything a restart needs, with the face
             // resistances of the last pressure solve (the parcels' pressure gradient of the
-            // next Sample); a copy goes to path
+            // next Sample) and the old times of the next step's time derivatives (voidage,
+            // eps rho); written in binary whatever the case's writeFormat, so that a resume
+            // starts from the exact values; a copy goes to path
+            const IOstream::streamFormat exact = IOstream::BINARY;
+            const auto ver = IOstream::currentVersion;
+            const auto cmp = IOstream::UNCOMPRESSED;
             runTime_->writeNow();
-            resistance_->instance() = runTime_->timeName();
-            resistance_->write();
+            if (runTime_->writeFormat() != exact)
+            {
+                runTime_->writeObject(exact, ver, cmp, true);
+            }
+            for (regIOobject* f : {static_cast<regIOobject*>(resistance_.get()),
+                                   static_cast<regIOobject*>(epsRho_.get()),
+                                   static_cast<regIOobject*>(epsRhoY_.get())})
+            {
+                if (f)
+                {
+                    f->instance() = runTime_->timeName();
+                    f->writeObject(exact, ver, cmp, true);
+                }
+            }
             const fileName from = runTime_->timePath();
             fileName to = fileName(path);
             if (Pstream::parRun())

@@ -26,6 +26,9 @@ struct GasSettings {
   bool hydrostatic_start = false;
   std::vector<std::string> inlet_patches{"inlet"};    // for pressure_drop
   std::vector<std::string> outlet_patches{"outlet"};  // for pressure_drop
+  // The start time folder is a checkpoint's (cosim resume): its voidage, epsRho and epsRhoY are
+  // the previous step's values, the old times of the next step; no hydrostatic start.
+  bool resuming = false;
 };
 
 // Particles of one coupling step, in the order the orchestrator sent them.

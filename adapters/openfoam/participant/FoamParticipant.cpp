@@ -4,11 +4,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <optional>
-#include <cmath>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
@@ -163,12 +163,15 @@ void moveTo(const std::string& workdir) {
 
 // The part of configure every rank does.
 std::unique_ptr<GasDomain> makeGas(const RankBridge& bridge, std::vector<std::string> foamArgs,
-                                   std::string& yaml, double& species, std::string& workdir) {
+                                   std::string& yaml, double& species, double& resuming,
+                                   std::string& workdir) {
   bridge.share(yaml);
   bridge.share(species);
+  bridge.share(resuming);
   bridge.share(workdir);
   moveTo(workdir);
-  const AdapterSettings settings = parseAdapterSettings(yaml, species != 0);
+  AdapterSettings settings = parseAdapterSettings(yaml, species != 0);
+  settings.gas.resuming = resuming != 0;
   Argv argv(foamArgs);
   return GasDomain::create(argv.argc(), argv.argv(), settings.gas);
 }
@@ -213,8 +216,9 @@ void FoamParticipant::configure(const wire::Welcome& welcome) {
   if (!welcome.restart_from().empty())
     resumeAt = restoreTimeFolder(welcome.restart_from(), bridge_.size());
   double species = species_ ? 1.0 : 0.0;
+  double resuming = resumeAt ? 1.0 : 0.0;
   bridge_.command(RankCommand::configure);
-  gas_ = makeGas(bridge_, foamArgs_, yaml, species, workdir);
+  gas_ = makeGas(bridge_, foamArgs_, yaml, species, resuming, workdir);
   if (resumeAt && std::abs(gas_->time() - *resumeAt) > 1e-9 * std::max(1.0, *resumeAt)) {
     throw std::runtime_error(
         "cosimFoam: cannot resume: OpenFOAM started at t = " + std::to_string(gas_->time()) +
@@ -361,8 +365,8 @@ int serveRanks(const RankBridge& bridge, std::vector<std::string> foamArgs) {
     switch (bridge.command()) {
       case RankCommand::configure: {
         std::string yaml, workdir;
-        double species = 0;
-        gas = makeGas(bridge, foamArgs, yaml, species, workdir);
+        double species = 0, resuming = 0;
+        gas = makeGas(bridge, foamArgs, yaml, species, resuming, workdir);
         break;
       }
       case RankCommand::place:

@@ -15,11 +15,13 @@
 namespace cosim::liggghts {
 
 // Names of the per-atom properties the fix reads (fix property/atom variable names).
-inline constexpr const char* kDragCoefficientProperty = "cosimDragK";      // scalar [kg/s]
-inline constexpr const char* kFluidVelocityProperty = "cosimFluidVel";     // vector [m/s]
-inline constexpr const char* kExplicitForceProperty = "cosimExplicitF";    // vector [N]
+inline constexpr const char* kDragCoefficientProperty = "cosimDragK";    // scalar [kg/s]
+inline constexpr const char* kFluidVelocityProperty = "cosimFluidVel";   // vector [m/s]
+inline constexpr const char* kExplicitForceProperty = "cosimExplicitF";  // vector [N]
 // Written by the fix: every force on the atom except the fluid forcing, at the last step [N].
-inline constexpr const char* kOtherForceProperty = "cosimOtherF";          // vector [N]
+inline constexpr const char* kOtherForceProperty = "cosimOtherF";  // vector [N]
+// Written by the fix: the torque on the atom at the last step, kept for the same reason [N m].
+inline constexpr const char* kLastTorqueProperty = "cosimLastTorque";  // vector [N m]
 
 class DragRelaxationFix : public LAMMPS_NS::Fix {
  public:
@@ -33,11 +35,20 @@ class DragRelaxationFix : public LAMMPS_NS::Fix {
   // of the previous step, which still hold the previous interval's forcing.
   void refreshForces();
 
+  // The next setup (a `run ... pre yes`) keeps the stored other forces instead of taking them
+  // from the forces LIGGGHTS recomputes there. Those would differ from the ones the step saw:
+  // the contacts' damping is evaluated with the full-step velocity at a setup, with the
+  // half-step one inside a step. Used after writing a checkpoint and after resuming from one, so
+  // that neither changes the run.
+  void keepOtherForcesAtNextSetup() { keep_other_ = true; }
+
  private:
   LAMMPS_NS::Fix* drag_coefficient_ = nullptr;
   LAMMPS_NS::Fix* fluid_velocity_ = nullptr;
   LAMMPS_NS::Fix* explicit_force_ = nullptr;
   LAMMPS_NS::Fix* other_force_ = nullptr;
+  LAMMPS_NS::Fix* last_torque_ = nullptr;
+  bool keep_other_ = false;
   void lookup();
   void apply(bool store_other_force);
 };

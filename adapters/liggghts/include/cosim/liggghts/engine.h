@@ -45,6 +45,10 @@ struct State {
   std::vector<double> type;
 };
 
+// Written beside a restart file whose fix property/atom data hold the last step's forces other
+// than the fluid's (checkpoints written before that lack it and resume as before).
+inline constexpr const char* kOtherForcesMarker = "liggghts.other-forces";
+
 class Engine {
  public:
   // workdir: where LIGGGHTS writes its screen (liggghts.screen) and log (liggghts.log) files.
@@ -88,7 +92,9 @@ class Engine {
   void advance(int steps);
   // Gathers the state to rank 0 (sorted by id); other ranks get an empty State.
   State state() const;
-  // Writes a LIGGGHTS restart file (includes the coating mass); returns its path.
+  // Writes a LIGGGHTS restart file (includes the coating mass and the forces of the last step
+  // other than the fluid's, and beside it kOtherForcesMarker) without changing the run; returns
+  // its path.
   std::filesystem::path writeRestart(const std::filesystem::path& file);
 
   // true once a LIGGGHTS error left the instance unusable.
@@ -107,6 +113,7 @@ class Engine {
   LAMMPS_NS::LAMMPS* lmp_ = nullptr;
   class DragRelaxationFix* drag_fix_ = nullptr;  // owned by LIGGGHTS' fix list
   bool coupled_ = false;
+  bool keep_restored_forces_ = false;  // resumed from a restart that holds the other forces
   bool need_setup_ = true;  // next run must do a full setup (new fixes since the last run)
   bool broken_ = false;
 };
