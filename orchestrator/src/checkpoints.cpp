@@ -1,5 +1,7 @@
 #include "checkpoints.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
@@ -50,6 +52,7 @@ Json toJson(const CoupledState& s) {
   j["phases"] = s.phases;
   j["compute"] = s.compute;
   j["scene"] = s.scene;
+  j["particle_digest"] = s.particle_digest;
   return j;
 }
 
@@ -81,6 +84,8 @@ CoupledState fromJson(const Json& j) {
   s.phases = j.at("phases").get<std::map<std::string, double>>();
   s.compute = j.at("compute").get<std::map<std::string, double>>();
   s.scene = j.at("scene");
+  if (j.contains("particle_digest"))
+    s.particle_digest = j.at("particle_digest").get<std::map<std::string, std::string>>();
   return s;
 }
 
@@ -187,6 +192,50 @@ CoupledState readCoupledState(const fs::path& checkpoint) {
   } catch (const std::exception& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }
+}
+
+namespace {
+void fnv1a(std::uint64_t& h, const void* data, std::size_t bytes) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < bytes; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ULL;
+  }
+}
+std::string hex(std::uint64_t h) { return fmt::format("{:016x}", h); }
+}  // namespace
+
+std::map<std::string, std::string> particleDigest(const link::ParticleData& state) {
+  // In id order, so that a participant that reports its particles in another order agrees
+  std::vector<std::size_t> order(state.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return state.ids[a] < state.ids[b]; });
+  std::map<std::string, std::string> out;
+  std::uint64_t h = 14695981039346656037ULL;
+  for (std::size_t i : order) fnv1a(h, &state.ids[i], sizeof(std::int64_t));
+  out["ids"] = hex(h);
+  for (const std::string& name : state.names()) {
+    const auto& v = state.get(name);
+    const std::size_t per = state.size() ? v.size() / state.size() : 0;
+    h = 14695981039346656037ULL;
+    for (std::size_t i : order) fnv1a(h, v.data() + i * per, per * sizeof(double));
+    out[name] = hex(h);
+  }
+  return out;
+}
+
+std::vector<std::string> digestDifferences(const std::map<std::string, std::string>& saved,
+                                           const std::map<std::string, std::string>& now) {
+  std::vector<std::string> diff;
+  for (const auto& [name, digest] : saved) {
+    const auto it = now.find(name);
+    if (it == now.end())
+      diff.push_back(name + " (not reported after the resume)");
+    else if (it->second != digest)
+      diff.push_back(name);
+  }
+  return diff;
 }
 
 std::vector<std::string> sceneDifferences(const YAML::Node& saved, const YAML::Node& now) {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "coating_ledger.h"
+#include "cosim/link/particle_data.h"
 #include "stability.h"
 
 namespace cosim::orchestrator {
@@ -34,7 +35,19 @@ struct CoupledState {
   std::map<std::string, double> phases;   // wall seconds per phase so far
   std::map<std::string, double> compute;  // compute seconds per participant so far
   std::string scene;                      // the resolved scenario it was written with (YAML)
+  // Digest of each particle field at the checkpoint ("ids" and every field name -> 16 hex
+  // digits): a resume checks that the particle participant read back exactly this state.
+  std::map<std::string, std::string> particle_digest;
 };
+
+// FNV-1a digests of the particle state, one per field (and "ids"), over the values' bytes in
+// id order: equal digests mean the same state to the bit.
+std::map<std::string, std::string> particleDigest(const link::ParticleData& state);
+
+// The fields whose digests differ between a checkpoint and the state read back ("" when they
+// agree or the checkpoint has none).
+std::vector<std::string> digestDifferences(const std::map<std::string, std::string>& saved,
+                                           const std::map<std::string, std::string>& now);
 
 class CheckpointStore {
  public:

@@ -187,6 +187,19 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   time_ = saved.time;
   participants_.setClock(step_, time_);
   reportParticleState({});
+  // The particles must continue from exactly the state the checkpoint was written with
+  if (const auto diff = digestDifferences(saved.particle_digest, particleDigest(state_));
+      !diff.empty()) {
+    std::string fields;
+    for (const auto& f : diff) fields += (fields.empty() ? "" : ", ") + f;
+    throw RunFailure("particles", "cannot resume from " + checkpoint->string() +
+                                      ": the particle state read back from the checkpoint is not "
+                                      "the one written, in: " +
+                                      fields +
+                                      " (bit for bit): its restart data do not hold the whole "
+                                      "state, and the run would not continue as it was; see "
+                                      "docs/restarts.md");
+  }
   ledger_.restore(saved.balance, saved.pending);
   totals_ = saved.totals;
   monitor_.restore(saved.monitor);
@@ -226,6 +239,7 @@ void Coupler::writeCheckpoint() {
   YAML::Emitter em;
   em << sc_.resolved;
   s.scene = em.c_str();
+  s.particle_digest = particleDigest(state_);
   const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint.keep);
   next_checkpoint_ = time_ + sc_.checkpoint.interval;
   log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());

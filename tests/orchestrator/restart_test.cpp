@@ -222,15 +222,39 @@ TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
       << text(w.dir / "nothing.out");
 }
 
+// A resume checks that the particles came back exactly as the checkpoint wrote them (a digest of
+// every field in orchestrator.json): a participant whose restart lost a field is refused, naming
+// it.
+TEST(Restart, AParticleStateThatDidNotComeBackExactlyIsRefusedNamingTheField) {
+  Workspace w;
+  auto run = start(
+      w, {"run", "scene.yaml", "-o", "r", "--quiet", "--set", "coupling.end_time=0.04"}, "r.out");
+  ASSERT_EQ(finish(run), 0) << text(w.dir / "r.out");
+  const fs::path state = w.dir / "r/checkpoints/0.04/orchestrator.json";
+  nlohmann::json j = analysis::readJsonFile(state);
+  ASSERT_TRUE(j.contains("particle_digest")) << j.dump();
+  ASSERT_TRUE(j["particle_digest"].contains("velocity")) << j["particle_digest"].dump();
+  // As if the restart had brought the velocities back rounded
+  j["particle_digest"]["velocity"] = "0123456789abcdef";
+  std::ofstream(state) << j.dump(1);
+  auto resumed = start(w, {"resume", "r", "--quiet", "--set", "coupling.end_time=0.06"}, "res.out");
+  EXPECT_NE(finish(resumed), 0);
+  const std::string out = text(w.dir / "res.out");
+  EXPECT_NE(out.find("read back from the checkpoint is not the one written, in: velocity"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("position"), std::string::npos) << "only the velocity differs: " << out;
+}
+
 // Runs started at the same time with the same -o never share a folder: each claims its own
 // (same, same-2, ...) and each records a complete run; no lock is left behind.
 TEST(RunFolder, RunsStartedTogetherWithTheSameFolderEachGetTheirOwn) {
   Workspace w;
   std::vector<ChildProcess> runs;
   for (int i = 0; i < 5; ++i) {
-    runs.push_back(start(w, {"run", "scene.yaml", "-o", "same", "--quiet", "--set",
-                             "checkpoint.interval=0"},
-                         "same" + std::to_string(i) + ".out"));
+    runs.push_back(
+        start(w, {"run", "scene.yaml", "-o", "same", "--quiet", "--set", "checkpoint.interval=0"},
+              "same" + std::to_string(i) + ".out"));
   }
   for (auto& r : runs) EXPECT_EQ(finish(r), 0);
   const auto one = analysis::readTimeSeries(w.dir / "same/timeseries.csv");

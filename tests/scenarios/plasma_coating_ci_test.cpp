@@ -81,7 +81,8 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
 
 // Resume with the real solvers (docs/restarts.md): the bed run to 0.05 s with checkpoints every
 // 0.01 s, its folder cut back to the checkpoint at 0.03 s (as after a kill), resumed. The
-// orchestrator's state comes back exactly (the balance closes across the restart). The fluid's
+// orchestrator's state comes back exactly (the balance closes across the restart), and so does the
+// particles' (the resume checks its digest bit for bit, or stops). The fluid's
 // checkpoint carries the last step's voidage and eps rho, so the first step after the resume has
 // the parcels' displacement flow as in the uninterrupted run, and LIGGGHTS starts from the forces
 // and torques the step would have started from: its row of the time series agrees to round-off
