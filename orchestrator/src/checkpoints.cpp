@@ -50,6 +50,14 @@ Json toJson(const CoupledState& s) {
   j["phases"] = s.phases;
   j["compute"] = s.compute;
   j["scene"] = s.scene;
+  if (s.zone_passes) {
+    Json open = Json::array();
+    for (const auto& [id, p] : s.zone_passes->open)
+      open.push_back({id, p.entry_time, p.coating, p.at_start});
+    j["zone_passes"] = {{"rows", s.zone_passes->rows},
+                        {"coating_outside", s.zone_passes->coating_outside},
+                        {"open", open}};
+  }
   return j;
 }
 
@@ -81,6 +89,17 @@ CoupledState fromJson(const Json& j) {
   s.phases = j.at("phases").get<std::map<std::string, double>>();
   s.compute = j.at("compute").get<std::map<std::string, double>>();
   s.scene = j.at("scene");
+  if (j.contains("zone_passes")) {
+    const Json& z = j.at("zone_passes");
+    ZonePassRecorder::State zp;
+    zp.rows = z.at("rows");
+    zp.coating_outside = z.at("coating_outside");
+    for (const auto& e : z.at("open")) {
+      zp.open[e.at(0).get<std::int64_t>()] = {e.at(1).get<double>(), e.at(2).get<double>(),
+                                              e.at(3).get<bool>()};
+    }
+    s.zone_passes = std::move(zp);
+  }
   return s;
 }
 

@@ -1,8 +1,8 @@
 // Checkpoints of the whole coupled state (docs/restarts.md). RUN/checkpoints/<time>/ holds one
 // folder per participant (what its adapter's Checkpoint wrote: LIGGGHTS restart file, OpenFOAM
 // time folder, ...) and orchestrator.json, the coupler's own state: time, step, the coating owed,
-// the balance totals, the monitors, the recorders' positions. A checkpoint is written under a
-// temporary name and renamed when every part is on disk: it is complete or absent.
+// the balance totals, the monitors, the recorders' positions, the open zone passes. A checkpoint is
+// written under a temporary name and renamed when every part is on disk: it is complete or absent.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -16,6 +16,7 @@
 
 #include "coating_ledger.h"
 #include "stability.h"
+#include "zone_passes.h"
 
 namespace cosim::orchestrator {
 
@@ -34,6 +35,9 @@ struct CoupledState {
   std::map<std::string, double> phases;   // wall seconds per phase so far
   std::map<std::string, double> compute;  // compute seconds per participant so far
   std::string scene;                      // the resolved scenario it was written with (YAML)
+  // Scenes with a coating zone: the open passes and the rows of zone_passes.csv. Absent in a
+  // checkpoint written without pass recording (an older cosim, or a scene without a zone).
+  std::optional<ZonePassRecorder::State> zone_passes;
 };
 
 class CheckpointStore {
