@@ -101,6 +101,9 @@ ZonePassStatistics zonePassStatistics(const std::vector<ZonePass>& passes,
   if (s.parcels > 0) {
     s.never_entered_share = static_cast<double>(s.never_entered) / static_cast<double>(s.parcels);
     s.passes_per_parcel = spreadOf(counts, false);
+    // One bin per whole number of passes (up to 100 bins).
+    const auto span = static_cast<std::size_t>(s.passes_per_parcel.max - s.passes_per_parcel.min);
+    if (span > 0 && span < 100) s.passes_per_parcel.histogram = histogram(counts, span + 1);
     s.passes_cv =
         s.passes_per_parcel.mean > 0 ? s.passes_per_parcel.sd / s.passes_per_parcel.mean : kNaN;
     s.time_in_zone_per_parcel = spreadOf(s.parcel_time_in_zone, false);

@@ -72,7 +72,12 @@ RunResult Coupler::run() {
     std::uint64_t done = 0;
     if (opt_.resume.empty()) {
       record_.startRecorders();
-      if (recordsZonePasses()) passes_.emplace().start(record_.folder());
+      if (recordsZonePasses()) {
+        passes_.emplace().start(record_.folder());
+      } else {
+        std::error_code ec;  // a run folder reused with --overwrite keeps no stale passes
+        std::filesystem::remove(record_.folder() / analysis::kZonePassesFile, ec);
+      }
       participants_.start(record_.folder());
       participants_.handshake();
       reportInitialState();

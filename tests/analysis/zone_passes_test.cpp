@@ -6,11 +6,18 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 
+#include "cosim/analysis/files.h"
+#include "cosim/analysis/parcel_places.h"
+#include "cosim/analysis/particle_file.h"
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/analysis/report.h"
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/analysis/zone_pass_statistics.h"
+#include "cosim/link/fields.h"
 
 namespace fs = std::filesystem;
 using namespace cosim::analysis;
@@ -120,6 +127,9 @@ TEST(ZonePassStatistics, HandMadeParcelsGiveTheHandCountedNumbers) {
   EXPECT_DOUBLE_EQ(s.passes_per_parcel.mean, 1.75);
   EXPECT_NEAR(s.passes_per_parcel.sd, std::sqrt(4.75 / 4.0), 1e-15);
   EXPECT_NEAR(s.passes_cv, std::sqrt(4.75 / 4.0) / 1.75, 1e-15);
+  // One bin per whole number of passes 0..3: one parcel with 0, none with 1, two with 2, one
+  // with 3.
+  EXPECT_EQ(s.passes_per_parcel.histogram.counts, (std::vector<std::size_t>{1, 0, 2, 1}));
 
   // Cycles 2, 3, 2: mean 7/3, sample variance (1/9 + 4/9 + 1/9) / 2 = 1/3; p90 = 2 + 0.8.
   EXPECT_EQ(s.cycle_time.n, 3u);
@@ -233,4 +243,113 @@ TEST(MannPrediction, ARenewalProcessOfKnownCycleTimesIsPredicted) {
       "renewal bed: cycles %.0f, mu_T %.5f s, sigma_T %.5f s, CV simulated %.5f, "
       "predicted %.5f, true %.5f\n",
       cycles, s.cycle_time.mean, s.cycle_time.sd, cv, p.cv, cv_true);
+}
+
+namespace {
+
+// A run folder of four parcels over 2 s: 1 and 2 near the axis and high, pass the zone; 3 and 4
+// low at the wall, never in it. Snapshots at 0, 1, 2 s.
+//   parcel  x [m]    z at 0, 1, 2 s [m]        passes
+//   1       0.001    0.02, 0.03, 0.04         [0.2, 0.4] 1 pg, [1.0, 1.3] 2 pg, [1.8, 2.0) 1 pg
+//   (run end) 2      -0.001    0.02, 0.02, 0.02         [0, 0.5] 3 pg (at start), [1.5, 1.7] 1 pg
+//   3       0.01     0.001, 0.001, 0.001      none
+//   4      -0.01     0.002, 0.004, 0.003      none
+fs::path makeRunWithPasses() {
+  const fs::path dir = scratch("run-with-passes");
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass});
+    const double x[4] = {0.001, -0.001, 0.01, -0.01};
+    const double z[3][4] = {
+        {0.02, 0.02, 0.001, 0.002}, {0.03, 0.02, 0.001, 0.004}, {0.04, 0.02, 0.001, 0.003}};
+    const double m[3][4] = {{0, 0, 0, 0}, {1e-12, 3e-12, 0, 0}, {4e-12, 4e-12, 0, 0}};
+    for (int s = 0; s < 3; ++s) {
+      cosim::link::ParticleData p;
+      p.ids = {1, 2, 3, 4};
+      auto& pos = p.field(cosim::field::position);
+      pos.resize(12);
+      for (int i = 0; i < 4; ++i) {
+        pos[3 * i] = x[i];
+        pos[3 * i + 2] = z[s][i];
+      }
+      p.field(cosim::field::coating_mass) = {m[s][0], m[s][1], m[s][2], m[s][3]};
+      rec.write(static_cast<double>(s), p);
+    }
+  }
+  ZonePassWriter w(dir / kZonePassesFile);
+  w.write({{2, 0.0, 0.5, 3e-12, true, Exit::left},
+           {1, 0.2, 0.4, 1e-12, false, Exit::left},
+           {1, 1.0, 1.3, 2e-12, false, Exit::left},
+           {2, 1.5, 1.7, 1e-12, false, Exit::left},
+           {1, 1.8, 2.0, 1e-12, false, Exit::run_end}});
+  return dir;
+}
+
+}  // namespace
+
+TEST(ParcelPlaces, GroupAveragesByHand) {
+  const fs::path dir = makeRunWithPasses();
+  const ParticleFile f(dir / "particles.h5");
+  const auto p = placesOf(f, {3, 4});
+  ASSERT_TRUE(p.valid) << p.problem;
+  EXPECT_NEAR(p.axis_x, 0.0, 1e-18);
+  EXPECT_EQ(p.snapshots, 3u);
+  EXPECT_EQ(p.group.parcels, 2u);
+  EXPECT_NEAR(p.group.mean_height, (0.001 + 0.003) / 2, 1e-15);
+  EXPECT_NEAR(p.group.mean_radius, 0.01, 1e-15);
+  EXPECT_NEAR(p.group.start_height, (0.001 + 0.002) / 2, 1e-15);
+  EXPECT_NEAR(p.others.mean_height, (0.03 + 0.02) / 2, 1e-15);
+  EXPECT_NEAR(p.others.mean_radius, 0.001, 1e-15);
+  EXPECT_NEAR(p.others.start_height, 0.02, 1e-15);
+}
+
+TEST(ZonePassReport, TheReportShowsThePassesAndWhereTheMissingParcelsSit) {
+  const fs::path dir = makeRunWithPasses();
+  ReportOptions o;
+  o.runs = {dir};
+  o.plots = false;
+  o.bootstrap_resamples = 0;
+  std::ostringstream log;
+  o.log = &log;
+  ASSERT_EQ(runReport(o), 0) << log.str();
+  const auto j = readJsonFile(dir / "report" / "report.json").at("zone_passes");
+  ASSERT_TRUE(j.at("recorded").get<bool>());
+  EXPECT_EQ(j.at("parcels").get<int>(), 4);
+  EXPECT_EQ(j.at("passes").get<int>(), 5);
+  EXPECT_EQ(j.at("never_entered").get<int>(), 2);
+  EXPECT_DOUBLE_EQ(j.at("never_entered_share").get<double>(), 0.5);
+  // Cycles of parcel 1 only (parcel 2's first entry is not observed): 0.8 and 0.8 s.
+  EXPECT_EQ(j.at("cycle_time_s").at("n").get<int>(), 2);
+  EXPECT_NEAR(j.at("cycle_time_s").at("mean").get<double>(), 0.8, 1e-15);
+  // Entry rate: 4 parcels x 2 s / 4 observed entries.
+  EXPECT_NEAR(j.at("cycle_time_from_rate_s").get<double>(), 2.0, 1e-15);
+  EXPECT_NEAR(j.at("coating_in_passes_kg").get<double>(), 8e-12, 1e-24);
+  EXPECT_NEAR(j.at("coating_on_parcels_kg").get<double>(), 8e-12, 1e-24);
+  EXPECT_NEAR(j.at("w0_kg").get<double>(), 8e-12 / 5, 1e-24);
+  // Mann at the run end (t = 2 s): W0 t / mu_T = 1.6e-12 * 2 / 0.8 = 4e-12 per parcel.
+  EXPECT_NEAR(j.at("mann_prediction").at(0).at("t").get<double>(), 2.0, 1e-15);
+  EXPECT_NEAR(j.at("mann_prediction").at(0).at("mean").get<double>(), 4e-12, 1e-24);
+  const auto& pl = j.at("never_entered_places");
+  EXPECT_NEAR(pl.at("never_entered").at("mean_height_m").get<double>(), 0.002, 1e-15);
+  EXPECT_NEAR(pl.at("others").at("mean_radius_m").get<double>(), 0.001, 1e-15);
+  EXPECT_TRUE(j.at("cycles_cut_by_run").get<bool>());
+
+  const std::string html = slurp(dir / "report" / "report.html");
+  EXPECT_NE(html.find("Never reached the zone:</b> 2 of 4 parcels"), std::string::npos);
+  EXPECT_NE(html.find("never reached the zone</td><td>2</td><td>2.0</td><td>10.0</td>"),
+            std::string::npos)
+      << "mean height 2.0 mm, 10.0 mm from the axis";
+  EXPECT_NE(html.find("Hypothetical"), std::string::npos) << "cycles cut by the run are labelled";
+  const std::string csv = slurp(dir / "report" / "zone_passes_per_parcel.csv");
+  EXPECT_EQ(csv,
+            "parcel_id,passes,time_in_zone_s,coating_in_passes_kg\n"
+            "1,3,0.7,4e-12\n2,2,0.7,4e-12\n3,0,0,0\n4,0,0,0\n");
+
+  // A run without the file says so and is reported as before.
+  fs::remove(dir / kZonePassesFile);
+  ASSERT_EQ(runReport(o), 0) << log.str();
+  EXPECT_FALSE(
+      readJsonFile(dir / "report" / "report.json").at("zone_passes").at("recorded").get<bool>());
+  EXPECT_NE(slurp(dir / "report" / "report.html").find("No pass statistics"), std::string::npos);
 }

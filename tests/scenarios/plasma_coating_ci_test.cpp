@@ -167,5 +167,22 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   double dx = 0.0;
   for (std::size_t i = 0; i < xa.size(); ++i) dx = std::max(dx, std::fabs(xa[i] - xb[i]));
   EXPECT_LT(dx, 1e-4) << "largest position difference [m]";
+
+  // The passes continue across the restart (the open ones are part of the checkpoint): each
+  // parcel's coating is still the sum of its passes', and a parcel without a pass has none.
+  std::map<std::int64_t, double> inPasses;
+  for (const auto& p : cosim::analysis::readZonePasses(base / "cut" / "zone_passes.csv")) {
+    EXPECT_LT(p.entry_time, p.exit_time);
+    inPasses[p.parcel_id] += p.coating;
+  }
+  const auto& mb = b.get(cosim::field::coating_mass);
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const auto it = inPasses.find(b.ids[i]);
+    if (it == inPasses.end()) {
+      EXPECT_EQ(mb[i], 0.0) << "parcel " << b.ids[i];
+    } else {
+      EXPECT_NEAR(mb[i], it->second, 1e-12 * mb[i]) << "parcel " << b.ids[i];
+    }
+  }
   fs::remove_all(base);
 }
