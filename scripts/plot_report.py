@@ -336,6 +336,36 @@ def plot_window_study(r, folder):
     save(fig, folder, "window_study.png")
 
 
+def plot_zone_passes(r, folder):
+    """Histograms of passes per parcel, cycle time and pass duration (zone_passes in report.json)."""
+    z = r.get("zone_passes") or {}
+    if not z.get("recorded"):
+        return
+    panels = [("passes_per_parcel", "passes through the zone per parcel", 1.0, ""),
+              ("cycle_time_s", "cycle time (entry to next entry)", 1e3, "ms"),
+              ("pass_duration_s", "time in the zone per pass", 1e3, "ms")]
+    panels = [p for p in panels if z[p[0]]["n"] > 0 and z[p[0]]["counts"]]
+    if not panels:
+        return
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.8 * len(panels), 3.2), squeeze=False)
+    for ax, (key, label, f, unit) in zip(axes[0], panels):
+        d = z[key]
+        edges = num(d["edges"]) * f
+        counts = np.array(d["counts"], dtype=float)
+        ax.bar(edges[:-1], counts, width=np.diff(edges), align="edge", color="#9fcf8f",
+               edgecolor="#3b7a2a", lw=0.5)
+        ax.set_xlabel(label + (" [%s]" % unit if unit else ""))
+        ax.set_ylabel("parcels" if key == "passes_per_parcel" else "count")
+        mean = d.get("mean")
+        if mean is not None:
+            ax.axvline(mean * f, color="r", lw=1.0)
+            ax.set_title("mean %.3g%s, n = %d" % (mean * f, " " + unit if unit else "", d["n"]), fontsize=9)
+    if z.get("never_entered_share") is not None:
+        axes[0][0].text(0.98, 0.95, "never in the zone: %.1f %%" % (100 * z["never_entered_share"]),
+                        transform=axes[0][0].transAxes, ha="right", va="top", fontsize=8)
+    save(fig, folder, "zone_passes.png")
+
+
 def run_report(folder):
     with open(os.path.join(folder, "report.json")) as fh:
         r = json.load(fh)
@@ -351,6 +381,7 @@ def run_report(folder):
         plot_refused_distributions(r, folder)
     plot_window_study(r, folder)
     plot_mass_balance(r, folder)
+    plot_zone_passes(r, folder)
 
 
 def comparison_report(folder):

@@ -126,6 +126,12 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
     r["verdict"] = a.verdict.summary();
     r["mass_balance_error_percent"] = a.mass_balance ? a.mass_balance->error_percent : std::nan("");
     r["wall_seconds"] = a.wall_seconds;
+    const double nan = std::nan("");
+    const auto* zp = a.zone_passes ? &a.zone_passes->stats : nullptr;
+    r["never_in_zone_share"] = zp ? zp->never_entered_share : nan;
+    r["cycle_time_s"] = zp ? zp->cycle_time.mean : nan;
+    r["cycle_time_from_rate_s"] = zp ? zp->cycle_time_from_rate : nan;
+    r["pass_duration_s"] = zp ? zp->pass_duration.mean : nan;
     rs.push_back(r);
   }
   return j;

@@ -13,6 +13,7 @@
 #include "cosim/analysis/summary.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
+#include "report_internal.h"
 
 namespace cosim::analysis {
 
@@ -173,6 +174,7 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
       a.mass_balance_problem = std::string("no mass balance: ") + e.what();
     }
   }
+  a.zone_passes = analyseZonePasses(run, file, a, o, a.zone_passes_problem);
   return a;
 }
 

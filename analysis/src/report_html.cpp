@@ -55,6 +55,9 @@ const Figure kRunFigures[] = {
     {"window_study.png", "Error against run time: extrapolated CV and the error of the prediction at the end of the "
                          "run, for fit windows of growing length, against the wall time needed to simulate them."},
     {"mass_balance.png", "Cumulative precursor in, out, held in the gas and coated on particles (paper Fig. 3)."},
+    {"zone_passes.png",
+     "Passes through the coating zone: passes per parcel (zero: never reached the zone), cycle "
+     "time from one entry to the next, and time in the zone per pass (red: mean)."},
 };
 
 void figures(std::ostringstream& h, const std::vector<std::string>& pngs, const Figure* list, std::size_t n,
@@ -114,6 +117,7 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
 
   h << "<h2>Mixing verdict</h2>\n";
   verdictBlock(h, a.verdict);
+  h << zonePassesHtml(a);
 
   const auto& last = a.snapshots.back();
   h << "<h2>Coating at the end of the run</h2>\n<table><tr><th class=l>quantity</th><th>value</th></tr>"
@@ -287,7 +291,8 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector
   h << "<table><tr><th class=l>run</th>";
   for (const auto& n : varied) h << "<th>" << htmlEscape(n) << "</th>";
   h << "<th>end [s]</th><th>total coating [kg]</th><th>mean [kg]</th><th>CV</th>"
-       "<th>never coated</th><th>a1 [kg/s]</th><th>a2 [kg/s<sup>0.5</sup>]</th><th>CV at 20 min</th>"
+       "<th>never coated</th><th>never in the zone</th><th>mean cycle [s]</th>"
+       "<th>a1 [kg/s]</th><th>a2 [kg/s<sup>0.5</sup>]</th><th>CV at 20 min</th>"
        "<th>mass balance error %</th><th>wall time [s]</th><th class=l>verdict</th></tr>\n";
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& a = runs[i];
@@ -297,6 +302,9 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector
     for (const auto& n : varied) h << "<td>" << g(parameter(a, n), "{:.6g}") << "</td>";
     h << "<td>" << g(l.time) << "</td><td>" << g(l.total) << "</td><td>" << g(l.mean) << "</td><td>"
       << g(l.cv) << "</td><td>" << pct(l.uncoated_share) << "</td><td>"
+      << (a.zone_passes ? pct(a.zone_passes->stats.never_entered_share) : "&ndash;") << "</td><td>"
+      << (a.zone_passes ? g(a.zone_passes->stats.cycle_time.mean, "{:.3g}") : "&ndash;")
+      << "</td><td>"
       << (a.fit.ok ? g(a.fit.a1) + " &plusmn; " + g(a.a1Error(), "{:.2g}") : "&ndash;")
       << "</td><td>"
       << (a.fit.ok ? g(a.fit.a2) + " &plusmn; " + g(a.a2Error(), "{:.2g}") : "&ndash;")

@@ -3,9 +3,11 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/report.h"
 
 namespace cosim::analysis {
@@ -19,6 +21,16 @@ void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::file
 void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders,
                          const std::filesystem::path& dir, const std::vector<std::string>& pngs,
                          const std::string& plot_message);
+
+// The zone-pass part of a run's report (report_passes.cpp): the analysis from zone_passes.csv
+// (nullopt with `problem` saying why when the run has none), its report.json object, its CSV
+// table and its HTML section.
+std::optional<ZonePassReport> analyseZonePasses(const std::filesystem::path& run,
+                                                const ParticleFile& file, const RunAnalysis& a,
+                                                const ReportOptions& o, std::string& problem);
+Json zonePassesJson(const RunAnalysis& a);
+void writeZonePassTables(const RunAnalysis& a, const std::filesystem::path& dir);
+std::string zonePassesHtml(const RunAnalysis& a);
 
 // Scenario parameters (summary.json) present in every run with different values.
 std::vector<std::string> variedParameters(const std::vector<RunAnalysis>& runs);

@@ -263,10 +263,12 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   }
   j["wall_seconds"] = a.wall_seconds;
   j["steps"] = static_cast<unsigned long long>(a.steps);
+  j["zone_passes"] = zonePassesJson(a);
   return j;
 }
 
 void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir) {
+  writeZonePassTables(a, dir);
   {
     Csv c(dir / "statistics.csv",
           "time_s,count,mean_kg,std_kg,variance_kg2,cv,uncoated_share,min_kg,max_kg,total_kg,"

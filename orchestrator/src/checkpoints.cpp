@@ -53,6 +53,14 @@ Json toJson(const CoupledState& s) {
   j["compute"] = s.compute;
   j["scene"] = s.scene;
   j["particle_digest"] = s.particle_digest;
+  if (s.zone_passes) {
+    Json open = Json::array();
+    for (const auto& [id, p] : s.zone_passes->open)
+      open.push_back({id, p.entry_time, p.coating, p.at_start});
+    j["zone_passes"] = {{"rows", s.zone_passes->rows},
+                        {"coating_outside", s.zone_passes->coating_outside},
+                        {"open", open}};
+  }
   return j;
 }
 
@@ -86,6 +94,17 @@ CoupledState fromJson(const Json& j) {
   s.scene = j.at("scene");
   if (j.contains("particle_digest"))
     s.particle_digest = j.at("particle_digest").get<std::map<std::string, std::string>>();
+  if (j.contains("zone_passes")) {
+    const Json& z = j.at("zone_passes");
+    ZonePassRecorder::State zp;
+    zp.rows = z.at("rows");
+    zp.coating_outside = z.at("coating_outside");
+    for (const auto& e : z.at("open")) {
+      zp.open[e.at(0).get<std::int64_t>()] = {e.at(1).get<double>(), e.at(2).get<double>(),
+                                              e.at(3).get<bool>()};
+    }
+    s.zone_passes = std::move(zp);
+  }
   return s;
 }
 

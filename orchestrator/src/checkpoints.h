@@ -1,8 +1,8 @@
 // Checkpoints of the whole coupled state (docs/restarts.md). RUN/checkpoints/<time>/ holds one
 // folder per participant (what its adapter's Checkpoint wrote: LIGGGHTS restart file, OpenFOAM
 // time folder, ...) and orchestrator.json, the coupler's own state: time, step, the coating owed,
-// the balance totals, the monitors, the recorders' positions. A checkpoint is written under a
-// temporary name and renamed when every part is on disk: it is complete or absent.
+// the balance totals, the monitors, the recorders' positions, the open zone passes. A checkpoint is
+// written under a temporary name and renamed when every part is on disk: it is complete or absent.
 #pragma once
 
 #include <yaml-cpp/yaml.h>
@@ -17,6 +17,7 @@
 #include "coating_ledger.h"
 #include "cosim/link/particle_data.h"
 #include "stability.h"
+#include "zone_passes.h"
 
 namespace cosim::orchestrator {
 
@@ -38,6 +39,9 @@ struct CoupledState {
   // Digest of each particle field at the checkpoint ("ids" and every field name -> 16 hex
   // digits): a resume checks that the particle participant read back exactly this state.
   std::map<std::string, std::string> particle_digest;
+  // Scenes with a coating zone: the open passes and the rows of zone_passes.csv. Absent in a
+  // checkpoint written without pass recording (an older cosim, or a scene without a zone).
+  std::optional<ZonePassRecorder::State> zone_passes;
 };
 
 // FNV-1a digests of the particle state, one per field (and "ids"), over the values' bytes in

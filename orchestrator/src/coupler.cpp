@@ -72,6 +72,12 @@ RunResult Coupler::run() {
     std::uint64_t done = 0;
     if (opt_.resume.empty()) {
       record_.startRecorders();
+      if (recordsZonePasses()) {
+        passes_.emplace().start(record_.folder());
+      } else {
+        std::error_code ec;  // a run folder reused with --overwrite keeps no stale passes
+        std::filesystem::remove(record_.folder() / analysis::kZonePassesFile, ec);
+      }
       participants_.start(record_.folder());
       participants_.handshake();
       reportInitialState();
@@ -121,6 +127,7 @@ RunResult Coupler::run() {
     if (progress) progress->abort();
     participants_.shutdown(false);
   }
+  closeZonePasses(result.steps);
   result.wall_seconds = wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count();
   result.final_state = state_;
   result.totals = totals_;
@@ -179,6 +186,12 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   resume_accepted_ = true;  // from here on the run folder changes
   record_.writeResolvedScene();
   record_.resumeRecorders(saved.series_rows, saved.time, saved.next_output);
+  if (recordsZonePasses() && saved.zone_passes) {
+    passes_.emplace().resume(record_.folder(), *saved.zone_passes);
+  } else if (recordsZonePasses()) {
+    log_.warn("the checkpoint holds no zone passes (written by an older cosim): " +
+              std::string(analysis::kZonePassesFile) + " is not continued for this run");
+  }
   participants_.resumeFrom(*checkpoint);
   participants_.start(record_.folder());
   participants_.handshake();
@@ -240,6 +253,7 @@ void Coupler::writeCheckpoint() {
   em << sc_.resolved;
   s.scene = em.c_str();
   s.particle_digest = particleDigest(state_);
+  if (passes_) s.zone_passes = passes_->state();
   const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint.keep);
   next_checkpoint_ = time_ + sc_.checkpoint.interval;
   log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());
@@ -310,6 +324,7 @@ CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
   check(terms.forcing, "models (forcing)");
   if (step_ == 1) refuseOrWarn(checkFirstStep(sc_, state_, samples, terms.forcing));
   if (plan_.coating) ledger_.pay(terms.forcing);
+  if (passes_) passes_->update(time_, state_.ids, terms.in_zone);  // time_: the step's start
   phases_.lap("models");
   return terms;
 }
@@ -347,6 +362,7 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
     const auto fr = link::ParticleData::fromWire(fa.state());
     check(fr, "fluid");
     ledger_.owe(fr);
+    if (passes_) passes_->credit(fr);
     const auto& species = fa.fluid().species();
     ledger_.addFlows(species.precursor_in(), species.precursor_out());
     ledger_.setHeld(species.precursor_held());
@@ -381,6 +397,8 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
     const auto& pa = *replies.particles;
     ledger_.leave({pa.deleted_ids().begin(), pa.deleted_ids().end()},
                   pa.particles().deleted_coating_mass());
+    if (passes_ && !pa.deleted_ids().empty())
+      passes_->leave({pa.deleted_ids().begin(), pa.deleted_ids().end()}, time_);
     if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
     if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
   }
@@ -439,6 +457,24 @@ void Coupler::finishRun() {
   totals_["particles_inserted"] += 0.0;
   totals_["particles_deleted"] += 0.0;
   if (plan_.coating) ledger_.totals(state_, totals_);
+}
+
+bool Coupler::recordsZonePasses() const {
+  return plan_.coating && models_.zone && scheme_->evaluatesEveryStep();
+}
+
+void Coupler::closeZonePasses(std::uint64_t steps_done) {
+  if (!passes_) return;
+  try {
+    passes_->close(stepTime(sc_.coupling.start_time, sc_.coupling.dt, steps_done));
+    if (passes_->coatingOutsidePasses() != 0.0) {
+      log_.warn("zone passes: " + analysis::formatShortest(passes_->coatingOutsidePasses()) +
+                " kg of coating went to parcels outside the coating zone (expected 0)");
+    }
+  } catch (const std::exception& e) {
+    log_.warn(std::string("could not finish ") + analysis::kZonePassesFile + ": " + e.what());
+  }
+  passes_.reset();
 }
 
 void Coupler::check(const link::ParticleData& s, const std::string& where) const {

@@ -4,6 +4,7 @@
 //   CoatingLedger   coating owed and paid, the precursor balance (coating_ledger.h)
 //   RunRecord       run folder, time series, snapshots, summary (run_record.h)
 //   StepMonitor     what no physics allows, checked every step (stability.h)
+//   ZonePassRecorder every parcel's passes through the coating zone (zone_passes.h)
 // Whatever happens (a crash, silence, Ctrl-C, an unphysical state), everything is stopped and
 // what was recorded so far stays, with a summary that says why the run ended.
 #pragma once
@@ -30,6 +31,7 @@
 #include "run_record.h"
 #include "scenario.h"
 #include "stability.h"
+#include "zone_passes.h"
 
 namespace cosim::orchestrator {
 
@@ -90,6 +92,10 @@ class Coupler {
   void reportParticleState(const link::ParticleData& terms);
   void finishRun();
   void resetTimings();
+  // Scenes with a coating zone whose membership is decided at every step (not cosim bench).
+  bool recordsZonePasses() const;
+  // Every pass still open is written with the time of the last finished step.
+  void closeZonePasses(std::uint64_t steps_done);
 
   void check(const link::ParticleData& state, const std::string& where) const;
   void refuseOrWarn(const StabilityReport& report);
@@ -115,6 +121,7 @@ class Coupler {
   std::unique_ptr<CouplingScheme> scheme_;
   CoatingLedger ledger_;
   StepMonitor monitor_;
+  std::optional<ZonePassRecorder> passes_;
   Progress* progress_ = nullptr;
 
   std::optional<CheckpointStore> checkpoints_;

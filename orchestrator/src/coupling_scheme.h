@@ -30,6 +30,9 @@ class CouplingScheme {
     return std::nullopt;
   }
   virtual AdvanceReplies advance(Participants& participants, const CouplingTerms& terms) = 0;
+  // False when later intervals replay earlier terms: the zone membership is then not known at
+  // every step, and no zone passes are recorded.
+  virtual bool evaluatesEveryStep() const { return true; }
 };
 
 // Explicit coupling, both solvers at the same time: the particles advance dem_steps DEM steps
@@ -61,6 +64,7 @@ class FrozenScheme final : public CouplingScheme {
   }
   std::optional<CouplingTerms> replay(const link::ParticleData& state) override;
   AdvanceReplies advance(Participants& participants, const CouplingTerms& terms) override;
+  bool evaluatesEveryStep() const override { return false; }
 
  private:
   const Scenario& sc_;

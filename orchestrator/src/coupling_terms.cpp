@@ -46,6 +46,8 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan,
       std::vector<double> inside(n);
       m.zone->mask(b, inside.data());
       for (std::size_t i = 0; i < n; ++i) k[i] *= inside[i];
+      t.in_zone.resize(n);
+      for (std::size_t i = 0; i < n; ++i) t.in_zone[i] = inside[i] != 0.0 && !lost[i] ? 1 : 0;
     }
     for (std::size_t i = 0; i < n; ++i) {
       if (lost[i]) k[i] = 0.0;

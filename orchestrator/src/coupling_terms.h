@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <vector>
 
 #include "cosim/link/particle_data.h"
 #include "plan.h"
@@ -14,6 +15,9 @@ namespace cosim::orchestrator {
 struct CouplingTerms {
   link::ParticleData forcing;   // -> particles: drag_coefficient, fluid_velocity, explicit_force
   link::ParticleData exchange;  // -> fluid: drag_coefficient, transfer_coefficient
+  // With a coating zone: 1 for the parcels the coating sink acts on over the interval (inside the
+  // zone and found in the mesh), 0 for the others; empty without a zone (zone_passes.h).
+  std::vector<char> in_zone;
 };
 
 // `lost` marks particles the fluid found in no cell: they get no fluid force and no coating.

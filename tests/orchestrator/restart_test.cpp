@@ -111,6 +111,10 @@ void expectSameRun(const fs::path& a, const fs::path& b) {
     for (const auto& name : pa.fields())
       ASSERT_EQ(pa.read(s, name), pb.read(s, name)) << name << " at " << t;
   }
+  // The passes through the coating zone: the same file, byte for byte.
+  ASSERT_EQ(fs::exists(a / "zone_passes.csv"), fs::exists(b / "zone_passes.csv"));
+  if (fs::exists(a / "zone_passes.csv"))
+    EXPECT_EQ(text(a / "zone_passes.csv"), text(b / "zone_passes.csv"));
   const auto sa = analysis::readJsonFile(a / "summary.json");
   const auto sb = analysis::readJsonFile(b / "summary.json");
   EXPECT_EQ(sa.at("status"), sb.at("status"));

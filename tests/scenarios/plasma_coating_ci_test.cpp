@@ -1,6 +1,7 @@
 // The reduced plasma coating bed with the real solvers (OpenFOAM + LIGGGHTS through the
 // orchestrator): the precursor mass balance closes to better than 0.01 %, every gram removed
-// from the gas arrives on the particles, and the analytics and report are produced.
+// from the gas arrives on the particles, coating accrues only during the recorded passes through
+// the coating zone, and the analytics and report are produced.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -8,10 +9,14 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <vector>
 
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/report.h"
 #include "cosim/analysis/time_series.h"
+#include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/fields.h"
 #include "coupler.h"
 #include "scenario.h"
@@ -69,6 +74,38 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   EXPECT_GT(double(coated), 0.08 * double(n)) << "too few parcels pass the coating zone";
   EXPECT_LT(coated, n) << "every parcel coated in 0.05 s: the zone covers the whole bed";
 
+  // The passes through the coating zone (zone_passes.csv). The fluid's sink removes
+  // k_i dt Y_i from parcel i over a step, and the orchestrator gives k_i = 0 to every parcel
+  // outside the zone at the step's start: coating accrues only in the zone. So every parcel with
+  // coating has a pass, every parcel without a pass has exactly the coating it started with (0),
+  // and each parcel's coating is the sum of its passes' coating.
+  const auto passes = cosim::analysis::readZonePasses(r.folder / cosim::analysis::kZonePassesFile);
+  ASSERT_FALSE(passes.empty());
+  std::map<std::int64_t, double> inPasses;
+  std::map<std::int64_t, int> count;
+  for (const auto& p : passes) {
+    EXPECT_LT(p.entry_time, p.exit_time) << "parcel " << p.parcel_id;
+    EXPECT_GE(p.entry_time, 0.0);
+    EXPECT_LE(p.exit_time, 0.05 + 1e-12);
+    // Whole coupling steps of 1e-4 s.
+    EXPECT_NEAR(p.duration() / 1e-4, std::round(p.duration() / 1e-4), 1e-6);
+    inPasses[p.parcel_id] += p.coating;
+    ++count[p.parcel_id];
+  }
+  std::size_t withPass = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto id = r.final_state.ids[i];
+    if (count.count(id) == 0) {
+      EXPECT_EQ(m[i], 0.0) << "parcel " << id << " has coating but never was in the zone";
+      continue;
+    }
+    ++withPass;
+    EXPECT_NEAR(m[i], inPasses[id], 1e-12 * std::max(m[i], 1e-30)) << "parcel " << id;
+  }
+  EXPECT_GE(withPass, coated) << "a coated parcel without a pass";
+  std::printf("CI bed: %zu passes of %zu parcels; %zu parcels never in the zone\n", passes.size(),
+              withPass, n - withPass);
+
   // Analytics and report.
   cosim::analysis::ReportOptions ro;
   ro.runs = {r.folder};
@@ -77,6 +114,12 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   EXPECT_EQ(cosim::analysis::runReport(ro), 0);
   EXPECT_TRUE(fs::exists(out / "report" / "report.html"));
   EXPECT_TRUE(fs::exists(out / "report" / "report.json"));
+  const auto report = cosim::analysis::readJsonFile(out / "report" / "report.json");
+  const auto& zp = report.at("zone_passes");
+  ASSERT_TRUE(zp.at("recorded").get<bool>());
+  EXPECT_EQ(zp.at("passes").get<std::size_t>(), passes.size());
+  EXPECT_EQ(zp.at("never_entered").get<std::size_t>(), n - withPass);
+  EXPECT_TRUE(fs::exists(out / "report" / "zone_passes_per_parcel.csv"));
 }
 
 // Resume with the real solvers (docs/restarts.md): the bed run to 0.05 s with checkpoints every
@@ -169,5 +212,22 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   const double dm = std::fabs(t.at("coating_credited_kg") - coated) / coated;
   std::printf("resumed vs uninterrupted: coated mass %.3g relative, positions %.3g m\n", dm, dx);
   EXPECT_LT(dx, 5e-6) << "largest position difference [m]";
+
+  // The passes continue across the restart (the open ones are part of the checkpoint): each
+  // parcel's coating is still the sum of its passes', and a parcel without a pass has none.
+  std::map<std::int64_t, double> inPasses;
+  for (const auto& p : cosim::analysis::readZonePasses(base / "cut" / "zone_passes.csv")) {
+    EXPECT_LT(p.entry_time, p.exit_time);
+    inPasses[p.parcel_id] += p.coating;
+  }
+  const auto& mb = b.get(cosim::field::coating_mass);
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const auto it = inPasses.find(b.ids[i]);
+    if (it == inPasses.end()) {
+      EXPECT_EQ(mb[i], 0.0) << "parcel " << b.ids[i];
+    } else {
+      EXPECT_NEAR(mb[i], it->second, 1e-12 * mb[i]) << "parcel " << b.ids[i];
+    }
+  }
   fs::remove_all(base);
 }

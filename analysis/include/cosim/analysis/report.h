@@ -22,7 +22,9 @@
 #include "cosim/analysis/histogram.h"
 #include "cosim/analysis/mass_balance.h"
 #include "cosim/analysis/mixing_verdict.h"
+#include "cosim/analysis/parcel_places.h"
 #include "cosim/analysis/window_study.h"
+#include "cosim/analysis/zone_pass_statistics.h"
 
 namespace cosim::analysis {
 
@@ -58,6 +60,22 @@ struct HistogramAt {
   Histogram histogram;
 };
 
+// The passes through the coating zone (zone_passes.csv, zone_pass_statistics.h) and what they
+// predict, beside the simulated coating.
+struct ZonePassReport {
+  ZonePassStatistics stats;
+  double coating_on_parcels = 0;  // [kg] last snapshot minus first: what the passes should hold
+  double simulated_time = 0;      // [s] the last snapshot
+  double simulated_mean = 0;      // [kg] mean coating per parcel there
+  double simulated_cv = 0;        // CV of the coating there
+  // Mann's prediction at the run's end, at the --predict times and at predict_until (times since
+  // the coating start).
+  std::vector<MannPrediction> predictions;
+  ParcelPlaces never_entered_places;  // where the parcels that never entered sit (if any did not)
+  bool cycles_cut_by_run = false;     // the run is short against the cycles (see zone_passes notes)
+  std::vector<std::string> notes;     // plain-language cautions
+};
+
 struct RunAnalysis {
   // Standard errors shown with a1 and a2: the particle bootstrap when available, else HC3.
   double a1Error() const { return bootstrap.ok ? bootstrap.a1_se : fit.a1_se; }
@@ -80,6 +98,8 @@ struct RunAnalysis {
   std::string run_status;                // summary.json "status" ("completed", "failed", ...); empty if none
   std::vector<std::pair<std::string, double>> parameters;  // summary.json extra.parameters (numbers)
   std::size_t steps = 0;                 // rows of the time series
+  std::optional<ZonePassReport> zone_passes;  // when the run recorded zone_passes.csv
+  std::string zone_passes_problem;            // why there is none
 };
 
 // The numbers of one run (no files written). Throws std::runtime_error with the file at fault.

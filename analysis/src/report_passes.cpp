@@ -1,0 +1,299 @@
+// The report's part on the passes through the coating zone: from zone_passes.csv the pass and
+// cycle statistics, Mann's prediction beside the simulated coating, and for parcels that never
+// reached the zone where they sit (docs/analysis.md section 10).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <set>
+#include <sstream>
+#include <unordered_set>
+
+#include "cosim/analysis/report.h"
+#include "cosim/link/fields.h"
+#include "report_internal.h"
+
+namespace cosim::analysis {
+
+namespace {
+
+// A run shorter than this many mean cycles is "short against the cycles".
+constexpr double kMinCyclesPerRun = 5.0;
+// Entry-rate cycle time this much above the observed mean: the run cuts off long cycles.
+constexpr double kRateOverMean = 1.2;
+
+std::string num(double v, fmt::format_string<double> spec = "{:.3g}") {
+  return std::isfinite(v) ? fmt::format(spec, double{v}) : "&ndash;";
+}
+std::string pct(double v) {
+  return std::isfinite(v) ? fmt::format("{:.1f}&nbsp;%", 100.0 * v) : "&ndash;";
+}
+// A duration in the unit a reader expects: ms below 1 s, min above 2 min.
+std::string span(double s) {
+  if (!std::isfinite(s)) return "&ndash;";
+  if (std::abs(s) < 1.0) return fmt::format("{:.3g}&nbsp;ms", 1e3 * s);
+  if (std::abs(s) > 120.0) return fmt::format("{:.3g}&nbsp;min", s / 60.0);
+  return fmt::format("{:.3g}&nbsp;s", s);
+}
+std::string mm(double m) { return num(1e3 * m, "{:.1f}"); }
+
+Json spreadJson(const Spread& s) {
+  Json j = Json::object();
+  j["n"] = static_cast<unsigned long long>(s.n);
+  j["mean"] = s.mean;
+  j["sd"] = s.sd;
+  j["min"] = s.min;
+  j["p10"] = s.p10;
+  j["p25"] = s.p25;
+  j["p50"] = s.p50;
+  j["p75"] = s.p75;
+  j["p90"] = s.p90;
+  j["max"] = s.max;
+  j["edges"] = Json(s.histogram.edges);
+  Json c = Json::array();
+  for (auto n : s.histogram.counts) c.push_back(static_cast<unsigned long long>(n));
+  j["counts"] = c;
+  return j;
+}
+
+Json placeJson(const PlaceOfGroup& p) {
+  return {{"parcels", static_cast<unsigned long long>(p.parcels)},
+          {"mean_height_m", p.mean_height},
+          {"mean_radius_m", p.mean_radius},
+          {"start_height_m", p.start_height},
+          {"start_radius_m", p.start_radius}};
+}
+
+}  // namespace
+
+std::optional<ZonePassReport> analyseZonePasses(const std::filesystem::path& run,
+                                                const ParticleFile& file, const RunAnalysis& a,
+                                                const ReportOptions& o, std::string& problem) {
+  const auto path = run / kZonePassesFile;
+  if (!std::filesystem::exists(path)) {
+    problem = "the run recorded no " + std::string(kZonePassesFile) +
+              " (scenes without a coating zone, and runs made before cosim recorded passes)";
+    return std::nullopt;
+  }
+  const auto passes = readZonePasses(path);
+  const auto& snaps = file.snapshots();
+  const std::size_t last = snaps.size() - 1;
+  const double start = snaps.front().time;
+  double end = snaps.back().time;
+  for (const auto& p : passes) end = std::max(end, p.exit_time);
+
+  // The bed: every parcel at the start or at the end (or with a pass: inserted and deleted ones).
+  std::set<std::int64_t> bed;
+  for (const std::size_t i : {std::size_t{0}, last}) {
+    const auto ids = file.ids(i);
+    bed.insert(ids.begin(), ids.end());
+  }
+  for (const auto& p : passes) bed.insert(p.parcel_id);
+
+  ZonePassReport r;
+  r.stats = zonePassStatistics(passes, {bed.begin(), bed.end()}, start, end);
+  r.coating_on_parcels = a.snapshots.back().total - a.snapshots.front().total;
+  r.simulated_time = a.snapshots.back().time;
+  r.simulated_mean = a.snapshots.back().mean;
+  r.simulated_cv = a.snapshots.back().cv;
+  std::vector<double> times = {r.simulated_time - o.coating_start};
+  for (double t : o.predict_times) times.push_back(t);
+  times.push_back(o.predict_until);
+  for (double t : times) r.predictions.push_back(predictFromPasses(r.stats, t));
+
+  const auto& s = r.stats;
+  const double duration = end - start;
+  if (s.never_entered > 0) {
+    std::unordered_set<std::int64_t> missed;
+    for (std::size_t i = 0; i < s.ids.size(); ++i) {
+      if (s.parcel_passes[i] == 0) missed.insert(s.ids[i]);
+    }
+    r.never_entered_places = placesOf(file, missed);
+    r.notes.push_back(
+        fmt::format("{:.1f} % of the parcels never entered the zone in the {:.3g} s simulated: "
+                    "their cycles are "
+                    "longer than the run and are missing from the cycle statistics.",
+                    100.0 * s.never_entered_share, duration));
+  }
+  if (s.cycle_time.n > 0 && s.cycle_time_from_rate > kRateOverMean * s.cycle_time.mean) {
+    r.notes.push_back(fmt::format(
+        "From the entry rate of all parcels, a parcel enters every {:.3g} s on average, {:.2g} "
+        "times "
+        "the mean of the cycles seen ({:.3g} s): the run cuts off the long cycles, so the CV "
+        "predicted from them is too small (optimistic).",
+        s.cycle_time_from_rate, s.cycle_time_from_rate / s.cycle_time.mean, s.cycle_time.mean));
+  }
+  if (s.prediction_ok && duration < kMinCyclesPerRun * s.cycle_time.mean) {
+    r.notes.push_back(fmt::format(
+        "The run covers only {:.2g} mean cycles; Mann's formulas hold for many cycles per parcel.",
+        duration / s.cycle_time.mean));
+  }
+  r.cycles_cut_by_run = !r.notes.empty();
+  return r;
+}
+
+Json zonePassesJson(const RunAnalysis& a) {
+  if (!a.zone_passes) return Json{{"recorded", false}, {"problem", a.zone_passes_problem}};
+  const auto& r = *a.zone_passes;
+  const auto& s = r.stats;
+  Json j = Json::object();
+  j["recorded"] = true;
+  j["start"] = s.start;
+  j["end"] = s.end;
+  j["parcels"] = static_cast<unsigned long long>(s.parcels);
+  j["passes"] = static_cast<unsigned long long>(s.passes);
+  j["complete_passes"] = static_cast<unsigned long long>(s.complete_passes);
+  j["entries"] = static_cast<unsigned long long>(s.entries);
+  j["never_entered"] = static_cast<unsigned long long>(s.never_entered);
+  j["never_entered_share"] = s.never_entered_share;
+  j["parcels_without_cycle"] = static_cast<unsigned long long>(s.at_most_one_entry);
+  j["passes_per_parcel"] = spreadJson(s.passes_per_parcel);
+  j["passes_cv"] = s.passes_cv;
+  j["time_in_zone_per_parcel_s"] = spreadJson(s.time_in_zone_per_parcel);
+  j["time_in_zone_share"] = s.time_in_zone_share;
+  j["pass_duration_s"] = spreadJson(s.pass_duration);
+  j["cycle_time_s"] = spreadJson(s.cycle_time);
+  j["cycle_time_from_rate_s"] = s.cycle_time_from_rate;
+  j["coating_per_pass_kg"] = spreadJson(s.coating_per_pass);
+  j["coating_in_passes_kg"] = s.coating_in_passes;
+  j["coating_on_parcels_kg"] = r.coating_on_parcels;
+  j["w0_kg"] = s.w0;
+  j["simulated"] = {{"time", r.simulated_time}, {"mean", r.simulated_mean}, {"cv", r.simulated_cv}};
+  j["prediction_ok"] = s.prediction_ok;
+  j["prediction_problem"] = s.prediction_problem;
+  Json ps = Json::array();
+  for (const auto& p : r.predictions) {
+    ps.push_back({{"t", p.t},
+                  {"mean", p.mean},
+                  {"sd", p.sd},
+                  {"cv", p.cv},
+                  {"cv_with_pass_spread", p.cv_with_pass_spread},
+                  {"passes_mean", p.passes_mean}});
+  }
+  j["mann_prediction"] = ps;
+  if (r.never_entered_places.valid) {
+    const auto& pl = r.never_entered_places;
+    j["never_entered_places"] = {{"axis_x_m", pl.axis_x},
+                                 {"axis_y_m", pl.axis_y},
+                                 {"snapshots", static_cast<unsigned long long>(pl.snapshots)},
+                                 {"never_entered", placeJson(pl.group)},
+                                 {"others", placeJson(pl.others)}};
+  }
+  j["cycles_cut_by_run"] = r.cycles_cut_by_run;
+  Json notes = Json::array();
+  for (const auto& n : r.notes) notes.push_back(n);
+  j["notes"] = notes;
+  return j;
+}
+
+void writeZonePassTables(const RunAnalysis& a, const std::filesystem::path& dir) {
+  if (!a.zone_passes) return;
+  const auto& s = a.zone_passes->stats;
+  std::string csv = "parcel_id,passes,time_in_zone_s,coating_in_passes_kg\n";
+  for (std::size_t i = 0; i < s.ids.size(); ++i) {
+    csv +=
+        fmt::format("{},{},{},{}\n", s.ids[i], s.parcel_passes[i],
+                    formatShortest(s.parcel_time_in_zone[i]), formatShortest(s.parcel_coating[i]));
+  }
+  writeFileAtomically(dir / "zone_passes_per_parcel.csv", csv);
+}
+
+std::string zonePassesHtml(const RunAnalysis& a) {
+  std::ostringstream h;
+  h << "<h2>Passes through the coating zone</h2>\n";
+  if (!a.zone_passes) {
+    h << "<p>No pass statistics: " << htmlEscape(a.zone_passes_problem) << ".</p>\n";
+    return h.str();
+  }
+  const auto& r = *a.zone_passes;
+  const auto& s = r.stats;
+  const double duration = s.end - s.start;
+  h << "<p>The coating happens only while a parcel is in the coating zone. Every coupling step "
+       "the simulation decides which parcels are in it; "
+    << kZonePassesFile << " holds each parcel's passes (" << s.passes << " passes of " << s.parcels
+    << " parcels over " << span(duration) << " of coating).";
+  if (!a.verdict.well_mixed) h << " They explain why the run is poorly mixed:";
+  h << "</p>\n<ul>\n";
+  h << "<li><b>Never reached the zone:</b> " << s.never_entered << " of " << s.parcels
+    << " parcels (" << pct(s.never_entered_share) << ").</li>\n";
+  if (s.cycle_time.n > 0) {
+    h << "<li><b>A cycle</b> (from one entry into the zone to the next) takes "
+      << span(s.cycle_time.mean) << " on average (standard deviation " << span(s.cycle_time.sd)
+      << ", median " << span(s.cycle_time.p50) << ", 10&ndash;90&nbsp;%: " << span(s.cycle_time.p10)
+      << " to " << span(s.cycle_time.p90) << "), from " << s.cycle_time.n
+      << " cycles. Counting every parcel, also those that entered once or "
+      << "never, a parcel enters every " << span(s.cycle_time_from_rate) << ".</li>\n";
+  } else {
+    h << "<li><b>No cycle</b>: no parcel entered the zone twice. Counting every parcel, one "
+         "enters every "
+      << span(s.cycle_time_from_rate) << ".</li>\n";
+  }
+  if (s.pass_duration.n > 0) {
+    h << "<li><b>A pass</b> lasts " << span(s.pass_duration.mean) << " on average (median "
+      << span(s.pass_duration.p50) << ", 10&ndash;90&nbsp;%: " << span(s.pass_duration.p10)
+      << " to " << span(s.pass_duration.p90) << "); the parcels spend " << pct(s.time_in_zone_share)
+      << " of their time in the zone.</li>\n";
+  }
+  h << "<li><b>Passes per parcel:</b> " << num(s.passes_per_parcel.mean) << " on average (from "
+    << num(s.passes_per_parcel.min, "{:.0f}") << " to " << num(s.passes_per_parcel.max, "{:.0f}")
+    << "), coefficient of variation " << num(s.passes_cv) << ". Coating per pass: " << num(s.w0)
+    << " kg on average (all coating in passes divided by the passes).</li>\n";
+  h << "<li><b>Coating only in the zone:</b> the passes hold " << num(s.coating_in_passes, "{:.6g}")
+    << " kg, the parcels received " << num(r.coating_on_parcels, "{:.6g}") << " kg.</li>\n</ul>\n";
+
+  if (r.never_entered_places.valid && r.never_entered_places.group.parcels > 0) {
+    const auto& pl = r.never_entered_places;
+    h << "<p><b>Where the parcels that never reached the zone sit</b> (height z; distance from "
+         "the vertical axis through the bed's centre at the start; averaged over "
+      << pl.snapshots << " snapshots):</p>\n<table><tr><th class=l>parcels</th><th>number</th>"
+      << "<th>mean height [mm]</th><th>mean distance from the axis [mm]</th><th>height at the "
+         "start [mm]</th><th>distance at the start [mm]</th></tr>";
+    for (const auto& [name, g] :
+         {std::pair<const char*, const PlaceOfGroup&>{"never reached the zone", pl.group},
+          std::pair<const char*, const PlaceOfGroup&>{"reached it", pl.others}}) {
+      h << "<tr><td class=l>" << name << "</td><td>" << g.parcels << "</td><td>"
+        << mm(g.mean_height) << "</td><td>" << mm(g.mean_radius) << "</td><td>"
+        << mm(g.start_height) << "</td><td>" << mm(g.start_radius) << "</td></tr>";
+    }
+    h << "</table>\n";
+  }
+
+  h << "<p><b>What the cycles predict</b> (Mann's cycle-time analysis: a parcel entering every "
+       "&mu;<sub>T</sub> &plusmn; &sigma;<sub>T</sub> and taking W<sub>0</sub> per pass has after "
+       "a coating time t the mean W<sub>0</sub> t / &mu;<sub>T</sub> and the CV "
+       "&sigma;<sub>T</sub> / &radic;(&mu;<sub>T</sub> t)):</p>\n";
+  if (!r.notes.empty()) {
+    h << "<p class=note>";
+    if (s.prediction_ok) {
+      h << "<b>Hypothetical:</b> the cycles seen in this run do not describe the whole bed, so the "
+           "numbers below show what cycles like these would give, not a prediction for this bed. ";
+    }
+    for (const auto& n : r.notes) h << htmlEscape(n) << " ";
+    h << "</p>\n";
+  }
+  if (!s.prediction_ok) {
+    h << "<p>No prediction: " << htmlEscape(s.prediction_problem) << ".</p>\n";
+  } else {
+    h << "<table><tr><th>coating time</th><th>mean coating per parcel [kg]</th><th>CV "
+         "(cycle times)</th><th>CV (with the spread of coating per pass)</th><th>simulated "
+         "mean [kg]</th><th>simulated CV</th></tr>";
+    for (std::size_t i = 0; i < r.predictions.size(); ++i) {
+      const auto& p = r.predictions[i];
+      h << "<tr><td>" << (i == 0 ? "run end, " : "") << span(p.t) << "</td><td>" << num(p.mean)
+        << "</td><td>" << num(p.cv) << "</td><td>" << num(p.cv_with_pass_spread) << "</td>";
+      if (i == 0) {
+        h << "<td>" << num(r.simulated_mean) << "</td><td>" << num(r.simulated_cv) << "</td>";
+      } else {
+        h << "<td>&ndash;</td><td>&ndash;</td>";
+      }
+      h << "</tr>";
+    }
+    h << "</table>\n<p>The number of passes per parcel alone has a CV of " << num(s.passes_cv)
+      << " at the run end; the cycles predict " << num(r.predictions.front().cv)
+      << " for it.</p>\n";
+  }
+  h << "<p>Per parcel: zone_passes_per_parcel.csv; every number: report.json "
+       "(<code>zone_passes</code>).</p>\n";
+  return h.str();
+}
+
+}  // namespace cosim::analysis
