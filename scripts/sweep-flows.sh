@@ -5,7 +5,9 @@
 #   scripts/sweep-flows.sh [SCENARIO] [OUTDIR] [extra cosim run args, e.g. --set coupling.end_time=2]
 # Defaults: scenarios/plasma-coating-bed (quick size, ~7 min a flow here), runs/flow-sweep.
 # FLOWS="50 200" scripts/sweep-flows.sh runs a subset. A flow whose run folder already holds a
-# completed summary.json is not run again, so an interrupted sweep resumes where it stopped.
+# completed summary.json is not run again; one that stopped before its end (Ctrl-C, a kill, a
+# job's time limit) and holds a checkpoint is continued with `cosim resume`, so a sweep of long
+# runs (scenarios/plasma-coating-bed/study.yaml) is run in pieces by calling it again.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
@@ -22,6 +24,11 @@ for f in $flows; do
   runs+=("$dir")
   if [ -f "$dir/summary.json" ] && grep -q '"status": *"completed"' "$dir/summary.json"; then
     echo "== flow $f L/min: already done ($dir)"
+    continue
+  fi
+  if compgen -G "$dir/checkpoints/*/orchestrator.json" > /dev/null; then
+    echo "== flow $f L/min: resuming $dir from its newest checkpoint"
+    "$cosim" resume "$dir" "$@"
     continue
   fi
   echo "== flow $f L/min -> $dir"

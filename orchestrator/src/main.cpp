@@ -5,8 +5,8 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <map>
+#include <sstream>
 
 #include "bench.h"
 #include "cosim/models/drag/undisturbed_velocity.h"
@@ -45,7 +45,8 @@ Scenario loadRunScene(const std::filesystem::path& run, const std::vector<std::s
   const std::string prefix = "# ", suffix = " as run";
   const auto end = first.find(suffix);
   if (first.rfind(prefix, 0) != 0 || end == std::string::npos)
-    throw ScenarioError(file.string() + ": its first line must name the scenario it was made "
+    throw ScenarioError(file.string() +
+                        ": its first line must name the scenario it was made "
                         "from ('# <file> as run ...'); was it edited?");
   text.clear();
   text.seekg(0);
@@ -127,9 +128,10 @@ int main(int argc, char** argv) {
       "time limit stopped it; or make a finished run longer with --set coupling.end_time=...)");
   std::string resume_folder;
   resume->add_option("run", resume_folder, "run folder")->required();
-  resume->add_option("--set", sets,
-                     "override a value as for run; only coupling.end_time, output, checkpoint, "
-                     "transport, checks and observables may differ from the checkpoint's scene")
+  resume
+      ->add_option("--set", sets,
+                   "override a value as for run; only coupling.end_time, output, checkpoint, "
+                   "transport, checks and observables may differ from the checkpoint's scene")
       ->take_all();
   resume->add_flag("-q,--quiet", ropt.quiet, "no progress line");
 
@@ -164,8 +166,8 @@ int main(int argc, char** argv) {
   study->add_flag(
       "--rerun", sopt.rerun,
       "run every variant again (default: a variant whose folder holds a completed run of the same "
-      "resolved scene is read back, so an interrupted study resumes and --finest can be changed "
-      "for free)");
+      "resolved scene is read back, one stopped before its end resumes from its newest "
+      "checkpoint, so an interrupted study continues and --finest can be changed for free)");
 
   auto* bench = app.add_subcommand(
       "bench",
@@ -230,6 +232,10 @@ int main(int argc, char** argv) {
     if (*val) return validate(scenario, sets, unsets);
     if (*study) {
       for (const auto& v : vary) sopt.vary.push_back(parseVary(v));
+      // Ctrl-C or SIGTERM: the running variant checkpoints and stops, and so does the study
+      std::signal(SIGINT, onSignal);
+      std::signal(SIGTERM, onSignal);
+      std::signal(SIGPIPE, SIG_IGN);
       return runStudy(sopt);
     }
     if (*models) {

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
+#include "checkpoints.h"
 #include "cosim/analysis/summary.h"
 #include "coupler.h"
 #include "scenario.h"
@@ -104,6 +106,24 @@ bool reuseCompleted(const fs::path& folder, const Scenario& sc, Variant& v) {
 
 std::string g6(double v) { return fmt::format("{:.6g}", v); }
 
+// A variant stopped before its end (Ctrl-C, a kill, a job's time limit), or one that completed
+// and is now asked to run longer, whose newest checkpoint was written with this scene up to what a
+// resume may change (the end time, output, ...): the checkpoint's time, to resume from it instead
+// of running the variant again.
+std::optional<double> resumableCheckpoint(const fs::path& folder, const Scenario& sc) {
+  if (!fs::is_directory(folder)) return std::nullopt;
+  try {
+    const auto newest = CheckpointStore(folder).newest();
+    if (!newest) return std::nullopt;
+    const CoupledState saved = readCoupledState(*newest);
+    if (!sceneDifferences(YAML::Load(saved.scene), sc.resolved).empty()) return std::nullopt;
+    if (saved.step >= sc.coupling.steps()) return std::nullopt;  // nothing left to run
+    return saved.time;
+  } catch (const std::exception&) {
+    return std::nullopt;  // unreadable: run the variant again
+  }
+}
+
 // Every combination of the varied values, in the order the keys were given (the last varies
 // fastest).
 std::vector<Variant> combinations(const StudyOptions& opt) {
@@ -142,8 +162,16 @@ void runVariant(const StudyOptions& opt, Variant& v) {
   }
   RunOptions ro;
   ro.quiet = true;
-  ro.output = v.folder;
-  ro.overwrite = true;
+  if (const auto from = !opt.rerun ? resumableCheckpoint(v.folder, sc) : std::nullopt) {
+    // Stopped before (Ctrl-C, a kill, a job's time limit) with this scene: continue it
+    ro.resume = v.folder;
+    if (!opt.quiet)
+      std::cout << "study:   resuming " << v.folder.string()
+                << " from its checkpoint at t = " << g6(*from) << " s" << std::endl;
+  } else {
+    ro.output = v.folder;
+    ro.overwrite = true;
+  }
   Coupler c(std::move(sc), ro);
   RunResult r = c.run();
   v.exit_code = r.exit_code;
@@ -257,6 +285,13 @@ int runStudy(const StudyOptions& opt) {
     if (!opt.quiet)
       std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
     runVariant(opt, v);
+    if (v.exit_code == 130) {
+      // Ctrl-C or SIGTERM: the variant wrote a checkpoint; the same command continues the study
+      std::cerr << "study: interrupted in " << v.folder.string()
+                << "; run the same cosim study command again to continue: completed variants are "
+                   "read back, this one resumes from its checkpoint\n";
+      return 130;
+    }
   }
 
   const StudyRecord record = evaluate(opt, base, variants);

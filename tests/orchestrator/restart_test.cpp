@@ -250,6 +250,70 @@ TEST(Restart, AParticleStateThatDidNotComeBackExactlyIsRefusedNamingTheField) {
   EXPECT_EQ(out.find("position"), std::string::npos) << "only the velocity differs: " << out;
 }
 
+// cosim study continues where it stopped: Ctrl-C during the second variant stops the study (exit
+// 130, the variant checkpoints); the same command again reads the first variant back and resumes
+// the second from its checkpoint, and both equal an uninterrupted study's variants to the bit.
+TEST(Restart, AnInterruptedStudyResumesItsVariantFromTheCheckpoint) {
+  Workspace w;
+  std::ofstream(w.dir / "scene.yaml", std::ios::app)
+      << "observables: { coated: { quantity: totals.coating_on_particles_kg } }\n";
+  const std::vector<std::string> study = {"study",
+                                          "scene.yaml",
+                                          "--vary",
+                                          "coupling.dt=1e-3,5e-4",
+                                          "--no-plots",
+                                          "--set",
+                                          "coupling.end_time=0.3",
+                                          "--set",
+                                          "checkpoint.interval=0.05"};
+  auto args = [&](const std::string& out) {
+    auto a = study;
+    a.insert(a.end(), {"-o", out});
+    return a;
+  };
+  auto whole = start(w, args("whole"), "whole.out");
+  ASSERT_EQ(finish(whole), 0) << text(w.dir / "whole.out");
+
+  auto cut = start(w, args("cut"), "cut.out");
+  for (int i = 0; i < 5000 && cut.running() && !fs::exists(w.dir / "cut/variant-01/timeseries.csv");
+       ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  ::kill(cut.pid(), SIGINT);
+  EXPECT_EQ(finish(cut), 130) << text(w.dir / "cut.out");
+  EXPECT_NE(text(w.dir / "cut.out").find("run the same cosim study command again"),
+            std::string::npos)
+      << text(w.dir / "cut.out");
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "cut/variant-01/summary.json").at("status"),
+            "interrupted");
+
+  auto again = start(w, args("cut"), "again.out");
+  ASSERT_EQ(finish(again), 0) << text(w.dir / "again.out");
+  const std::string out = text(w.dir / "again.out");
+  EXPECT_NE(out.find("done before"), std::string::npos) << out;
+  EXPECT_NE(out.find("resuming"), std::string::npos) << out;
+  expectSameRun(w.dir / "whole/variant-00", w.dir / "cut/variant-00");
+  expectSameRun(w.dir / "whole/variant-01", w.dir / "cut/variant-01");
+
+  // Made longer: the same study with a later end time resumes each variant from its final
+  // checkpoint and equals a study run that long from the start.
+  auto longer =
+      start(w,
+            {"study", "scene.yaml", "--vary", "coupling.dt=1e-3,5e-4", "--no-plots", "--set",
+             "coupling.end_time=0.4", "--set", "checkpoint.interval=0.05", "-o", "cut"},
+            "longer.out");
+  ASSERT_EQ(finish(longer), 0) << text(w.dir / "longer.out");
+  EXPECT_NE(text(w.dir / "longer.out").find("resuming"), std::string::npos)
+      << text(w.dir / "longer.out");
+  auto direct =
+      start(w,
+            {"study", "scene.yaml", "--vary", "coupling.dt=1e-3,5e-4", "--no-plots", "--set",
+             "coupling.end_time=0.4", "--set", "checkpoint.interval=0.05", "-o", "direct"},
+            "direct.out");
+  ASSERT_EQ(finish(direct), 0) << text(w.dir / "direct.out");
+  expectSameRun(w.dir / "direct/variant-01", w.dir / "cut/variant-01");
+}
+
 // Runs started at the same time with the same -o never share a folder: each claims its own
 // (same, same-2, ...) and each records a complete run; no lock is left behind.
 TEST(RunFolder, RunsStartedTogetherWithTheSameFolderEachGetTheirOwn) {
