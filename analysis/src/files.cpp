@@ -11,14 +11,7 @@
 
 namespace cosim::analysis {
 
-std::string formatShortest(double v) {
-  std::string text;
-  for (int precision = 15; precision <= 17; ++precision) {
-    text = fmt::format("{:.{}g}", v, precision);
-    if (std::strtod(text.c_str(), nullptr) == v) break;
-  }
-  return text;
-}
+std::string formatShortest(double v) { return fmt::format("{}", v); }
 
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {
   std::filesystem::path tmp = path;

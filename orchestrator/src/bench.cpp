@@ -1,10 +1,11 @@
 #include "bench.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <iomanip>
 #include <ostream>
 
 #include "coupler.h"
@@ -23,11 +24,7 @@ std::string schemeOf(const std::string& stage) {
   throw std::invalid_argument("cosim bench: unknown stage '" + stage + "' (dem, cfd, coupled)");
 }
 
-std::string ms(double seconds) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", seconds * 1e3);
-  return buf;
-}
+std::string ms(double seconds) { return fmt::format("{:.2f}", seconds * 1e3); }
 
 double at(const std::map<std::string, double>& m, const std::string& key) {
   const auto it = m.find(key);
@@ -62,18 +59,17 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
   const Scenario probe = loadScenario(opt.scenario, opt.sets, opt.unsets);
   const std::filesystem::path folder =
       opt.output.empty() ? std::filesystem::path("runs") / (probe.name + "-bench") : opt.output;
-  const double end = probe.coupling.start_time + static_cast<double>(opt.steps + opt.warmup) * probe.coupling.dt;
+  const double end =
+      probe.coupling.start_time + static_cast<double>(opt.steps + opt.warmup) * probe.coupling.dt;
   std::vector<std::string> sets = opt.sets;
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "coupling.end_time=%.17g", end);
-  sets.emplace_back(buf);
+  sets.push_back(fmt::format("coupling.end_time={}", end));
 
   double load[3] = {0, 0, 0};
   const bool have_load = getloadavg(load, 3) == 3;
   out << "cosim bench: " << probe.name << ", " << opt.steps << " steps of " << probe.coupling.dt
       << " s per stage after " << opt.warmup << " untimed";
-  if (have_load) out << "; load average " << std::fixed << std::setprecision(2) << load[0];
-  out << std::defaultfloat << "\n  run folders under " << folder.string() << std::endl;
+  if (have_load) out << fmt::format("; load average {:.2f}", load[0]);
+  out << "\n  run folders under " << folder.string() << std::endl;
 
   std::map<std::string, BenchStage> stages;
   for (const auto& name : opt.stages) {
@@ -113,13 +109,12 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
   auto total = [&](const char* n) { return stages.count(n) ? stages.at(n).total() : 0.0; };
   out << "\n";
   if (total("dem") > 0 && total("coupled") > 0)
-    out << "coupled/dem = " << std::fixed << std::setprecision(3) << total("coupled") / total("dem")
-        << "\n";
+    out << fmt::format("coupled/dem = {:.3f}\n", total("coupled") / total("dem"));
   if (total("cfd") > 0 && total("coupled") > 0)
-    out << "coupled/cfd = " << std::fixed << std::setprecision(3) << total("coupled") / total("cfd")
-        << "\n";
-  out << "coupled/max(dem,cfd) = " << std::fixed << std::setprecision(3) << r.coupled_over_max
-      << "; serial share = " << std::setprecision(1) << r.serial_percent << " %" << std::endl;
+    out << fmt::format("coupled/cfd = {:.3f}\n", total("coupled") / total("cfd"));
+  out << fmt::format("coupled/max(dem,cfd) = {:.3f}; serial share = {:.1f} %", r.coupled_over_max,
+                     r.serial_percent)
+      << std::endl;
   return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "coupler.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -23,9 +25,7 @@ using Clock = std::chrono::steady_clock;
 // of 1e-4 s are recorded as 0.2453 s and not as 0.24530000000000002 (the product's round-off).
 double stepTime(double start, double dt, std::uint64_t k) {
   const double t = start + static_cast<double>(k) * dt;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.12g", t);
-  return std::strtod(buf, nullptr);
+  return std::strtod(fmt::format("{:.12g}", t).c_str(), nullptr);
 }
 
 std::string newRunId() {
@@ -267,7 +267,7 @@ void Coupler::reportInitialState() {
   if (plan_.coating) ledger_.start(state_);
   initial_count_ = state_.size();
   record_.snapshot(time_, state_, true);
-  refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_));
+  refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_, reported_dt_over_rayleigh_));
 }
 
 void Coupler::beginStep(std::uint64_t k) {
@@ -450,6 +450,8 @@ void Coupler::reportParticleState(const link::ParticleData& terms) {
   if (!terms.ids.empty()) terms.toWire(*a->mutable_terms());
   const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
   state_ = link::ParticleData::fromWire(r.advanced().state());
+  if (r.advanced().has_particles())
+    reported_dt_over_rayleigh_ = r.advanced().particles().dt_over_rayleigh_time();
   check(state_, "particles");
 }
 

@@ -134,6 +134,7 @@ class Coupler {
   double time_ = 0.0;
   link::ParticleData state_;
   std::size_t initial_count_ = 0;
+  double reported_dt_over_rayleigh_ = 0.0;  // the particle participant's, 0 if it reports none
   bool initial_row_written_ = false;
   std::map<std::string, double> totals_;
   Phases phases_;

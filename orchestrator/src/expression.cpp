@@ -1,5 +1,7 @@
 #include "expression.h"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -209,22 +211,7 @@ double evaluate(const std::string& expr, const Variables& vars) {
   return v;
 }
 
-std::string formatNumber(double v) {
-  if (v == std::round(v) && std::fabs(v) < 1e15) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.0f", v);
-    return buf;
-  }
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  // Prefer the shortest form that reads back exactly.
-  for (int prec = 6; prec < 17; ++prec) {
-    char shorter[40];
-    std::snprintf(shorter, sizeof shorter, "%.*g", prec, v);
-    if (std::strtod(shorter, nullptr) == v) return shorter;
-  }
-  return buf;
-}
+std::string formatNumber(double v) { return fmt::format("{}", v); }  // shortest exact form
 
 std::string substitute(const std::string& text, const Variables& vars) {
   std::string out;

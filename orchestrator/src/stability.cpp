@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,7 +20,8 @@ std::string g(double v) { return fmt::format("{:.3g}", v); }
 }  // namespace
 
 StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/,
-                               const Plan& /*plan*/, const link::ParticleData& s) {
+                               const Plan& /*plan*/, const link::ParticleData& s,
+                               double reported_dt_over_rayleigh) {
   StabilityReport r;
   const double dem_dt = sc.coupling.dt / sc.coupling.dem_steps;
   r.lines.push_back("coupling interval " + g(sc.coupling.dt) +
@@ -27,29 +29,50 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/
                     " s; " + std::to_string(s.size()) + " particles at start");
   if (s.size() == 0)
     r.lines.push_back("warning: the particle participant reports no particles at start");
-  if (s.has(field::radius) && s.size() > 0 && sc.constants.material.particle_density > 0 &&
-      sc.constants.material.youngs_modulus > 0) {
+
+  // DEM dt / Rayleigh time from the constants, where they are given
+  const auto& mat = sc.constants.material;
+  std::optional<double> from_constants;
+  double rmin = 0.0;
+  if (s.has(field::radius) && s.size() > 0 && mat.particle_density > 0 && mat.youngs_modulus > 0) {
     const auto& rad = s.get(field::radius);
-    const double rmin = *std::min_element(rad.begin(), rad.end());
-    const double tR =
-        rayleighTime(rmin, sc.constants.material.particle_density,
-                     sc.constants.material.youngs_modulus, sc.constants.material.poisson_ratio);
-    const double ratio = dem_dt / tR;
-    std::string line = "DEM dt / Rayleigh time = " + g(ratio) + " (t_R = " + g(tR) +
-                       " s for r = " + g(rmin) + " m)";
-    if (ratio > util::kRefuseRayleighFraction) {
-      const double dt_max = util::kWarnRayleighFraction * tR;
-      r.refusals.push_back(line + ": unstable contacts; use coupling.dem_steps >= " +
-                           std::to_string(static_cast<long long>(std::ceil(sc.coupling.dt / dt_max))) +
-                           " (DEM dt <= 0.2 t_R = " + g(dt_max) + " s)");
-      line += " REFUSED";
-    } else if (ratio > util::kWarnRayleighFraction) {
-      line += " warning: above the usual 10-20 %";
-    } else {
-      line += " ok";
-    }
-    r.lines.push_back(line);
+    rmin = *std::min_element(rad.begin(), rad.end());
+    from_constants =
+        dem_dt / rayleighTime(rmin, mat.particle_density, mat.youngs_modulus, mat.poisson_ratio);
   }
+  double ratio = 0.0;
+  std::string source;
+  if (reported_dt_over_rayleigh > 0) {
+    ratio = reported_dt_over_rayleigh;
+    source = "the particle participant's own material data";
+    if (from_constants && std::fabs(*from_constants / ratio - 1.0) > 0.01)
+      r.lines.push_back(
+          "warning: constants.youngs_modulus and poisson_ratio give DEM dt / Rayleigh time = " +
+          g(*from_constants) + ", the particle participant's own material data " + g(ratio) +
+          ": the participant's is used (it is what its contacts are computed with); correct or "
+          "remove the constants");
+  } else if (from_constants) {
+    ratio = *from_constants;
+    source = "constants.youngs_modulus, poisson_ratio, particle_density, r = " + g(rmin) + " m";
+  } else {
+    return r;
+  }
+  const double tR = dem_dt / ratio;
+  std::string line =
+      "DEM dt / Rayleigh time = " + g(ratio) + " (t_R = " + g(tR) + " s, from " + source + ")";
+  if (ratio > util::kRefuseRayleighFraction) {
+    const double dt_max = util::kWarnRayleighFraction * tR;
+    r.refusals.push_back(
+        line + ": unstable contacts; use coupling.dem_steps >= " +
+        std::to_string(static_cast<long long>(std::ceil(sc.coupling.dt / dt_max))) +
+        " (DEM dt <= 0.2 t_R = " + g(dt_max) + " s)");
+    line += " REFUSED";
+  } else if (ratio > util::kWarnRayleighFraction) {
+    line += " warning: above the usual 10-20 %";
+  } else {
+    line += " ok";
+  }
+  r.lines.push_back(line);
   return r;
 }
 

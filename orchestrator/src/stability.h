@@ -32,9 +32,15 @@ using util::rayleighTime;
 // Particle relaxation time under a drag coefficient K [kg/s]: tau = m / K.
 double relaxationTime(double mass, double drag_coefficient);
 
-// Checks that need only the scenario and the initial particle state.
+// Checks that need only the scenario and the initial particle state. The DEM step against the
+// Rayleigh time uses one source of material data: the particle participant's own, when it reports
+// DEM dt / Rayleigh time (`reported_dt_over_rayleigh` > 0, ParticleReport; LIGGGHTS does, from
+// its script's youngsModulus and poissonsRatio); only a participant that reports none is judged
+// from constants.youngs_modulus and poisson_ratio. Constants that disagree with the participant's
+// own data by more than 1 % are named in a warning.
 StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& models, const Plan& plan,
-                               const link::ParticleData& initial_state);
+                               const link::ParticleData& initial_state,
+                               double reported_dt_over_rayleigh = 0.0);
 
 // Checks that need the first fluid samples and drag coefficients: relaxation time against the
 // coupling interval and DEM step, cell size against parcel size.
@@ -69,7 +75,7 @@ class StepMonitor {
   void checkMassBalance(double in, double out, double held, double removed, std::uint64_t step,
                         double time);
 
- // What the monitors remember across steps (saved with a checkpoint).
+  // What the monitors remember across steps (saved with a checkpoint).
   struct State {
     bool courant_warned = false;
     std::optional<std::array<double, 4>> baseline;  // in, out, held, removed at the start

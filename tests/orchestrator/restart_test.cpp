@@ -122,6 +122,26 @@ void expectSameRun(const fs::path& a, const fs::path& b) {
   EXPECT_EQ(sa.at("headline"), sb.at("headline"));
 }
 
+// The process started by `parent` whose command line contains `name` (0 if none).
+pid_t childNamed(pid_t parent, const std::string& name) {
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string pid = e.path().filename().string();
+    if (pid.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream stat(e.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(line.substr(close + 2));
+    char state = 0;
+    long ppid = 0;
+    rest >> state >> ppid;
+    if (ppid != parent) continue;
+    if (text(e.path() / "cmdline").find(name) != std::string::npos) return std::stoi(pid);
+  }
+  return 0;
+}
+
 }  // namespace
 
 TEST(Restart, KilledAtARandomMomentAndResumedIsTheUninterruptedRun) {
@@ -312,6 +332,39 @@ TEST(Restart, AnInterruptedStudyResumesItsVariantFromTheCheckpoint) {
             "direct.out");
   ASSERT_EQ(finish(direct), 0) << text(w.dir / "direct.out");
   expectSameRun(w.dir / "direct/variant-01", w.dir / "cut/variant-01");
+}
+
+// Any participant killed, not only cosim: the run stops at once naming it (status failed, the
+// folder and its checkpoints intact), and `cosim resume` continues from the newest checkpoint to
+// the same result, to the bit, as a run that never stopped.
+TEST(Restart, EachParticipantKilledAndTheRunResumedIsTheUninterruptedRun) {
+  Workspace w;
+  auto full =
+      start(w, {"run", "scene.yaml", "-o", "full", "--quiet", "--set", "coupling.end_time=0.4"},
+            "full.out");
+  ASSERT_EQ(finish(full), 0) << text(w.dir / "full.out");
+  for (const std::string who : {"cosim-analytic-fluid", "cosim-free-particles"}) {
+    SCOPED_TRACE(who);
+    const std::string folder = "cut-" + who;
+    auto cut =
+        start(w, {"run", "scene.yaml", "-o", folder, "--quiet", "--set", "coupling.end_time=0.4"},
+              folder + ".out");
+    const fs::path wait_for = w.dir / folder / "checkpoints/0.1/orchestrator.json";
+    for (int i = 0; i < 5000 && cut.running() && !fs::exists(wait_for); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    const pid_t victim = childNamed(cut.pid(), who);
+    ASSERT_GT(victim, 0) << "no " << who << " started by cosim";
+    ::kill(victim, SIGKILL);
+    EXPECT_NE(finish(cut), 0);
+    const auto summary = analysis::readJsonFile(w.dir / folder / "summary.json");
+    EXPECT_EQ(summary.at("status"), "failed");
+    const std::string role = who == "cosim-analytic-fluid" ? "fluid" : "particles";
+    EXPECT_NE(summary.at("message").get<std::string>().find(role), std::string::npos)
+        << summary.at("message");
+    auto resumed = start(w, {"resume", folder, "--quiet"}, folder + "-resume.out");
+    ASSERT_EQ(finish(resumed), 0) << text(w.dir / (folder + "-resume.out"));
+    expectSameRun(w.dir / "full", w.dir / folder);
+  }
 }
 
 // Runs started at the same time with the same -o never share a folder: each claims its own

@@ -55,6 +55,32 @@ TEST(Stability, StiffContactsAreRefusedWithTheStepThatWouldWork) {
   EXPECT_TRUE(checkBeforeRun(sc, {}, {}, grains(0.75e-3)).refusals.empty());
 }
 
+// One source of material data: the particle participant's own ratio (what its contacts are
+// computed with) wins over the scenario's constants, which are named when they disagree.
+TEST(Stability, TheParticleParticipantsOwnRayleighRatioIsTheOneJudged) {
+  Scenario sc = baseScenario();
+  sc.coupling.dem_steps = 10;  // from the constants: 1e-5 / 7.681e-5 = 0.13, fine
+  // The participant reports 1.31 (its script is stiffer): refused with the steps for its t_R
+  auto rep = checkBeforeRun(sc, {}, {}, grains(0.75e-3), 1.31);
+  ASSERT_EQ(rep.refusals.size(), 1u);
+  // t_R = 1e-5 / 1.31 = 7.634e-6 s; dem_steps >= ceil(1e-4 / (0.2 t_R)) = ceil(65.5) = 66
+  EXPECT_NE(rep.refusals[0].find("dem_steps >= 66"), std::string::npos) << rep.refusals[0];
+  EXPECT_NE(rep.refusals[0].find("own material data"), std::string::npos) << rep.refusals[0];
+  bool warned = false;
+  for (const auto& l : rep.lines)
+    warned = warned || (l.find("warning: constants.youngs_modulus") != std::string::npos &&
+                        l.find("0.13") != std::string::npos);
+  EXPECT_TRUE(warned) << "the disagreeing constants are named";
+  // Agreeing data: no warning, and without constants the reported ratio alone decides
+  rep = checkBeforeRun(sc, {}, {}, grains(0.75e-3), 1e-5 / 7.681e-5);
+  EXPECT_TRUE(rep.refusals.empty());
+  for (const auto& l : rep.lines) EXPECT_EQ(l.find("warning"), std::string::npos) << l;
+  sc.constants.material.youngs_modulus = 0;
+  EXPECT_EQ(checkBeforeRun(sc, {}, {}, grains(0.75e-3), 1.31).refusals.size(), 1u);
+  EXPECT_TRUE(checkBeforeRun(sc, {}, {}, grains(0.75e-3)).refusals.empty())
+      << "neither source: no judgement";
+}
+
 TEST(Stability, CellsSmallerThanAParcelAreRefused) {
   Scenario sc = baseScenario();
   auto state = grains(1e-3);  // d = 2 mm

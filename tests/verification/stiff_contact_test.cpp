@@ -1,6 +1,7 @@
 // Verification 4f: a contact stiffness far too high for the DEM step is refused before the
-// run, with the step that would work, by the orchestrator (constants.youngs_modulus given) and
-// by the LIGGGHTS adapter itself (orchestrator check skipped: no material constants).
+// run, with the step that would work, by the orchestrator (from the DEM dt / Rayleigh time the
+// LIGGGHTS adapter reports from its script's material, the one source of material data; the
+// constants agree here) and by the LIGGGHTS adapter itself (dt_check=refuse).
 // Scene: verify-terminal-velocity/stokes.yaml (r = 10 um, rho = 1000 kg/m3, DEM dt = 1e-5 s)
 // with E = 1e9 Pa (LIGGGHTS' own SI limit), nu = 0.3. Hand value: G = E / (2 (1 + nu)) =
 // 3.846e8 Pa, t_R = pi r sqrt(rho / G) / (0.1631 nu + 0.8766) = 5.473e-8 s; dt / t_R = 183;
@@ -14,7 +15,8 @@ using cosim::verification::runScene;
 
 TEST(StiffContact, OrchestratorRefusesWithTheDemStepsThatWouldWork) {
   auto r = runScene("verify-terminal-velocity/stokes.yaml",
-                    {"E=1e9", "constants.youngs_modulus=1e9", "constants.poisson_ratio=0.3"}, "stiff-orch");
+                    {"E=1e9", "constants.youngs_modulus=1e9", "constants.poisson_ratio=0.3"},
+                    "stiff-orch");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.steps, 0u) << "the run must not start";
   EXPECT_NE(r.message.find("Rayleigh"), std::string::npos) << r.message;
