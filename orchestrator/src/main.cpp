@@ -5,8 +5,8 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <map>
+#include <sstream>
 
 #include "bench.h"
 #include "cosim/models/drag/undisturbed_velocity.h"
@@ -45,7 +45,8 @@ Scenario loadRunScene(const std::filesystem::path& run, const std::vector<std::s
   const std::string prefix = "# ", suffix = " as run";
   const auto end = first.find(suffix);
   if (first.rfind(prefix, 0) != 0 || end == std::string::npos)
-    throw ScenarioError(file.string() + ": its first line must name the scenario it was made "
+    throw ScenarioError(file.string() +
+                        ": its first line must name the scenario it was made "
                         "from ('# <file> as run ...'); was it edited?");
   text.clear();
   text.seekg(0);
@@ -117,7 +118,8 @@ int main(int argc, char** argv) {
   RunOptions ropt;
   std::string output;
   run->add_option("-o,--output", output,
-                  "run folder (default: the scenario's output.folder, never overwritten)");
+                  "run folder; refused if it exists and is not empty (default: the scenario's "
+                  "output.folder, or a free name beside it)");
   run->add_flag("--overwrite", ropt.overwrite, "reuse the run folder even if it exists");
   run->add_flag("-q,--quiet", ropt.quiet, "no progress line");
 
@@ -127,9 +129,10 @@ int main(int argc, char** argv) {
       "time limit stopped it; or make a finished run longer with --set coupling.end_time=...)");
   std::string resume_folder;
   resume->add_option("run", resume_folder, "run folder")->required();
-  resume->add_option("--set", sets,
-                     "override a value as for run; only coupling.end_time, output, checkpoint, "
-                     "transport, checks and observables may differ from the checkpoint's scene")
+  resume
+      ->add_option("--set", sets,
+                   "override a value as for run; only coupling.end_time, output, checkpoint, "
+                   "transport, checks and observables may differ from the checkpoint's scene")
       ->take_all();
   resume->add_flag("-q,--quiet", ropt.quiet, "no progress line");
 
