@@ -23,6 +23,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev
   python3 python3-numpy python3-scipy python3-matplotlib python3-h5py
+  paraview python3-paraview xvfb xauth   # tests/paraview: particles.xmf as ParaView shows it
   dpkg-dev
   clang libclang-rt-14-dev    # libFuzzer targets (scripts/fuzz.sh)
 )

@@ -9,7 +9,8 @@ namespace {
 // report) while the run goes must not make the next snapshot fail. The recorder writes each
 // snapshot in one short open-write-close, so readers at worst see the previous snapshot set.
 Handle accessWithoutLocks() {
-  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "HDF5: cannot create a file access property list");
+  Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose,
+              "HDF5: cannot create a file access property list");
   H5Pset_file_locking(fapl, false, true);
   return fapl;
 }
@@ -20,14 +21,16 @@ Handle openFile(const std::string& path, unsigned flags, const std::string& purp
   Handle fapl = accessWithoutLocks();
   return Handle(H5Fopen(path.c_str(), flags, fapl), H5Fclose,
                 "cannot open HDF5 file " + path + " " + purpose +
-                    ": the file is missing, not HDF5, damaged, or open for writing elsewhere in this process");
+                    ": the file is missing, not HDF5, damaged, or open for writing elsewhere in "
+                    "this process");
 }
 
 Handle createFile(const std::string& path) {
   quiet();
   Handle fapl = accessWithoutLocks();
-  return Handle(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
-                "cannot create HDF5 file " + path + ": check that the run folder exists and is writable");
+  return Handle(
+      H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
+      "cannot create HDF5 file " + path + ": check that the run folder exists and is writable");
 }
 
 Handle openGroup(hid_t loc, const std::string& name, const std::string& file) {
@@ -40,7 +43,9 @@ Handle createGroup(hid_t loc, const std::string& name, const std::string& file) 
                 file + ": cannot create group '" + name + "'");
 }
 
-bool exists(hid_t loc, const std::string& name) { return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0; }
+bool exists(hid_t loc, const std::string& name) {
+  return H5Lexists(loc, name.c_str(), H5P_DEFAULT) > 0;
+}
 
 namespace {
 void writeDataset(hid_t loc, const std::string& name, hid_t type, const void* data, int rank,
@@ -90,7 +95,8 @@ std::vector<double> readDoubles(hid_t loc, const std::string& name, std::uint64_
   rows = dims[0];
   cols = rank == 2 ? dims[1] : 1;
   std::vector<double> out(static_cast<std::size_t>(rows * cols));
-  if (!out.empty() && H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
+  if (!out.empty() &&
+      H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     throw std::runtime_error(file + ": cannot read dataset '" + name + "'");
   }
   return out;
@@ -101,7 +107,8 @@ std::vector<std::int64_t> readInt64s(hid_t loc, const std::string& name, const s
   hsize_t dims[2] = {0, 1};
   Handle set = openDataset(loc, name, file, rank, dims);
   std::vector<std::int64_t> out(static_cast<std::size_t>(dims[0] * (rank == 2 ? dims[1] : 1)));
-  if (!out.empty() && H5Dread(set, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
+  if (!out.empty() &&
+      H5Dread(set, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
     throw std::runtime_error(file + ": cannot read dataset '" + name + "'");
   }
   return out;
@@ -114,7 +121,8 @@ void writeAttr(hid_t loc, const std::string& name, hid_t type, const void* value
   Handle space(H5Screate(H5S_SCALAR), H5Sclose, file + ": cannot create dataspace");
   Handle attr(H5Acreate2(loc, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
               file + ": cannot create attribute '" + name + "'");
-  if (H5Awrite(attr, type, value) < 0) throw std::runtime_error(file + ": cannot write attribute '" + name + "'");
+  if (H5Awrite(attr, type, value) < 0)
+    throw std::runtime_error(file + ": cannot write attribute '" + name + "'");
 }
 }  // namespace
 
@@ -122,7 +130,8 @@ void writeAttribute(hid_t loc, const std::string& name, double value, const std:
   writeAttr(loc, name, H5T_NATIVE_DOUBLE, &value, file);
 }
 
-void writeAttribute(hid_t loc, const std::string& name, std::int64_t value, const std::string& file) {
+void writeAttribute(hid_t loc, const std::string& name, std::int64_t value,
+                    const std::string& file) {
   writeAttr(loc, name, H5T_NATIVE_INT64, &value, file);
 }
 
@@ -134,11 +143,22 @@ void writeAttribute(hid_t loc, const std::string& name, const std::string& value
   writeAttr(loc, name, type, value.empty() ? "" : value.data(), file);
 }
 
+void describeDataset(hid_t loc, const std::string& name, const std::string& units,
+                     const std::string& description, const std::string& file) {
+  Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose,
+             file + ": dataset '" + name + "' is missing");
+  writeAttribute(set, "units", units, file);
+  writeAttribute(set, "description", description, file);
+}
+
+bool hasAttribute(hid_t loc, const std::string& name) { return H5Aexists(loc, name.c_str()) > 0; }
+
 double readDoubleAttribute(hid_t loc, const std::string& name, const std::string& file) {
   Handle attr(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose,
               file + ": attribute '" + name + "' is missing");
   double v = 0;
-  if (H5Aread(attr, H5T_NATIVE_DOUBLE, &v) < 0) throw std::runtime_error(file + ": cannot read attribute '" + name + "'");
+  if (H5Aread(attr, H5T_NATIVE_DOUBLE, &v) < 0)
+    throw std::runtime_error(file + ": cannot read attribute '" + name + "'");
   return v;
 }
 
@@ -150,7 +170,8 @@ std::string readStringAttribute(hid_t loc, const std::string& name, const std::s
     throw std::runtime_error(file + ": attribute '" + name + "' is not a fixed-length string");
   }
   std::string s(H5Tget_size(type), '\0');
-  if (H5Aread(attr, type, s.data()) < 0) throw std::runtime_error(file + ": cannot read attribute '" + name + "'");
+  if (H5Aread(attr, type, s.data()) < 0)
+    throw std::runtime_error(file + ": cannot read attribute '" + name + "'");
   while (!s.empty() && s.back() == '\0') s.pop_back();
   return s;
 }
@@ -160,10 +181,12 @@ std::vector<std::string> members(hid_t group, const std::string& file) {
   if (H5Gget_info(group, &info) < 0) throw std::runtime_error(file + ": cannot list a group");
   std::vector<std::string> names;
   for (hsize_t i = 0; i < info.nlinks; ++i) {
-    ssize_t len = H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
+    ssize_t len =
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
     if (len < 0) throw std::runtime_error(file + ": cannot read a member name");
     std::string name(static_cast<std::size_t>(len) + 1, '\0');
-    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(), H5P_DEFAULT);
+    H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
+                       H5P_DEFAULT);
     name.resize(static_cast<std::size_t>(len));
     names.push_back(name);
   }

@@ -62,9 +62,15 @@ std::vector<double> readDoubles(hid_t loc, const std::string& name, std::uint64_
 std::vector<std::int64_t> readInt64s(hid_t loc, const std::string& name, const std::string& file);
 
 void writeAttribute(hid_t loc, const std::string& name, double value, const std::string& file);
-void writeAttribute(hid_t loc, const std::string& name, std::int64_t value, const std::string& file);
+void writeAttribute(hid_t loc, const std::string& name, std::int64_t value,
+                    const std::string& file);
 void writeAttribute(hid_t loc, const std::string& name, const std::string& value,
                     const std::string& file);
+// Attributes `units` and `description` on the dataset `name` under `loc` (what it holds, for a
+// reader of the file without our documentation).
+void describeDataset(hid_t loc, const std::string& name, const std::string& units,
+                     const std::string& description, const std::string& file);
+bool hasAttribute(hid_t loc, const std::string& name);
 double readDoubleAttribute(hid_t loc, const std::string& name, const std::string& file);
 std::string readStringAttribute(hid_t loc, const std::string& name, const std::string& file);
 

@@ -13,10 +13,12 @@ struct ParticleFile::Impl {
   h5::Handle snapshots;
 };
 
-ParticleFile::ParticleFile(const std::filesystem::path& path) : path_(path), impl_(std::make_unique<Impl>()) {
+ParticleFile::ParticleFile(const std::filesystem::path& path)
+    : path_(path), impl_(std::make_unique<Impl>()) {
   const std::string name = path.string();
   if (!std::filesystem::exists(path)) {
-    throw std::runtime_error(name + " does not exist: the run recorded no particles (is the "
+    throw std::runtime_error(name +
+                             " does not exist: the run recorded no particles (is the "
                              "output interval set and did the run reach its first output time?)");
   }
   impl_->file = h5::openFile(name, H5F_ACC_RDONLY, "for reading");
@@ -27,6 +29,10 @@ ParticleFile::ParticleFile(const std::filesystem::path& path) : path_(path), imp
   std::stringstream fs(h5::readStringAttribute(impl_->file, "fields", name));
   for (std::string f; std::getline(fs, f, ',');) {
     if (!f.empty()) fields_.push_back(f);
+  }
+  if (h5::hasAttribute(impl_->file, "run_id")) {
+    run_id_ = h5::readStringAttribute(impl_->file, "run_id", name);
+    cg_ = h5::readDoubleAttribute(impl_->file, "cg", name);
   }
   impl_->snapshots = h5::openGroup(impl_->file, "snapshots", name);
   for (const auto& g : h5::members(impl_->snapshots, name)) {
@@ -44,8 +50,10 @@ ParticleFile::ParticleFile(const std::filesystem::path& path) : path_(path), imp
   });
   std::vector<SnapshotInfo> unique;
   for (const auto& s : snapshots_) {
-    if (!unique.empty() && unique.back().time == s.time) unique.back() = s;
-    else unique.push_back(s);
+    if (!unique.empty() && unique.back().time == s.time)
+      unique.back() = s;
+    else
+      unique.push_back(s);
   }
   snapshots_ = std::move(unique);
 }

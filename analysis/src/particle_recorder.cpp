@@ -21,11 +21,53 @@ std::string joined(const std::vector<std::string>& xs) {
   for (const auto& x : xs) s += (s.empty() ? "" : ",") + x;
   return s;
 }
+
+constexpr const char* kConnectivity = "xdmf_connectivity";
+
+void writeIdentity(hid_t f, const RunIdentity& id, const std::string& file) {
+  h5::writeAttribute(f, "run_id", id.run_id, file);
+  h5::writeAttribute(f, "cg", id.cg, file);
+  h5::writeAttribute(f, "time_units", std::string("s"), file);
+}
+
+// /xdmf_connectivity = 0, 1, ..., length-1, long enough for `count` particles. particles.xmf
+// gives every snapshot the first `count` of them as its Polyvertex cells (one per particle):
+// without explicit cells ParaView's Xdmf3 reader makes points only, which its default Surface
+// view does not draw. Grown by doubling (a replaced dataset's space is not reclaimed by HDF5).
+void growConnectivity(hid_t f, std::uint64_t count, std::uint64_t& length,
+                      const std::string& file) {
+  if (count <= length) return;
+  const std::uint64_t n = std::max(count, 2 * length);
+  std::vector<std::int64_t> index(n);
+  for (std::uint64_t i = 0; i < n; ++i) index[i] = static_cast<std::int64_t>(i);
+  if (h5::exists(f, kConnectivity) && H5Ldelete(f, kConnectivity, H5P_DEFAULT) < 0)
+    throw std::runtime_error(file + ": cannot replace /" + std::string(kConnectivity));
+  h5::writeInt64s(f, kConnectivity, index.data(), n, file);
+  h5::describeDataset(f, kConnectivity, "-",
+                      "0, 1, 2, ...: particles.xmf takes the first `count` values as the "
+                      "Polyvertex cells (one per particle) of a snapshot",
+                      file);
+  length = n;
+}
+
+std::string unitsOf(const std::string& field) {
+  const std::string u = cosim::field::units(field);
+  return u.empty() ? "unknown" : u;
+}
+
+std::string descriptionOf(const std::string& field) {
+  const std::string d = cosim::field::description(field);
+  return d.empty() ? "per-particle field '" + field + "' sent by the particles participant" : d;
+}
 }  // namespace
 
 ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
-                                   std::vector<std::string> fields, Mode mode)
-    : h5_(run_dir / kParticlesFile), xmf_(run_dir / kParticlesXdmf), fields_(std::move(fields)) {
+                                   std::vector<std::string> fields, const RunIdentity& identity,
+                                   Mode mode)
+    : h5_(run_dir / kParticlesFile),
+      xmf_(run_dir / kParticlesXdmf),
+      fields_(std::move(fields)),
+      identity_(identity) {
   for (const auto& f : fields_) {
     if (f.empty() || f == "id" || f.find_first_of(",/") != std::string::npos) {
       throw std::runtime_error("ParticleRecorder: field name '" + f +
@@ -35,11 +77,13 @@ ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
   }
   std::error_code ec;
   std::filesystem::create_directories(run_dir, ec);
-  if (ec) throw std::runtime_error("ParticleRecorder: cannot create run folder " + run_dir.string() + ": " + ec.message());
+  if (ec)
+    throw std::runtime_error("ParticleRecorder: cannot create run folder " + run_dir.string() +
+                             ": " + ec.message());
 
   const std::string file = h5_.string();
   if (mode == Mode::append && std::filesystem::exists(h5_)) {
-    h5::Handle f = h5::openFile(file, H5F_ACC_RDONLY, "to continue recording");
+    h5::Handle f = h5::openFile(file, H5F_ACC_RDWR, "to continue recording");
     const std::string had = h5::readStringAttribute(f, "fields", file);
     if (had != joined(fields_)) {
       throw std::runtime_error(file + " records fields '" + had + "' but this run records '" +
@@ -60,12 +104,25 @@ ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
         }
       }
     }
+    if (h5::hasAttribute(f, "run_id")) {
+      identity_.run_id = h5::readStringAttribute(f, "run_id", file);
+      identity_.cg = h5::readDoubleAttribute(f, "cg", file);
+    } else {
+      writeIdentity(f, identity_, file);  // recorded before files carried their identity
+    }
+    if (h5::exists(f, kConnectivity)) connectivity_ = h5::readInt64s(f, kConnectivity, file).size();
+    std::uint64_t most = 0;
+    for (const auto& e : entries_) most = std::max(most, e.count);
+    growConnectivity(f, most, connectivity_, file);
+    H5Fflush(f, H5F_SCOPE_GLOBAL);
+    writeXdmf();
     return;
   }
   h5::Handle f = h5::createFile(file);
   h5::writeAttribute(f, "format", std::string("cosim-particles"), file);
   h5::writeAttribute(f, "version", std::int64_t{1}, file);
   h5::writeAttribute(f, "fields", joined(fields_), file);
+  writeIdentity(f, identity_, file);
   h5::createGroup(f, "snapshots", file);
   H5Fflush(f, H5F_SCOPE_GLOBAL);
   writeXdmf();
@@ -83,16 +140,18 @@ void ParticleRecorder::write(double time, const cosim::link::ParticleData& parti
   const std::uint64_t n = particles.size();
   for (auto& s : shapes_) {
     if (!particles.has(s.name)) {
-      throw std::runtime_error("ParticleRecorder: the particle state at t = " + std::to_string(time) +
-                               " s has no field '" + s.name +
-                               "'; the particles participant must send it (scenario output fields)");
+      throw std::runtime_error(
+          "ParticleRecorder: the particle state at t = " + std::to_string(time) +
+          " s has no field '" + s.name +
+          "'; the particles participant must send it (scenario output fields)");
     }
     const auto len = static_cast<std::uint64_t>(particles.get(s.name).size());
     if (s.components == 0 && n > 0) s.components = len / n;  // field unknown to cosim::field
     const std::uint64_t comps = s.components == 0 ? 1 : s.components;
     if (len != n * comps) {
-      throw std::runtime_error("ParticleRecorder: field '" + s.name + "' at t = " + std::to_string(time) +
-                               " s has " + std::to_string(len) + " values for " + std::to_string(n) +
+      throw std::runtime_error("ParticleRecorder: field '" + s.name +
+                               "' at t = " + std::to_string(time) + " s has " +
+                               std::to_string(len) + " values for " + std::to_string(n) +
                                " particles x " + std::to_string(comps) + " components");
     }
   }
@@ -105,16 +164,25 @@ void ParticleRecorder::write(double time, const cosim::link::ParticleData& parti
     h5::Handle f = h5::openFile(file, H5F_ACC_RDWR, "to add a snapshot");
     h5::Handle snaps = h5::openGroup(f, "snapshots", file);
     if (h5::exists(snaps, name)) {
-      throw std::runtime_error(file + ": snapshot " + name + " already exists (two recorders on one file?)");
+      throw std::runtime_error(file + ": snapshot " + name +
+                               " already exists (two recorders on one file?)");
     }
     h5::Handle g = h5::createGroup(snaps, name, file);
     h5::writeAttribute(g, "time", time, file);
     h5::writeAttribute(g, "count", static_cast<std::int64_t>(n), file);
     h5::writeInt64s(g, "id", particles.ids.data(), n, file);
+    h5::describeDataset(g, "id", "-",
+                        "particle id given by the particles participant, the same particle's "
+                        "over the whole run (LIGGGHTS atom id)",
+                        file);
     for (const auto& s : shapes_) {
-      h5::writeDoubles(g, s.name, particles.get(s.name).data(), n, s.components == 0 ? 1 : s.components, file);
+      h5::writeDoubles(g, s.name, particles.get(s.name).data(), n,
+                       s.components == 0 ? 1 : s.components, file);
+      h5::describeDataset(g, s.name, unitsOf(s.name), descriptionOf(s.name), file);
     }
-    if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(file + ": flush failed (disk full?)");
+    growConnectivity(f, n, connectivity_, file);
+    if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0)
+      throw std::runtime_error(file + ": flush failed (disk full?)");
     if (replace) {
       if (H5Ldelete(snaps, entries_.back().group.c_str(), H5P_DEFAULT) < 0) {
         throw std::runtime_error(file + ": cannot replace snapshot " + entries_.back().group);
@@ -139,7 +207,8 @@ void ParticleRecorder::truncateAfter(double time) {
         throw std::runtime_error(file + ": cannot remove snapshot " + entries_.back().group);
       entries_.pop_back();
     }
-    if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0) throw std::runtime_error(file + ": flush failed (disk full?)");
+    if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0)
+      throw std::runtime_error(file + ": flush failed (disk full?)");
   }
   next_index_ = entries_.empty() ? 0 : std::stoul(entries_.back().group) + 1;
   writeXdmf();
@@ -162,18 +231,28 @@ void ParticleRecorder::writeXdmf() const {
     x << "   <Grid Name=\"t" << e.group << "\" GridType=\"Uniform\">\n"
       << "    <Time Value=\"" << e.time << "\"/>\n"
       << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << e.count
-      << "\" NodesPerElement=\"1\"/>\n"
+      << "\" NodesPerElement=\"1\">\n"
+      << "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << e.count
+      << "\" Type=\"HyperSlab\">\n"
+      << "      <DataItem Dimensions=\"3 1\" Format=\"XML\">0 1 " << e.count << "</DataItem>\n"
+      << "      <DataItem Dimensions=\"" << connectivity_
+      << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << h5name << ":/" << kConnectivity
+      << "</DataItem>\n"
+      << "     </DataItem>\n    </Topology>\n"
       << "    <Geometry GeometryType=\"XYZ\">\n"
-      << "     <DataItem Dimensions=\"" << e.count << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">"
-      << path << "position</DataItem>\n    </Geometry>\n"
+      << "     <DataItem Dimensions=\"" << e.count
+      << " 3\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << path
+      << "position</DataItem>\n    </Geometry>\n"
       << "    <Attribute Name=\"id\" AttributeType=\"Scalar\" Center=\"Node\">\n"
-      << "     <DataItem Dimensions=\"" << e.count << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">"
-      << path << "id</DataItem>\n    </Attribute>\n";
+      << "     <DataItem Dimensions=\"" << e.count
+      << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << path
+      << "id</DataItem>\n    </Attribute>\n";
     for (const auto& s : shapes_) {
       if (s.name == cosim::field::position) continue;
       const std::uint64_t c = s.components == 0 ? 1 : s.components;
       const char* type = c == 1 ? "Scalar" : c == 3 ? "Vector" : "Matrix";
-      x << "    <Attribute Name=\"" << s.name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n"
+      x << "    <Attribute Name=\"" << s.name << "\" AttributeType=\"" << type
+        << "\" Center=\"Node\">\n"
         << "     <DataItem Dimensions=\"" << e.count;
       if (c != 1) x << " " << c;
       x << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << path << s.name

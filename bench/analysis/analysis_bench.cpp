@@ -36,10 +36,13 @@ cosim::link::ParticleData bed(std::size_t n) {
 
 static void RecorderSnapshot(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
-  const auto dir = std::filesystem::temp_directory_path() / ("cosim_bench_rec_" + std::to_string(::getpid()));
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("cosim_bench_rec_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
-  ParticleRecorder rec(dir, {cosim::field::position, cosim::field::velocity, cosim::field::radius,
-                             cosim::field::coating_mass});
+  ParticleRecorder rec(dir,
+                       {cosim::field::position, cosim::field::velocity, cosim::field::radius,
+                        cosim::field::coating_mass},
+                       {"bench", 1.0});
   const auto p = bed(n);
   double t = 0;
   for (auto _ : state) rec.write(t += 0.01, p);

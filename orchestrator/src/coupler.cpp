@@ -71,7 +71,7 @@ RunResult Coupler::run() {
   try {
     std::uint64_t done = 0;
     if (opt_.resume.empty()) {
-      record_.startRecorders();
+      record_.startRecorders(run_id_);
       if (recordsZonePasses()) {
         passes_.emplace().start(record_.folder());
       } else {
@@ -185,7 +185,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   }
   resume_accepted_ = true;  // from here on the run folder changes
   record_.writeResolvedScene();
-  record_.resumeRecorders(saved.series_rows, saved.time, saved.next_output);
+  record_.resumeRecorders(saved.series_rows, saved.time, saved.next_output, run_id_);
   if (recordsZonePasses() && saved.zone_passes) {
     passes_.emplace().resume(record_.folder(), *saved.zone_passes);
   } else if (recordsZonePasses()) {
@@ -506,7 +506,10 @@ std::string Coupler::describe(const RunFailure& f) const {
 analysis::Summary Coupler::summarize(const RunResult& r, const std::string& status) const {
   analysis::Summary s;
   s.scenario = sc_.name;
-  s.run_id = run_id_;
+  // The run's id is the one particles.h5 was created with, kept across resumes; the id on the
+  // wire (run_id_) is new for every process, so that no participant of an earlier piece can
+  // answer this one.
+  s.run_id = record_.runId().empty() ? run_id_ : record_.runId();
   s.status = status;
   s.message = r.message;
   s.start_time = sc_.coupling.start_time;

@@ -118,7 +118,8 @@ int main(int argc, char** argv) {
   RunOptions ropt;
   std::string output;
   run->add_option("-o,--output", output,
-                  "run folder (default: the scenario's output.folder, never overwritten)");
+                  "run folder; refused if it exists and is not empty (default: the scenario's "
+                  "output.folder, or a free name beside it)");
   run->add_flag("--overwrite", ropt.overwrite, "reuse the run folder even if it exists");
   run->add_flag("-q,--quiet", ropt.quiet, "no progress line");
 

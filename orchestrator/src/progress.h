@@ -1,15 +1,23 @@
-// The progress line: simulated time, wall time, steps per second, ETA.
+// The progress line: simulated time, wall time, steps per second, ETA. Rates and ETA are those
+// of the last 30 s of wall time (RecentRate), so a slow first step does not inflate the ETA.
 #pragma once
 
-#include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
+#include <functional>
+
+#include "recent_rate.h"
 
 namespace cosim::orchestrator {
 
 class Progress {
  public:
-  Progress(double t0, double t1, bool quiet);
+  // Wall clock in seconds (any origin); the default is std::chrono::steady_clock. Tests give a
+  // synthetic one, and a stream to print to instead of stdout.
+  using WallClock = std::function<double()>;
+
+  Progress(double t0, double t1, bool quiet, WallClock clock = {}, std::FILE* out = stdout);
   void update(double t, std::uint64_t steps, std::size_t particles);
   void finish(double t, std::uint64_t steps);
   void abort();
@@ -17,10 +25,14 @@ class Progress {
  private:
   void print(double t, std::uint64_t steps, std::size_t particles, bool final);
   double t0_, t1_;
-  bool quiet_, tty_;
+  bool quiet_;
+  WallClock clock_;
+  std::FILE* out_;
+  bool tty_;
   bool open_line_ = false;
-  std::chrono::steady_clock::time_point start_, last_;
+  double start_, last_;
   double last_fraction_ = -1.0;
+  RecentRate time_rate_, step_rate_;
 };
 
 }  // namespace cosim::orchestrator

@@ -9,8 +9,10 @@
 #include <cstring>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "checkpoints.h"
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/analysis/time_series.h"
@@ -39,6 +41,32 @@ long lockHolder(const fs::path& lock) {
   long pid = 0;
   in >> pid;
   return pid;
+}
+
+// Why `folder`, given with -o, is not used, and what to do instead.
+std::string refusal(const fs::path& folder) {
+  const std::string f = folder.string();
+  if (!fs::is_directory(folder))
+    return "cannot record the run in " + f +
+           ": it exists and is not a folder; choose another run folder with -o";
+  std::string what = "the run folder " + f + " already exists and is not empty";
+  std::string how = "choose another folder with -o, remove this one first (rm -r " + f +
+                    "), or add --overwrite to write into it anyway";
+  const long holder = lockHolder(folder / kLockFile);
+  if (holder > 0 && (::kill(static_cast<pid_t>(holder), 0) == 0 || errno == EPERM))
+    return what + "; a run (pid " + std::to_string(holder) +
+           ") is writing into it now: choose another folder with -o";
+  try {
+    const auto summary = analysis::readJsonFile(folder / analysis::kSummaryFile);
+    what += " (it holds a " + summary.at("status").get<std::string>() + " run of '" +
+            summary.at("scenario").get<std::string>() + "')";
+  } catch (const std::exception&) {
+  }
+  if (const auto checkpoint = CheckpointStore(folder).newest()) {
+    how += "; it holds a checkpoint at t = " + checkpoint->filename().string() +
+           " s: to continue that run instead, cosim resume " + f;
+  }
+  return what + ", and cosim never records a run over another one: " + how;
 }
 
 }  // namespace
@@ -73,8 +101,27 @@ bool RunRecord::claim(const fs::path& folder) {
 
 const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
   const fs::path base = output.empty() ? sc_.output.folder : fs::absolute(output);
-  // Never overwrite a previous result, never share a folder with a run going on: the first
-  // free one of base, base-2, base-3, ... (with overwrite: base itself, if no run holds it).
+  // A folder the user named (-o) is that run's folder or none: refused if it holds anything
+  // (or a run holds it), never replaced by another name the user would not look in.
+  if (!output.empty()) {
+    const bool used = fs::exists(base) && (!fs::is_directory(base) || !fs::is_empty(base));
+    if (used && !overwrite) throw std::runtime_error(refusal(base));
+    if (!claim(base)) {
+      throw std::runtime_error(overwrite ? "the run folder " + base.string() +
+                                               " is in use by another run (pid " +
+                                               std::to_string(lockHolder(base / kLockFile)) +
+                                               "); wait for it or choose another folder with -o"
+                                         : refusal(base));
+    }
+    folder_ = base;
+    writeResolvedScene();
+    log_.open(folder_ / "cosim.log");
+    next_output_ = sc_.coupling.start_time;
+    return folder_;
+  }
+  // The scene's own folder: never overwrite a previous result, never share a folder with a run
+  // going on: the first free one of base, base-2, base-3, ... (with overwrite: base itself, if
+  // no run holds it).
   for (int i = 1;; ++i) {
     const fs::path candidate = i == 1 ? base : fs::path(base.string() + "-" + std::to_string(i));
     const bool had_files = fs::exists(candidate) && !fs::is_empty(candidate);
@@ -115,7 +162,8 @@ void RunRecord::writeResolvedScene() const {
   analysis::writeFileAtomically(folder_ / "scenario.resolved.yaml", os.str());
 }
 
-void RunRecord::resumeRecorders(std::size_t rows, double time, double next_output) {
+void RunRecord::resumeRecorders(std::size_t rows, double time, double next_output,
+                                const std::string& run_id) {
   makeColumns();
   const fs::path csv = folder_ / analysis::kTimeSeriesFile;
   analysis::truncateTimeSeries(csv, rows);
@@ -125,13 +173,17 @@ void RunRecord::resumeRecorders(std::size_t rows, double time, double next_outpu
   series_file_ = std::make_unique<analysis::TimeSeriesRecorder>(
       csv, columns_, analysis::TimeSeriesRecorder::Mode::append);
   particles_ = std::make_unique<analysis::ParticleRecorder>(
-      folder_, plan_.particles_send, analysis::ParticleRecorder::Mode::append);
+      folder_, plan_.particles_send, analysis::RunIdentity{run_id, sc_.constants.cg},
+      analysis::ParticleRecorder::Mode::append);
   particles_->truncateAfter(time);
   next_output_ = next_output;
 }
 
-void RunRecord::startRecorders() {
-  particles_ = std::make_unique<analysis::ParticleRecorder>(folder_, plan_.particles_send);
+std::string RunRecord::runId() const { return particles_ ? particles_->identity().run_id : ""; }
+
+void RunRecord::startRecorders(const std::string& run_id) {
+  particles_ = std::make_unique<analysis::ParticleRecorder>(
+      folder_, plan_.particles_send, analysis::RunIdentity{run_id, sc_.constants.cg});
   makeColumns();
   series_file_ =
       std::make_unique<analysis::TimeSeriesRecorder>(folder_ / analysis::kTimeSeriesFile, columns_);

@@ -31,9 +31,10 @@ class RunRecord {
   RunRecord(const Scenario& sc, const Plan& plan, RunLog& log);
   ~RunRecord();
 
-  // The run folder: `output` if given, else the scenario's output.folder; an existing non-empty
-  // folder is never overwritten (the next free "-2", "-3" ... is taken) unless `overwrite`.
-  // Writes scenario.resolved.yaml and opens cosim.log there.
+  // The run folder. `output` (cosim run -o) if given: refused with a std::runtime_error saying
+  // what to do if it exists and is not empty, unless `overwrite`. Else the scenario's
+  // output.folder, never overwritten: the next free "-2", "-3" ... is taken (unless
+  // `overwrite`). Writes scenario.resolved.yaml and opens cosim.log there.
   const std::filesystem::path& open(const std::filesystem::path& output, bool overwrite);
   const std::filesystem::path& folder() const { return folder_; }
   void writeResolvedScene() const;
@@ -42,11 +43,16 @@ class RunRecord {
   // rewritten once the checkpoint has accepted the scene, writeResolvedScene).
   const std::filesystem::path& reopen(const std::filesystem::path& folder);
 
-  // Opens particles.h5 and timeseries.csv with the columns this scene records.
-  void startRecorders();
+  // Opens particles.h5 (with `run_id` and the scene's cg at its root) and timeseries.csv with the
+  // columns this scene records.
+  void startRecorders(const std::string& run_id);
   // Resume: cuts timeseries.csv back to `rows` rows and particles.h5 back to `time`, then
-  // continues both; the observables see the rows kept.
-  void resumeRecorders(std::size_t rows, double time, double next_output);
+  // continues both; the observables see the rows kept. The run keeps the id particles.h5 was
+  // created with (`run_id` only for a file recorded without one).
+  void resumeRecorders(std::size_t rows, double time, double next_output,
+                       const std::string& run_id);
+  // The run's id as recorded at the root of particles.h5; "" before the recorders start.
+  std::string runId() const;
   std::size_t rows() const { return series_time_.size(); }
   double nextOutput() const { return next_output_; }
   const std::vector<std::string>& columns() const { return columns_; }

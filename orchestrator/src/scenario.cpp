@@ -39,7 +39,7 @@ void templateTree(YAML::Node node, const Variables& vars, const Context& ctx,
 
 const std::set<std::string>& sectionNames() {
   static const std::set<std::string> sections = {
-      "name",   "description", "parameters", "participants", "coupling",   "constants",
+      "name",   "description", "parameters", "participants", "coupling",    "constants",
       "models", "output",      "transport",  "checks",       "observables", "checkpoint"};
   return sections;
 }
@@ -50,15 +50,15 @@ std::vector<std::string> keyPath(const std::string& key, const std::string& show
   std::vector<std::string> parts;
   std::stringstream ss(key);
   for (std::string p; std::getline(ss, p, '.');) {
-    if (p.empty()) ctx.failTop(shown, "empty name in the key '" + key + "'");
+    if (p.empty()) ctx.failCommandLine(shown, "empty name in the key '" + key + "'");
     parts.push_back(p);
   }
-  if (parts.empty()) ctx.failTop(shown, "no key given");
+  if (parts.empty()) ctx.failCommandLine(shown, "no key given");
   if (!sectionNames().count(parts.front())) {
     if (parts.size() == 1) {
       parts.insert(parts.begin(), "parameters");  // bare name: a parameter
     } else {
-      ctx.failTop(shown, "unknown section '" + parts.front() + "'");
+      ctx.failCommandLine(shown, "unknown section '" + parts.front() + "'");
     }
   }
   return parts;
@@ -81,36 +81,38 @@ void applySet(YAML::Node root, const std::string& set, Context& ctx) {
   const std::string shown = shownOverride("--set", set);
   auto eq = set.find('=');
   if (eq == std::string::npos || eq == 0) {
-    ctx.failTop(shown,
-                "expected key=value, e.g. --set coupling.end_time=0.5 (a whole node: --set "
-                "'models.coating_zone={shape: sphere, center: [0, 0, 0.01], radius: 0.005}')");
+    ctx.failCommandLine(
+        shown,
+        "expected key=value, e.g. --set coupling.end_time=0.5 (a whole node: --set "
+        "'models.coating_zone={shape: sphere, center: [0, 0, 0.01], radius: 0.005}')");
   }
   const std::string key = set.substr(0, eq);
   const std::string value = set.substr(eq + 1);
   std::vector<std::string> parts = keyPath(key, shown, ctx);
   if (parts.front() == "parameters" && parts.size() == 2 &&
       !(root["parameters"] && root["parameters"][parts[1]])) {
-    ctx.failTop(shown,
-                "the scenario has no parameter '" + parts[1] + "' (see its parameters: section)");
+    ctx.failCommandLine(
+        shown, "the scenario has no parameter '" + parts[1] + "' (see its parameters: section)");
   }
   YAML::Node parsed;
   try {
     if (value.size() > limits::kMaxFileBytes) {
-      ctx.failTop(shown,
-                  "the value is longer than " + std::to_string(limits::kMaxFileBytes) + " bytes");
+      ctx.failCommandLine(
+          shown, "the value is longer than " + std::to_string(limits::kMaxFileBytes) + " bytes");
     }
     parsed = YAML::Load(value);
   } catch (const YAML::Exception& e) {
-    ctx.failTop(shown, "the value is not valid YAML: " + e.msg +
-                           " (a map is written {key: value, ...}, a list [a, b, ...]; quote the "
-                           "whole argument for the shell)");
+    ctx.failCommandLine(shown,
+                        "the value is not valid YAML: " + e.msg +
+                            " (a map is written {key: value, ...}, a list [a, b, ...]; quote the "
+                            "whole argument for the shell)");
   }
-  checkYamlTree(parsed, ctx.origin().string() + ": " + shown, false, joinPath(parts));
+  checkYamlTree(parsed, "command line " + shown, false, joinPath(parts));
   std::vector<YAML::Node> chain{root};
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     YAML::Node next = chain.back()[parts[i]];
     if (next.IsDefined() && !next.IsMap() && !next.IsNull()) {
-      ctx.failTop(shown, "'" + parts[i] + "' is not a section");
+      ctx.failCommandLine(shown, "'" + parts[i] + "' is not a section");
     }
     chain.push_back(next);
   }
@@ -126,26 +128,48 @@ void applyUnset(YAML::Node root, const std::string& key, Context& ctx) {
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     node.reset(node[parts[i]]);
     if (!node.IsMap()) {
-      ctx.failTop(
+      ctx.failCommandLine(
           shown, "the scenario has no '" +
                      joinPath({parts.begin(), parts.begin() + static_cast<std::ptrdiff_t>(i) + 1}) +
                      "' section");
     }
   }
-  if (!node[parts.back()]) ctx.failTop(shown, "the scenario has no '" + joinPath(parts) + "'");
+  if (!node[parts.back()])
+    ctx.failCommandLine(shown, "the scenario has no '" + joinPath(parts) + "'");
   node.remove(parts.back());
   ctx.addOverride(joinPath(parts), shown);
 }
 
-// Deep merge: maps are merged key by key, anything else in `over` replaces `base`.
-YAML::Node merge(const YAML::Node& base, const YAML::Node& over) {
-  if (!base.IsMap() || !over.IsMap()) return YAML::Clone(over);
-  YAML::Node out = YAML::Clone(base);
+// Deep merge into `base`: maps are merged key by key, anything else in `over` replaces `base`.
+// Nodes are moved, not copied, so that each keeps its line in its own file for the messages.
+YAML::Node merge(YAML::Node base, const YAML::Node& over) {
+  if (!base.IsMap() || !over.IsMap()) return over;
   for (const auto& kv : over) {
     const auto k = kv.first.as<std::string>();
-    out[k] = out[k] ? merge(out[k], kv.second) : YAML::Clone(kv.second);
+    if (base[k])
+      base[k] = merge(base[k], kv.second);
+    else
+      base[k] = kv.second;
   }
-  return out;
+  return base;
+}
+
+// The key path of every node under `n` ("a.b", "a.b[2]"); `values`: those that are not maps.
+void keyPaths(const YAML::Node& n, const std::string& path, std::set<std::string>& all,
+              std::set<std::string>* values) {
+  if (!path.empty()) all.insert(path);
+  if (n.IsMap()) {
+    for (const auto& kv : n) {
+      if (!kv.first.IsScalar()) continue;  // refused by the section parsers
+      keyPaths(kv.second, path.empty() ? kv.first.Scalar() : path + "." + kv.first.Scalar(), all,
+               values);
+    }
+  } else {
+    if (values && !path.empty()) values->insert(path);
+    if (n.IsSequence())
+      for (std::size_t i = 0; i < n.size(); ++i)
+        keyPaths(n[i], path + "[" + std::to_string(i) + "]", all, values);
+  }
 }
 
 // Parameters first: each may use the ones before it.
@@ -176,7 +200,7 @@ Variables parseParameters(const YAML::Node& params, const Context& ctx) {
 }
 
 // extends: another scenario file this one only changes (e.g. a size variant of a scene).
-YAML::Node applyExtends(YAML::Node root, const fs::path& origin, const Context& ctx) {
+YAML::Node applyExtends(YAML::Node root, const fs::path& origin, Context& ctx) {
   if (!root["extends"]) return root;
   const fs::path base = fs::absolute(origin).parent_path() / ctx.text(root["extends"], "extends");
   std::string text;
@@ -194,6 +218,10 @@ YAML::Node applyExtends(YAML::Node root, const fs::path& origin, const Context& 
     ctx.fail(root["extends"], "extends",
              "'" + base.string() + "' extends another file itself; one level only");
   root.remove("extends");
+  std::set<std::string> base_keys, own, own_values;
+  keyPaths(b, "", base_keys, nullptr);
+  keyPaths(root, "", own, &own_values);
+  ctx.setExtends(base, std::move(base_keys), std::move(own), std::move(own_values));
   return merge(b, root);
 }
 

@@ -1,9 +1,11 @@
 #include "cosim/analysis/particle_recorder.h"
 
 #include <gtest/gtest.h>
+#include <hdf5.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -22,7 +24,8 @@ namespace {
 class TempDir {
  public:
   explicit TempDir(const std::string& name)
-      : path_(fs::temp_directory_path() / ("cosim_analysis_" + name + "_" + std::to_string(::getpid()))) {
+      : path_(fs::temp_directory_path() /
+              ("cosim_analysis_" + name + "_" + std::to_string(::getpid()))) {
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
@@ -57,8 +60,10 @@ cosim::link::ParticleData state(const std::vector<std::int64_t>& ids, double t) 
   return p;
 }
 
-const std::vector<std::string> kFields = {cosim::field::position, cosim::field::velocity, cosim::field::radius,
-                                          cosim::field::coating_mass};
+const RunIdentity kIdentity{"run-1234abcd", 3.0};
+
+const std::vector<std::string> kFields = {cosim::field::position, cosim::field::velocity,
+                                          cosim::field::radius, cosim::field::coating_mass};
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p);
@@ -72,7 +77,8 @@ bool wellFormed(const std::string& xml, std::string& why) {
   std::vector<std::string> stack;
   std::regex tag(R"re(<(/?)([A-Za-z_][\w:.-]*)([^<>]*?)(/?)>|<\?[^>]*\?>|<!DOCTYPE[^>]*>)re");
   std::size_t pos = 0;
-  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), tag); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), tag); it != std::sregex_iterator();
+       ++it) {
     const auto& m = *it;
     pos = static_cast<std::size_t>(m.position() + m.length());
     if (m[2].length() == 0) continue;  // declaration / doctype
@@ -97,10 +103,11 @@ bool wellFormed(const std::string& xml, std::string& why) {
 
 TEST(ParticleRecorder, RoundTripWithChangingParticleCounts) {
   const TempDir dir("roundtrip");
-  const std::vector<std::vector<std::int64_t>> ids = {{1, 2, 3, 4, 5}, {1, 2, 3, 4, 5, 6, 7}, {2, 5, 6, 9}};
+  const std::vector<std::vector<std::int64_t>> ids = {
+      {1, 2, 3, 4, 5}, {1, 2, 3, 4, 5, 6, 7}, {2, 5, 6, 9}};
   const std::vector<double> times = {0.01, 0.02, 0.03};
   {
-    ParticleRecorder rec(dir, kFields);
+    ParticleRecorder rec(dir, kFields, kIdentity);
     for (std::size_t s = 0; s < ids.size(); ++s) rec.write(times[s], state(ids[s], times[s]));
     EXPECT_EQ(rec.snapshots(), 3u);
   }
@@ -124,9 +131,127 @@ TEST(ParticleRecorder, RoundTripWithChangingParticleCounts) {
   }
 }
 
+namespace {
+// A string attribute of `object` in `file`, read with the HDF5 C API ("<missing>" if absent).
+std::string stringAttribute(const fs::path& file, const std::string& object,
+                            const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t o = H5Oopen(f, object.c_str(), H5P_DEFAULT);
+  std::string value = "<missing>";
+  if (o >= 0 && H5Aexists(o, name.c_str()) > 0) {
+    const hid_t a = H5Aopen(o, name.c_str(), H5P_DEFAULT);
+    const hid_t t = H5Aget_type(a);
+    value.assign(H5Tget_size(t), '\0');
+    H5Aread(a, t, value.data());
+    while (!value.empty() && value.back() == '\0') value.pop_back();
+    H5Tclose(t);
+    H5Aclose(a);
+  }
+  if (o >= 0) H5Oclose(o);
+  H5Fclose(f);
+  return value;
+}
+
+double doubleAttribute(const fs::path& file, const std::string& name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  double v = std::nan("");
+  if (H5Aexists(f, name.c_str()) > 0) {
+    const hid_t a = H5Aopen(f, name.c_str(), H5P_DEFAULT);
+    H5Aread(a, H5T_NATIVE_DOUBLE, &v);
+    H5Aclose(a);
+  }
+  H5Fclose(f);
+  return v;
+}
+}  // namespace
+
+TEST(ParticleRecorder, EveryDatasetCarriesUnitsAndMeaningAndTheRootTheRunIdAndCg) {
+  const TempDir dir("describe");
+  {
+    ParticleRecorder rec(dir, kFields, kIdentity);
+    rec.write(0.1, state({1, 2}, 0.1));
+    rec.write(0.2, state({1, 2, 3}, 0.2));
+  }
+  const fs::path h5 = dir / kParticlesFile;
+  EXPECT_EQ(stringAttribute(h5, "/", "run_id"), "run-1234abcd");
+  EXPECT_EQ(doubleAttribute(h5, "cg"), 3.0);
+  EXPECT_EQ(stringAttribute(h5, "/", "time_units"), "s");
+  // The units a reader needs, by hand from the field's meaning.
+  const std::vector<std::pair<std::string, std::string>> units = {
+      {"id", "-"}, {"position", "m"}, {"velocity", "m/s"}, {"radius", "m"}, {"coating_mass", "kg"}};
+  for (const char* group : {"/snapshots/000000/", "/snapshots/000001/"}) {
+    for (const auto& [name, unit] : units) {
+      EXPECT_EQ(stringAttribute(h5, group + name, "units"), unit) << group << name;
+      const std::string what = stringAttribute(h5, group + name, "description");
+      EXPECT_NE(what, "<missing>") << group << name;
+      EXPECT_GT(what.size(), 10u) << group << name << ": '" << what << "'";
+    }
+  }
+  EXPECT_NE(stringAttribute(h5, "/snapshots/000000/position", "description").find("position"),
+            std::string::npos);
+  EXPECT_NE(stringAttribute(h5, "/snapshots/000000/coating_mass", "description").find("coating"),
+            std::string::npos);
+  EXPECT_EQ(stringAttribute(h5, "/xdmf_connectivity", "units"), "-");
+  EXPECT_EQ(ParticleFile(h5).runId(), "run-1234abcd");
+  EXPECT_EQ(ParticleFile(h5).cg(), 3.0);
+
+  // Appending (a resumed run) keeps the identity the file was created with.
+  {
+    ParticleRecorder rec(dir, kFields, RunIdentity{"another-id", 5.0},
+                         ParticleRecorder::Mode::append);
+    EXPECT_EQ(rec.identity().run_id, "run-1234abcd");
+    EXPECT_EQ(rec.identity().cg, 3.0);
+    rec.write(0.3, state({1}, 0.3));
+  }
+  EXPECT_EQ(stringAttribute(h5, "/", "run_id"), "run-1234abcd");
+  EXPECT_EQ(doubleAttribute(h5, "cg"), 3.0);
+  EXPECT_EQ(stringAttribute(h5, "/snapshots/000002/coating_mass", "units"), "kg");
+}
+
+TEST(ParticleRecorder, XdmfGivesEveryParticleItsOwnPolyvertexCell) {
+  // ParaView's Xdmf3 reader makes cells only from explicit connectivity; each snapshot's
+  // topology is the first `count` values of /xdmf_connectivity, which must be 0, 1, 2, ...
+  const TempDir dir("cells");
+  {
+    ParticleRecorder rec(dir, kFields, kIdentity);
+    rec.write(0.1, state({4, 9}, 0.1));
+    rec.write(0.2, state({1, 2, 3, 4, 5, 6, 7}, 0.2));  // grows the connectivity
+    rec.write(0.3, state({2, 3, 8}, 0.3));
+  }
+  const hid_t f = H5Fopen((dir / kParticlesFile).c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t d = H5Dopen2(f, "/xdmf_connectivity", H5P_DEFAULT);
+  ASSERT_GE(d, 0);
+  const hid_t space = H5Dget_space(d);
+  hsize_t n = 0;
+  H5Sget_simple_extent_dims(space, &n, nullptr);
+  std::vector<std::int64_t> index(n);
+  H5Dread(d, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, index.data());
+  H5Sclose(space);
+  H5Dclose(d);
+  H5Fclose(f);
+  ASSERT_GE(n, 7u);
+  for (std::size_t i = 0; i < index.size(); ++i) EXPECT_EQ(index[i], static_cast<std::int64_t>(i));
+
+  const std::string x = slurp(dir / kParticlesXdmf);
+  std::regex topology(
+      R"re(<Topology TopologyType="Polyvertex" NumberOfElements="(\d+)" NodesPerElement="1">\s*)re"
+      R"re(<DataItem ItemType="HyperSlab" Dimensions="(\d+)" Type="HyperSlab">\s*)re"
+      R"re(<DataItem Dimensions="3 1" Format="XML">0 1 (\d+)</DataItem>\s*)re"
+      R"re(<DataItem Dimensions="(\d+)" NumberType="Int" Precision="8" Format="HDF">particles\.h5:/xdmf_connectivity</DataItem>)re");
+  std::vector<int> counts;
+  for (auto it = std::sregex_iterator(x.begin(), x.end(), topology); it != std::sregex_iterator();
+       ++it) {
+    EXPECT_EQ((*it)[1], (*it)[2]);
+    EXPECT_EQ((*it)[1], (*it)[3]);
+    EXPECT_EQ(std::stoul((*it)[4]), n);
+    counts.push_back(std::stoi((*it)[1]));
+  }
+  EXPECT_EQ(counts, (std::vector<int>{2, 7, 3})) << x;
+}
+
 TEST(ParticleRecorder, EmptySnapshotIsRecordedAndSkippedInXdmf) {
   const TempDir dir("empty");
-  ParticleRecorder rec(dir, kFields);
+  ParticleRecorder rec(dir, kFields, kIdentity);
   rec.write(0.5, state({}, 0.5));
   rec.write(1.0, state({3}, 1.0));
   ParticleFile f(dir / kParticlesFile);
@@ -141,7 +266,7 @@ TEST(ParticleRecorder, EmptySnapshotIsRecordedAndSkippedInXdmf) {
 TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
   const TempDir dir("xdmf");
   {
-    ParticleRecorder rec(dir, kFields);
+    ParticleRecorder rec(dir, kFields, kIdentity);
     rec.write(0.1, state({1, 2}, 0.1));
     rec.write(0.2, state({1, 2, 3}, 0.2));
   }
@@ -166,9 +291,11 @@ TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
         << "xml.etree could not parse " << (dir / kParticlesXdmf).string();
   }
   // One Uniform grid per snapshot, each with its own particle count and time.
-  std::regex grid(R"re(<Time Value="([0-9.e-]+)"/>\s*<Topology TopologyType="Polyvertex" NumberOfElements="(\d+)")re");
+  std::regex grid(
+      R"re(<Time Value="([0-9.e-]+)"/>\s*<Topology TopologyType="Polyvertex" NumberOfElements="(\d+)")re");
   std::vector<std::pair<double, int>> found;
-  for (auto it = std::sregex_iterator(x.begin(), x.end(), grid); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(x.begin(), x.end(), grid); it != std::sregex_iterator();
+       ++it) {
     found.emplace_back(std::stod((*it)[1]), std::stoi((*it)[2]));
   }
   ASSERT_EQ(found.size(), 2u);
@@ -178,9 +305,11 @@ TEST(ParticleRecorder, XdmfIsWellFormedTemporalPolyvertexCollection) {
   EXPECT_EQ(found[1].second, 3);
   // Every HDF5 reference points at a dataset that exists, with the stated first dimension.
   ParticleFile f(dir / kParticlesFile);
-  std::regex item(R"re(<DataItem Dimensions="(\d+)[^"]*"[^>]*>particles\.h5:/snapshots/(\d+)/(\w+)</DataItem>)re");
+  std::regex item(
+      R"re(<DataItem Dimensions="(\d+)[^"]*"[^>]*>particles\.h5:/snapshots/(\d+)/(\w+)</DataItem>)re");
   int refs = 0;
-  for (auto it = std::sregex_iterator(x.begin(), x.end(), item); it != std::sregex_iterator(); ++it, ++refs) {
+  for (auto it = std::sregex_iterator(x.begin(), x.end(), item); it != std::sregex_iterator();
+       ++it, ++refs) {
     std::size_t snap = f.snapshots().size();  // index of the referenced group among the snapshots
     for (std::size_t i = 0; i < f.snapshots().size(); ++i) {
       if (f.snapshots()[i].group == (*it)[2]) snap = i;
@@ -208,7 +337,7 @@ TEST(ParticleRecorder, SnapshotsSurviveACrashOfTheWriter) {
   ASSERT_GE(child, 0);
   if (child == 0) {
     // The child records two snapshots and dies without running any destructor.
-    ParticleRecorder* rec = new ParticleRecorder(dir, kFields);
+    ParticleRecorder* rec = new ParticleRecorder(dir, kFields, kIdentity);
     rec->write(0.1, state({1, 2, 3}, 0.1));
     rec->write(0.2, state({1, 2, 3, 4}, 0.2));
     ::_exit(3);
@@ -228,7 +357,7 @@ TEST(ParticleRecorder, SnapshotAtTheSameTimeReplacesThePreviousOne) {
   // The orchestrator records the last step, credits the last coating, and records again.
   const TempDir dir("replace");
   {
-    ParticleRecorder rec(dir, kFields);
+    ParticleRecorder rec(dir, kFields, kIdentity);
     rec.write(0.1, state({1, 2}, 0.1));
     rec.write(0.2, state({1, 2}, 0.2));
     auto final = state({1, 2, 3}, 0.2);
@@ -246,7 +375,7 @@ TEST(ParticleRecorder, SnapshotAtTheSameTimeReplacesThePreviousOne) {
   EXPECT_EQ(x.find("/snapshots/000001/"), std::string::npos);  // the replaced group is gone
   EXPECT_NE(x.find("/snapshots/000002/coating_mass"), std::string::npos);
   {
-    ParticleRecorder rec(dir, kFields, ParticleRecorder::Mode::append);
+    ParticleRecorder rec(dir, kFields, kIdentity, ParticleRecorder::Mode::append);
     rec.write(0.3, state({1}, 0.3));
   }
   ParticleFile g(dir / kParticlesFile);
@@ -256,7 +385,7 @@ TEST(ParticleRecorder, SnapshotAtTheSameTimeReplacesThePreviousOne) {
 
 TEST(ParticleRecorder, AReaderInAnotherProcessDoesNotBlockTheWriter) {
   const TempDir dir("reader");
-  ParticleRecorder rec(dir, kFields);
+  ParticleRecorder rec(dir, kFields, kIdentity);
   rec.write(0.1, state({1, 2}, 0.1));
   int toChild[2], toParent[2];
   ASSERT_EQ(::pipe(toChild), 0);
@@ -287,9 +416,9 @@ TEST(ParticleRecorder, AReaderInAnotherProcessDoesNotBlockTheWriter) {
 
 TEST(ParticleRecorder, AppendContinuesNumbering) {
   const TempDir dir("append");
-  { ParticleRecorder(dir, kFields).write(0.1, state({1}, 0.1)); }
+  { ParticleRecorder(dir, kFields, kIdentity).write(0.1, state({1}, 0.1)); }
   {
-    ParticleRecorder rec(dir, kFields, ParticleRecorder::Mode::append);
+    ParticleRecorder rec(dir, kFields, kIdentity, ParticleRecorder::Mode::append);
     EXPECT_EQ(rec.snapshots(), 1u);
     rec.write(0.2, state({1, 2}, 0.2));
   }
@@ -300,7 +429,7 @@ TEST(ParticleRecorder, AppendContinuesNumbering) {
 
 TEST(ParticleRecorder, ClearErrors) {
   const TempDir dir("errors");
-  ParticleRecorder rec(dir, kFields);
+  ParticleRecorder rec(dir, kFields, kIdentity);
   cosim::link::ParticleData p;
   p.ids = {1};
   p.field(cosim::field::position);

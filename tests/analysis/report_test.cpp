@@ -30,17 +30,20 @@ std::string slurp(const fs::path& p) {
 // (cumulative amounts, the coating removed in a step credited one step later, a final row after
 // the final credit), whose precursor balance closes exactly by construction.
 fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t seed) {
-  const fs::path dir = fs::temp_directory_path() / ("cosim_report_" + std::to_string(::getpid())) / name;
+  const fs::path dir =
+      fs::temp_directory_path() / ("cosim_report_" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::mt19937_64 rng(seed);
   const std::size_t n = 1500;
   const double a1 = 4e-9, a2 = 1e-9, dt = 0.5;
   const auto masses = test::trackedCoating(rng, n, a1, a2, dt, 40, uncoated_share);
-  ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass});
-  TimeSeriesRecorder ts(dir / kTimeSeriesFile,
-                        {column::particle_count, column::wall_seconds, column::precursor_in, column::precursor_out,
-                         column::precursor_held, column::precursor_removed, column::coated_mass});
+  ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass},
+                       {"synthetic", 1.0});
+  TimeSeriesRecorder ts(
+      dir / kTimeSeriesFile,
+      {column::particle_count, column::wall_seconds, column::precursor_in, column::precursor_out,
+       column::precursor_held, column::precursor_removed, column::coated_mass});
   {
     // The orchestrator records the initial state (uncoated) before the first step.
     cosim::link::ParticleData p0;
@@ -50,7 +53,8 @@ fs::path makeRun(const std::string& name, double uncoated_share, std::uint64_t s
     p0.field(cosim::field::coating_mass);
     rec.write(0.0, p0);
   }
-  double in = 0, out = 0, held = 0, removed = 0, credited = 0, pending = 0, wall = 0, coatedPrev = 0;
+  double in = 0, out = 0, held = 0, removed = 0, credited = 0, pending = 0, wall = 0,
+         coatedPrev = 0;
   for (std::size_t s = 0; s < masses.size(); ++s) {
     const double t = dt * static_cast<double>(s + 1);
     cosim::link::ParticleData p;
@@ -108,8 +112,8 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   ASSERT_EQ(runReport(o), 0) << log.str();
   const fs::path out = run / "report";
   for (const char* f : {"report.json", "report.html", "statistics.csv", "histograms.csv", "fit.csv",
-                        "fit_residuals.csv", "cv_prediction.csv", "distributions.csv", "prediction_check.csv",
-                        "window_study.csv", "mass_balance.csv"}) {
+                        "fit_residuals.csv", "cv_prediction.csv", "distributions.csv",
+                        "prediction_check.csv", "window_study.csv", "mass_balance.csv"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
   const std::string json = slurp(out / "report.json");
@@ -140,9 +144,11 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   EXPECT_EQ(a.steps, 201u);
   EXPECT_NEAR(a.wall_seconds, 200 * 0.02, 1e-9);
 
-  if (!matplotlibAvailable()) GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
-  for (const char* png : {"histograms.png", "statistics_time.png", "cv_mean.png", "fit.png", "cv_prediction.png",
-                          "distributions.png", "window_study.png", "mass_balance.png"}) {
+  if (!matplotlibAvailable())
+    GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
+  for (const char* png :
+       {"histograms.png", "statistics_time.png", "cv_mean.png", "fit.png", "cv_prediction.png",
+        "distributions.png", "window_study.png", "mass_balance.png"}) {
     ASSERT_TRUE(fs::exists(out / png)) << png << "\n" << slurp(out / "plot_report.log");
     EXPECT_GT(fs::file_size(out / png), 1000u) << png;
     EXPECT_NE(html.find(std::string("src=\"") + png + "\""), std::string::npos) << png;
@@ -176,23 +182,29 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   EXPECT_NE(html.find("poorly mixed", poorRow), std::string::npos);
   EXPECT_NE(html.find("never coated", poorRow), std::string::npos);
   EXPECT_NE(html.find("well mixed", goodRow), std::string::npos);
-  EXPECT_NE(slurp(out / "flow-1" / "report.html").find("Poorly mixed: extrapolation refused."), std::string::npos);
+  EXPECT_NE(slurp(out / "flow-1" / "report.html").find("Poorly mixed: extrapolation refused."),
+            std::string::npos);
   // The parameter that differs between the runs is a column; the one that does not is not.
   EXPECT_NE(html.find("<th>flow_lpm</th>"), std::string::npos);
   EXPECT_EQ(html.find("<th>cg</th>"), std::string::npos);
-  EXPECT_NE(slurp(out / "comparison.json").find("\"legend\": \"flow-1 flow_lpm=1\""), std::string::npos);
+  EXPECT_NE(slurp(out / "comparison.json").find("\"legend\": \"flow-1 flow_lpm=1\""),
+            std::string::npos);
   const std::string csv = slurp(out / "comparison.csv");
   EXPECT_NE(csv.find("\"flow-1\""), std::string::npos);
-  if (!matplotlibAvailable()) GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
-  for (const char* png : {"compare_cv_mean.png", "compare_statistics_time.png", "compare_histograms.png"}) {
+  if (!matplotlibAvailable())
+    GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
+  for (const char* png :
+       {"compare_cv_mean.png", "compare_statistics_time.png", "compare_histograms.png"}) {
     EXPECT_TRUE(fs::exists(out / png)) << png << "\n" << slurp(out / "plot_report.log");
   }
   // A poorly mixed run gets the full set of figures, but no extrapolation in them.
-  for (const char* png : {"histograms.png", "statistics_time.png", "cv_mean.png", "fit.png", "cv_prediction.png",
-                          "distributions.png", "window_study.png", "mass_balance.png"}) {
+  for (const char* png :
+       {"histograms.png", "statistics_time.png", "cv_mean.png", "fit.png", "cv_prediction.png",
+        "distributions.png", "window_study.png", "mass_balance.png"}) {
     EXPECT_TRUE(fs::exists(out / "flow-1" / png)) << png;
   }
-  EXPECT_NE(slurp(out / "flow-1" / "report.html").find("no prediction, the run is poorly mixed"), std::string::npos);
+  EXPECT_NE(slurp(out / "flow-1" / "report.html").find("no prediction, the run is poorly mixed"),
+            std::string::npos);
 }
 
 TEST(Report, WithoutMatplotlibTheNumbersAndHtmlStillComeOutAndSayWhatToInstall) {
@@ -210,7 +222,8 @@ TEST(Report, WithoutMatplotlibTheNumbersAndHtmlStillComeOutAndSayWhatToInstall) 
   EXPECT_TRUE(fs::exists(out / "report.json"));
   EXPECT_TRUE(fs::exists(out / "statistics.csv"));
   EXPECT_TRUE(fs::exists(out / "mass_balance.csv"));
-  for (const auto& e : fs::directory_iterator(out)) EXPECT_NE(e.path().extension(), ".png") << e.path();
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_NE(e.path().extension(), ".png") << e.path();
   const std::string html = slurp(out / "report.html");
   EXPECT_NE(html.find("Plots missing"), std::string::npos);
   EXPECT_NE(html.find("apt-get install python3-matplotlib"), std::string::npos);
@@ -277,7 +290,8 @@ TEST(Report, MassBalanceCheckForCi) {
       for (auto& x : m) x *= 0.99;
       p.field(cosim::field::coating_mass) = m;
     }
-    ParticleRecorder rec(run, {cosim::field::position, cosim::field::coating_mass}, ParticleRecorder::Mode::append);
+    ParticleRecorder rec(run, {cosim::field::position, cosim::field::coating_mass},
+                         {"synthetic", 1.0}, ParticleRecorder::Mode::append);
     rec.write(time, p);  // replaces the last snapshot
   }
   testing::internal::CaptureStderr();

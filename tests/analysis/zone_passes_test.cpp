@@ -259,7 +259,8 @@ fs::path makeRunWithPasses() {
   fs::remove_all(dir);
   fs::create_directories(dir);
   {
-    ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass});
+    ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass},
+                         cosim::analysis::RunIdentity{"zone-passes-test", 1.0});
     const double x[4] = {0.001, -0.001, 0.01, -0.01};
     const double z[3][4] = {
         {0.02, 0.02, 0.001, 0.002}, {0.03, 0.02, 0.001, 0.004}, {0.04, 0.02, 0.001, 0.003}};

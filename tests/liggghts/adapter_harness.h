@@ -31,7 +31,8 @@ class AdapterRun {
     hub_ = std::make_unique<link::Hub>(endpoint_);
     std::vector<std::string> args;
     if (ranks > 1) {
-      args = {COSIM_MPIEXEC, "-np", std::to_string(ranks), "--oversubscribe", "--allow-run-as-root"};
+      args = {COSIM_MPIEXEC, "-np", std::to_string(ranks), "--oversubscribe",
+              "--allow-run-as-root"};
     }
     for (const auto& a : {std::string(COSIM_LIGGGHTS_EXE), std::string("--endpoint"), endpoint_,
                           std::string("--name"), std::string("particles"), std::string("--run-id"),
@@ -72,8 +73,11 @@ class AdapterRun {
   }
 
   // Hello -> Welcome. Returns the Hello.
+  // restart_from: resume from this checkpoint folder (a Checkpoint's path); "" starts afresh.
   wire::Hello handshake(const std::string& config_yaml, double cfd_dt, unsigned dem_steps,
-                        const std::vector<std::string>& send, const std::vector<std::string>& receive_fields) {
+                        const std::vector<std::string>& send,
+                        const std::vector<std::string>& receive_fields,
+                        const std::string& restart_from = "") {
     auto hello = receive(60);
     if (!hello.has_hello()) throw std::runtime_error("expected Hello");
     wire::Envelope w;
@@ -86,6 +90,7 @@ class AdapterRun {
     welcome->set_cfd_dt(cfd_dt);
     welcome->set_dem_steps(dem_steps);
     welcome->set_end_time(1.0);
+    welcome->set_restart_from(restart_from);
     hub_->send("particles", w);
     return hello.hello();
   }

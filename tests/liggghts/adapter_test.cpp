@@ -8,15 +8,16 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "adapter_harness.h"
 #include "cosim/link/fields.h"
 #include "test_dir.h"
 
-using cosim::link::ParticleData;
 using cosim::liggghts::test::AdapterRun;
 using cosim::liggghts::test::dataDir;
 using cosim::liggghts::test::ScratchDir;
+using cosim::link::ParticleData;
 namespace field = cosim::field;
 
 namespace {
@@ -43,9 +44,9 @@ ParticleData stateOf(const cosim::wire::Envelope& reply) {
 struct Bed {
   ParticleData state;
   std::set<std::int64_t> inserted, deleted;
-  double max_overlap = 0;   // largest overlap between two particles or a particle and a wall [m]
+  double max_overlap = 0;  // largest overlap between two particles or a particle and a wall [m]
   double max_speed = 0;
-  double bed_height = 0;    // twice the mean particle height [m]
+  double bed_height = 0;  // twice the mean particle height [m]
 };
 
 // 1000 grains of 3 mm poured into a 40 mm cylinder (tests/liggghts/data/in.settling_bed),
@@ -77,8 +78,8 @@ Bed settle(const std::filesystem::path& base, int ranks) {
     bed.max_overlap = std::max(bed.max_overlap, r[i] - x[3 * i + 2]);  // floor z = 0
     bed.max_overlap = std::max(bed.max_overlap, std::hypot(x[3 * i], x[3 * i + 1]) + r[i] - 0.02);
     for (std::size_t j = i + 1; j < n; ++j) {
-      const double d = std::hypot(x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1],
-                                  x[3 * i + 2] - x[3 * j + 2]);
+      const double d =
+          std::hypot(x[3 * i] - x[3 * j], x[3 * i + 1] - x[3 * j + 1], x[3 * i + 2] - x[3 * j + 2]);
       bed.max_overlap = std::max(bed.max_overlap, r[i] + r[j] - d);
     }
   }
@@ -105,12 +106,14 @@ TEST(LiggghtsAdapter, SettlingBedSameWithOneAndTwoRanks) {
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     const Bed& b = beds[ranks];
     EXPECT_EQ(b.state.size(), 1000u) << ranks << " rank(s)";
-    EXPECT_EQ(b.inserted.size(), 1000u) << ranks << " rank(s): every particle reported inserted once";
+    EXPECT_EQ(b.inserted.size(), 1000u)
+        << ranks << " rank(s): every particle reported inserted once";
     EXPECT_TRUE(b.deleted.empty()) << ranks << " rank(s)";
     EXPECT_LT(b.max_overlap, 0.01 * 0.003) << ranks << " rank(s)";
     EXPECT_LT(b.max_speed, 0.01) << ranks << " rank(s): bed not at rest";
-    std::printf("%d rank(s): %zu particles, bed height %.5f m, max overlap %.3g m, max speed %.3g m/s\n",
-                ranks, b.state.size(), b.bed_height, b.max_overlap, b.max_speed);
+    std::printf(
+        "%d rank(s): %zu particles, bed height %.5f m, max overlap %.3g m, max speed %.3g m/s\n",
+        ranks, b.state.size(), b.bed_height, b.max_overlap, b.max_speed);
   }
   EXPECT_NEAR(beds[2].bed_height, beds[1].bed_height, 0.01 * beds[1].bed_height);
 }
@@ -170,8 +173,7 @@ TEST_P(CoatingById, IncrementsLandOnTheirParticles) {
   EXPECT_EQ(run.waitExit(), 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Ranks, CoatingById, ::testing::Values(1, 2),
-                         rankName);
+INSTANTIATE_TEST_SUITE_P(Ranks, CoatingById, ::testing::Values(1, 2), rankName);
 
 // Issue 4: a malformed input script fails with LIGGGHTS' own message surfaced to the user
 // (as wire::Error), and the process ends (non-zero) instead of hanging.
@@ -193,8 +195,7 @@ TEST_P(MalformedScript, LiggghtsMessageReachesOrchestrator) {
   EXPECT_NE(rc, -1) << "adapter still running 30 s after the error";
 }
 
-INSTANTIATE_TEST_SUITE_P(Ranks, MalformedScript, ::testing::Values(1, 2),
-                         rankName);
+INSTANTIATE_TEST_SUITE_P(Ranks, MalformedScript, ::testing::Values(1, 2), rankName);
 
 // A DEM step above 0.3 Rayleigh times is refused with the dt that would work.
 TEST(LiggghtsAdapter, UnstableTimestepIsRefusedWithAWorkingValue) {
@@ -205,7 +206,8 @@ TEST(LiggghtsAdapter, UnstableTimestepIsRefusedWithAWorkingValue) {
     std::ifstream in(dataDir() / "in.single_particle");
     std::ofstream out(pdir / "in.single_particle");
     std::string line;
-    while (std::getline(in, line)) out << (line == "timestep 1e-6" ? "timestep 5e-5" : line) << "\n";
+    while (std::getline(in, line))
+      out << (line == "timestep 1e-6" ? "timestep 5e-5" : line) << "\n";
   }
   AdapterRun run(pdir, 1);
   // 50 steps of 5e-5 s = 2.5e-3 s coupling interval. t_R = 7.68e-5 s: dt = 0.65 t_R.
@@ -290,8 +292,7 @@ TEST_P(InsertDelete, LedgerMatchesState) {
   EXPECT_EQ(run.waitExit(), 0);
 }
 
-INSTANTIATE_TEST_SUITE_P(Ranks, InsertDelete, ::testing::Values(1, 2),
-                         rankName);
+INSTANTIATE_TEST_SUITE_P(Ranks, InsertDelete, ::testing::Values(1, 2), rankName);
 
 // A LIGGGHTS error in the middle of a run reaches the orchestrator as an Error with LIGGGHTS'
 // message, and the process ends. The error is a division by zero in a variable printed at
@@ -322,11 +323,10 @@ TEST_P(ErrorDuringRun, LiggghtsMessageReachesOrchestrator) {
   EXPECT_NE(rc, -1) << "adapter still running 30 s after the error";
 }
 
-INSTANTIATE_TEST_SUITE_P(Ranks, ErrorDuringRun, ::testing::Values(1, 2),
-                         rankName);
+INSTANTIATE_TEST_SUITE_P(Ranks, ErrorDuringRun, ::testing::Values(1, 2), rankName);
 
-// Particles inserted after start-up are checked when they appear: a 3 mm bead (t_R = 1.836e-4 s) with a DEM step of 1e-4 s is refused at the first
-// interval that inserts it.
+// Particles inserted after start-up are checked when they appear: a 3 mm bead (t_R = 1.836e-4 s)
+// with a DEM step of 1e-4 s is refused at the first interval that inserts it.
 TEST(LiggghtsAdapter, TimestepCheckedWhenParticlesAppear) {
   ScratchDir dir;
   const auto pdir = dir.path() / "particles";
@@ -335,7 +335,8 @@ TEST(LiggghtsAdapter, TimestepCheckedWhenParticlesAppear) {
     std::ifstream in(dataDir() / "in.settling_bed");
     std::ofstream out(pdir / "in.settling_bed");
     std::string line;
-    while (std::getline(in, line)) out << (line == "timestep 3e-5" ? "timestep 1e-4" : line) << "\n";
+    while (std::getline(in, line))
+      out << (line == "timestep 3e-5" ? "timestep 1e-4" : line) << "\n";
   }
   AdapterRun run(pdir, 1);
   run.handshake("script: in.settling_bed\n", 5e-3, 50, kState, kForcing);
@@ -350,4 +351,121 @@ TEST(LiggghtsAdapter, TimestepCheckedWhenParticlesAppear) {
   EXPECT_NE(msg.find("0.545 x Rayleigh time"), std::string::npos) << msg;
   EXPECT_NE(msg.find("timestep 3.67e-05"), std::string::npos) << msg;
   EXPECT_NE(run.waitExit(30), 0);
+}
+
+namespace {
+// A LIGGGHTS `dump custom` file: its TIMESTEP and its rows (columns as in its ATOMS header).
+struct DumpFile {
+  long long step = -1;
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;
+};
+
+DumpFile readDump(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  DumpFile d;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line == "ITEM: TIMESTEP") {
+      std::getline(in, line);
+      d.step = std::stoll(line);
+    } else if (line.rfind("ITEM: ATOMS", 0) == 0) {
+      std::istringstream h(line.substr(11));
+      for (std::string c; h >> c;) d.columns.push_back(c);
+      while (std::getline(in, line)) {
+        std::istringstream r(line);
+        std::vector<double> row;
+        for (double x; r >> x;) row.push_back(x);
+        if (!row.empty()) d.rows.push_back(row);
+      }
+    }
+  }
+  return d;
+}
+
+std::set<std::string> dumpsIn(const std::filesystem::path& dir) {
+  std::set<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(dir))
+    if (e.path().extension() == ".dump") names.insert(e.path().filename().string());
+  return names;
+}
+
+// Largest difference between a dump's positions and a state's, matched by id.
+double largestPositionDifference(const DumpFile& d, const ParticleData& s) {
+  const auto& x = s.get(field::position);
+  double worst = 0;
+  EXPECT_EQ(d.rows.size(), s.size());
+  for (const auto& row : d.rows) {
+    const auto it = std::find(s.ids.begin(), s.ids.end(), static_cast<std::int64_t>(row[0]));
+    if (it == s.ids.end()) {
+      ADD_FAILURE() << "id " << row[0] << " not in the state";
+      continue;
+    }
+    const std::size_t i = static_cast<std::size_t>(it - s.ids.begin());
+    for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(row[1 + c] - x[3 * i + c]));
+  }
+  return worst;
+}
+}  // namespace
+
+// LIGGGHTS dumps on the coupled run's clock (docs/liggghts.md): the script settles the grains for
+// 200 DEM steps, then restarts the step counter and defines a dump every 100 steps. Coupled for
+// 5 intervals of 30 steps (t = 0 .. 1.5e-3 s), the dumps are g_0 (t = 0), g_100 and g_150 (the
+// final time, not a multiple of 100: written when the run finishes), each stamped with its step,
+// the last one holding the final state. Resumed from a checkpoint at step 60, the same files
+// with the same steps follow, and the resume's final dump holds the same state.
+TEST(LiggghtsAdapter, DumpsAreOnTheRunClockWithOneAtTheFinalTime) {
+  ScratchDir dir;
+  const auto fresh = participantDir(dir.path(), "fresh", "in.dump_clock");
+  const auto checkpoint = dir.path() / "checkpoint";
+  ParticleData final_state;
+  {
+    AdapterRun run(fresh, 1);
+    run.handshake("script: in.dump_clock\n", 3e-4, 30, kState, kForcing);
+    stateOf(run.advance(0, 0, ParticleData{}));
+    for (int k = 0; k < 5; ++k) {
+      final_state = stateOf(run.advance(3e-4, 30, ParticleData{}));
+      if (k == 1) ASSERT_TRUE(run.checkpoint(checkpoint.string()).has_checkpoint_written());
+    }
+    EXPECT_TRUE(run.shutdown().has_goodbye());
+    EXPECT_EQ(run.waitExit(), 0);
+  }
+  EXPECT_EQ(dumpsIn(fresh), (std::set<std::string>{"g_0.dump", "g_100.dump", "g_150.dump"}));
+  for (const auto& [name, step] : std::map<std::string, long long>{
+           {"g_0.dump", 0}, {"g_100.dump", 100}, {"g_150.dump", 150}}) {
+    const DumpFile d = readDump(fresh / name);
+    EXPECT_EQ(d.step, step) << name;
+    EXPECT_EQ(d.rows.size(), 20u) << name;
+  }
+  // The final dump is the final state (to the dump's 6 significant digits: < 1e-7 m here).
+  const DumpFile last = readDump(fresh / "g_150.dump");
+  EXPECT_LT(largestPositionDifference(last, final_state), 1e-7);
+
+  const auto resumed = participantDir(dir.path(), "resumed", "in.dump_clock");
+  {
+    AdapterRun run(resumed, 1);
+    run.handshake("script: in.dump_clock\n", 3e-4, 30, kState, kForcing, checkpoint.string());
+    stateOf(run.advance(0, 0, ParticleData{}));
+    for (int k = 2; k < 5; ++k) final_state = stateOf(run.advance(3e-4, 30, ParticleData{}));
+    EXPECT_TRUE(run.shutdown().has_goodbye());
+    EXPECT_EQ(run.waitExit(), 0);
+  }
+  EXPECT_EQ(dumpsIn(resumed), (std::set<std::string>{"g_100.dump", "g_150.dump"}));
+  EXPECT_EQ(readDump(resumed / "g_100.dump").step, 100);
+  const DumpFile again = readDump(resumed / "g_150.dump");
+  EXPECT_EQ(again.step, 150);
+  EXPECT_LT(largestPositionDifference(again, final_state), 1e-7);
+  EXPECT_LT(largestPositionDifference(again,
+                                      [&] {
+                                        ParticleData p;
+                                        for (const auto& row : last.rows)
+                                          p.ids.push_back(static_cast<std::int64_t>(row[0]));
+                                        auto& x = p.field(field::position);
+                                        for (std::size_t i = 0; i < last.rows.size(); ++i)
+                                          std::copy(last.rows[i].begin() + 1,
+                                                    last.rows[i].begin() + 4, x.begin() + 3 * i);
+                                        return p;
+                                      }()),
+            1e-7)
+      << "the resumed run ends where the uninterrupted one does";
 }

@@ -89,7 +89,7 @@ TEST(HostileExpression, MillionUnaryMinusSignsAreRefused) {
 TEST(HostileExpression, DeepExpressionFromTheCommandLineNamesTheOverride) {
   const std::string deep = std::string(20000, '(') + "5e-5" + std::string(20000, ')');
   const std::string msg = errorOf(kScene, {"d=${" + deep + "}"});
-  expectFragments(msg, {"hostile.yaml: --set d=${((((", "...", "parameters.d", "nested more than"});
+  expectFragments(msg, {"command line --set d=${((((", "...", "parameters.d", "nested more than"});
   EXPECT_LT(msg.size(), 1000u);
 }
 
@@ -121,7 +121,7 @@ TEST(HostileYaml, DuplicateKeysAreAnErrorNotFirstWins) {
   inner.replace(inner.find("dt: 1.0e-4"), 10, "dt: 1.0e-4, dt: 2.0e-4");
   expectFragments(errorOf(inner), {"hostile.yaml:8:", "coupling.dt: duplicate key"});
   expectFragments(errorOf(kScene, {"coupling={dt: 1.0e-4, dt: 2.0e-4, end_time: 1}"}),
-                  {"hostile.yaml: --set coupling={dt:", "coupling.dt: duplicate key"});
+                  {"command line --set coupling={dt:", "coupling.dt: duplicate key"});
 }
 
 TEST(HostileYaml, ListOrMapAsAKeyIsAnError) {
@@ -155,7 +155,7 @@ TEST(HostileYaml, HugeFilesAreRefused) {
 
 TEST(HostileYaml, ScalarWhereASectionBelongsNamesTheCommandLineAndTheKey) {
   expectFragments(errorOf(kScene, {"coupling=5"}),
-                  {"hostile.yaml: --set coupling=5: coupling: expected a section",
+                  {"command line --set coupling=5: coupling: expected a section",
                    "got the "
                    "value '5'"});
   // Every section: a ScenarioError naming the override and the section, never a yaml-cpp one.
@@ -165,7 +165,7 @@ TEST(HostileYaml, ScalarWhereASectionBelongsNamesTheCommandLineAndTheKey) {
       if (section == "parameters") continue;  // a bare name: parameters are set one by one
       const std::string set = section + "=" + value;
       const std::string msg = errorOf(kScene, {set});
-      expectFragments(msg, {"hostile.yaml: --set " + set + ": " + section});
+      expectFragments(msg, {"command line --set " + set + ": " + section});
       EXPECT_EQ(msg.find("yaml-cpp"), std::string::npos) << msg;
     }
   }
@@ -283,7 +283,7 @@ TEST(HostileObservables, TypoInATimeSeriesColumnFailsValidation) {
     makePlan(set, ms);
     FAIL() << "accepted";
   } catch (const ScenarioError& e) {
-    expectFragments(e.what(), {"hostile.yaml: --set observables.x={quantity: series.pressure_drp",
+    expectFragments(e.what(), {"command line --set observables.x={quantity: series.pressure_drp",
                                "observables.x.quantity", "no column 'pressure_drp'"});
     EXPECT_EQ(std::string(e.what()).find("hostile.yaml:1"), std::string::npos) << e.what();
   }

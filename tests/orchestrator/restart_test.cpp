@@ -167,9 +167,15 @@ TEST(Restart, KilledAtARandomMomentAndResumedIsTheUninterruptedRun) {
   SCOPED_TRACE("killed after checkpoint " + std::to_string(0.02 * after) + " s + " +
                std::to_string(extra_ms) + " ms");
 
+  const std::string id = analysis::ParticleFile(w.dir / "cut/particles.h5").runId();
+  EXPECT_EQ(id.size(), 8u) << "'" << id << "'";
   auto resumed = start(w, {"resume", "cut", "--quiet"}, "resume.out");
   ASSERT_EQ(finish(resumed), 0) << text(w.dir / "resume.out");
   expectSameRun(w.dir / "full", w.dir / "cut");
+  // The resumed run is the same run: one id in particles.h5 and summary.json.
+  EXPECT_EQ(analysis::ParticleFile(w.dir / "cut/particles.h5").runId(), id);
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "cut/summary.json").at("run_id"), id);
+  EXPECT_NE(analysis::readJsonFile(w.dir / "full/summary.json").at("run_id"), id);
 }
 
 TEST(Restart, CtrlCStopsWithACheckpointAndSaysHowToResume) {
@@ -367,15 +373,16 @@ TEST(Restart, EachParticipantKilledAndTheRunResumedIsTheUninterruptedRun) {
   }
 }
 
-// Runs started at the same time with the same -o never share a folder: each claims its own
-// (same, same-2, ...) and each records a complete run; no lock is left behind.
+// Runs started at the same time into the scene's own folder (no -o) never share it: each claims
+// its own (same, same-2, ...) and each records a complete run; no lock is left behind.
 TEST(RunFolder, RunsStartedTogetherWithTheSameFolderEachGetTheirOwn) {
   Workspace w;
   std::vector<ChildProcess> runs;
   for (int i = 0; i < 5; ++i) {
-    runs.push_back(
-        start(w, {"run", "scene.yaml", "-o", "same", "--quiet", "--set", "checkpoint.interval=0"},
-              "same" + std::to_string(i) + ".out"));
+    runs.push_back(start(w,
+                         {"run", "scene.yaml", "--quiet", "--set", "checkpoint.interval=0", "--set",
+                          "output.folder=same"},
+                         "same" + std::to_string(i) + ".out"));
   }
   for (auto& r : runs) EXPECT_EQ(finish(r), 0);
   const auto one = analysis::readTimeSeries(w.dir / "same/timeseries.csv");
@@ -387,4 +394,80 @@ TEST(RunFolder, RunsStartedTogetherWithTheSameFolderEachGetTheirOwn) {
     EXPECT_FALSE(fs::exists(w.dir / f / ".cosim-run.lock"));
   }
   EXPECT_FALSE(fs::exists(w.dir / "same-6"));
+}
+
+// A folder named with -o is that run's or none: runs started together with the same -o give
+// one complete run there and refusals for the others, never a "-2" nobody would look in.
+TEST(RunFolder, RunsStartedTogetherWithTheSameOutputOneRunsTheOthersAreRefused) {
+  Workspace w;
+  std::vector<ChildProcess> runs;
+  for (int i = 0; i < 4; ++i) {
+    runs.push_back(
+        start(w, {"run", "scene.yaml", "-o", "same", "--quiet", "--set", "checkpoint.interval=0"},
+              "same" + std::to_string(i) + ".out"));
+  }
+  int ran = 0;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const int code = finish(runs[i]);
+    const std::string out = text(w.dir / ("same" + std::to_string(i) + ".out"));
+    if (code == 0) {
+      ++ran;
+      continue;
+    }
+    EXPECT_EQ(code, 1) << out;
+    EXPECT_NE(out.find((w.dir / "same").string()), std::string::npos) << out;
+    EXPECT_NE(out.find("choose another folder with -o"), std::string::npos) << out;
+  }
+  EXPECT_EQ(ran, 1);
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "same/summary.json").at("status"), "completed");
+  EXPECT_FALSE(fs::exists(w.dir / "same/.cosim-run.lock"));
+  EXPECT_FALSE(fs::exists(w.dir / "same-2"));
+}
+
+TEST(RunFolder, AnExistingOutputFolderIsRefusedWithWhatToDo) {
+  Workspace w;
+  auto first =
+      start(w, {"run", "scene.yaml", "-o", "r", "--quiet", "--set", "coupling.end_time=0.04"},
+            "first.out");
+  ASSERT_EQ(finish(first), 0) << text(w.dir / "first.out");
+  const std::string before = text(w.dir / "r/timeseries.csv");
+  const auto summary = analysis::readJsonFile(w.dir / "r/summary.json");
+
+  auto again = start(w, {"run", "scene.yaml", "-o", "r", "--quiet"}, "again.out");
+  EXPECT_EQ(finish(again), 1);
+  const std::string out = text(w.dir / "again.out");
+  const std::string folder = (w.dir / "r").string();
+  // Which folder, that it exists, what it holds, and each way out.
+  EXPECT_NE(out.find("the run folder " + folder + " already exists"), std::string::npos) << out;
+  EXPECT_NE(out.find("completed run of 'restart'"), std::string::npos) << out;
+  EXPECT_NE(out.find("choose another folder with -o"), std::string::npos) << out;
+  EXPECT_NE(out.find("rm -r " + folder), std::string::npos) << out;
+  EXPECT_NE(out.find("--overwrite"), std::string::npos) << out;
+  EXPECT_NE(out.find("checkpoint at t = 0.04 s"), std::string::npos) << out;
+  EXPECT_NE(out.find("cosim resume " + folder), std::string::npos) << out;
+  // Nothing written: not into r, and no r-2 elsewhere.
+  EXPECT_EQ(text(w.dir / "r/timeseries.csv"), before);
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "r/summary.json"), summary);
+  EXPECT_FALSE(fs::exists(w.dir / "r-2"));
+
+  // An empty folder (mkdir, mktemp -d) is fine, and --overwrite writes into a used one.
+  fs::create_directories(w.dir / "empty");
+  auto empty =
+      start(w, {"run", "scene.yaml", "-o", "empty", "--quiet", "--set", "coupling.end_time=0.02"},
+            "empty.out");
+  EXPECT_EQ(finish(empty), 0) << text(w.dir / "empty.out");
+  EXPECT_TRUE(fs::exists(w.dir / "empty/summary.json"));
+  auto over = start(
+      w,
+      {"run", "scene.yaml", "-o", "r", "--quiet", "--overwrite", "--set", "coupling.end_time=0.02"},
+      "over.out");
+  EXPECT_EQ(finish(over), 0) << text(w.dir / "over.out");
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "r/summary.json").at("end_time_s"), 0.02);
+
+  // A file in the way is named as such.
+  std::ofstream(w.dir / "afile") << "x";
+  auto file = start(w, {"run", "scene.yaml", "-o", "afile", "--quiet"}, "file.out");
+  EXPECT_EQ(finish(file), 1);
+  EXPECT_NE(text(w.dir / "file.out").find("exists and is not a folder"), std::string::npos)
+      << text(w.dir / "file.out");
 }

@@ -2,6 +2,7 @@
 #include "scenario.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -252,8 +253,8 @@ TEST(ScenarioErrors, BadValueInAWholeNodeNamesTheCommandLineAndTheKey) {
     ADD_FAILURE() << "accepted";
   } catch (const ScenarioError& e) {
     const std::string msg = e.what();
-    // "<file>: --set <as given>: <key>: <what>", no line of the file (the value is not in it)
-    EXPECT_NE(msg.find("bad.yaml: --set " + set + ": models.coating_zone: "), std::string::npos)
+    // "command line --set <as given>: <key>: <what>", no line of the file (the value is not in it)
+    EXPECT_NE(msg.find("command line --set " + set + ": models.coating_zone: "), std::string::npos)
         << msg;
     EXPECT_NE(msg.find("radius"), std::string::npos) << msg;
     EXPECT_EQ(msg.find("bad.yaml:1"), std::string::npos) << msg;
@@ -275,7 +276,8 @@ TEST(ScenarioErrors, UnsetOfAMissingOrRequiredKey) {
   expectError(kZoned, {"--unset models.drag.law.x", "no 'models.drag.law' section"}, {},
               {"models.drag.law.x"});
   expectError(kGood, {"--unset coupling.dt", "coupling.dt", "missing"}, {}, {"coupling.dt"});
-  expectError(kGood, {"bad.yaml: --unset coupling: coupling: missing section"}, {}, {"coupling"});
+  expectError(kGood, {"command line --unset coupling: coupling: missing section"}, {},
+              {"coupling"});
 }
 
 TEST(ScenarioErrors, EndTimeBeforeStart) {
@@ -343,10 +345,10 @@ TEST(ScenarioDocs, EveryDeclaredKeyIsInScenarioMd) {
   ASSERT_TRUE(in);
   const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::vector<std::pair<std::string, const std::vector<KeySpec>*>> sections = {
-      {"coupling", &CouplingSection::keys()},    {"constants", &ConstantsSection::keys()},
+      {"coupling", &CouplingSection::keys()},     {"constants", &ConstantsSection::keys()},
       {"participants", &ParticipantSpec::keys()}, {"models", &ModelsSection::keys()},
-      {"output", &OutputSection::keys()},        {"transport", &TransportSection::keys()},
-      {"checks", &ChecksSection::keys()},        {"observables", &observableKeys()},
+      {"output", &OutputSection::keys()},         {"transport", &TransportSection::keys()},
+      {"checks", &ChecksSection::keys()},         {"observables", &observableKeys()},
       {"checkpoint", &CheckpointSection::keys()}};
   for (const auto& [section, keys] : sections) {
     EXPECT_FALSE(keys->empty()) << section;
@@ -359,4 +361,98 @@ TEST(ScenarioDocs, EveryDeclaredKeyIsInScenarioMd) {
       EXPECT_TRUE(found) << section << "." << k.name << " is not in docs/scenario.md";
     }
   }
+}
+
+// A bad --set value is blamed on the command line, never on a line of a file it is not in.
+TEST(ScenarioErrors, BadSetValueIsBlamedOnTheCommandLine) {
+  try {
+    parse(kGood, {"coupling.dt=abc"});
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("command line --set coupling.dt=abc: coupling.dt: expected a number, "
+                        "got 'abc'",
+                        0),
+              0u)
+        << msg;
+    EXPECT_NE(msg.find("(scene "), std::string::npos) << "which scene it was for: " << msg;
+    EXPECT_EQ(msg.find("bad.yaml:"), std::string::npos) << msg;
+  }
+  // One parameter of a model: the model checks its parameters together under models.drag, the
+  // value is the command line's.
+  const std::string zoned = std::string(kGood) +
+                            "  mass_transfer: { law: ranz_marshall }\n"
+                            "  coating_zone: { shape: sphere, center: [0, 0, 0], radius: 0.01 }\n";
+  try {
+    parse(zoned, {"models.coating_zone.radius=-1"});
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(
+        msg.rfind("command line --set models.coating_zone.radius=-1: models.coating_zone: ", 0), 0u)
+        << msg;
+    EXPECT_NE(msg.find("'radius'"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("bad.yaml:"), std::string::npos) << msg;
+  }
+  try {
+    parse(kGood, {"models.drag.law=stoke"});
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(
+                  "command line --set models.drag.law=stoke: models.drag.law: unknown drag law "
+                  "'stoke'",
+                  0),
+              0u)
+        << e.what();
+  }
+  // A value of the file checked against one of the command line: the file's line, and the
+  // command line's change beside it.
+  try {
+    parse(kGood, {"coupling.end_time=1e-9"});
+    ADD_FAILURE() << "accepted";
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("bad.yaml:10: coupling.dt: "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("(the command line changed the scene: --set coupling.end_time=1e-9)"),
+              std::string::npos)
+        << msg;
+  }
+}
+
+// A scene that extends another: each message names the file and line that gave the key.
+TEST(ScenarioErrors, ExtendedSceneErrorsNameTheFileThatGaveTheKey) {
+  const fs::path dir = fs::temp_directory_path() / ("cosim-extends-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "base.yaml") << kGood;  // coupling at line 10
+  std::ofstream(dir / "small.yaml") << "extends: base.yaml\n"
+                                       "name: small\n"
+                                       "coupling:\n"
+                                       "  end_time: 0.02\n";
+  const fs::path small = dir / "small.yaml", base = dir / "base.yaml";
+  auto error = [&](const std::vector<std::string>& sets) {
+    try {
+      loadScenario(small, sets);
+    } catch (const ScenarioError& e) {
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "accepted";
+    return std::string();
+  };
+  EXPECT_DOUBLE_EQ(loadScenario(small).coupling.end_time, 0.02);
+  // models.drag.law is base.yaml's (line 12), whatever the command line changed elsewhere.
+  std::string msg = error({"models.drag={law: stokes, k: 1}"});
+  EXPECT_EQ(msg.rfind("command line --set models.drag={law: stokes, k: 1}: models.drag:", 0), 0u)
+      << msg;
+  msg = error({"coupling.dt=abc"});
+  EXPECT_EQ(msg.rfind("command line --set coupling.dt=abc: coupling.dt: expected a number", 0), 0u)
+      << msg;
+  msg = error({"coupling.end_time=1e-9"});
+  EXPECT_EQ(msg.rfind(base.string() + ":10: coupling.dt: ", 0), 0u) << msg;
+  EXPECT_NE(msg.find("--set coupling.end_time=1e-9"), std::string::npos) << msg;
+  // A key of the extending file: its own line.
+  std::ofstream(small, std::ios::app) << "  dem_steps: 2.5\n";
+  msg = error({});
+  EXPECT_EQ(msg.rfind(small.string() + ":5: coupling.dem_steps: ", 0), 0u) << msg;
+  fs::remove_all(dir);
 }

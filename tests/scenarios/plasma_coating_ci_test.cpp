@@ -9,8 +9,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "cosim/analysis/files.h"
@@ -23,6 +27,37 @@
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
+
+namespace {
+// The LIGGGHTS dumps of a run (dem/in.liggghts: particles/post/grains_<step>.dump): file names,
+// and of one file its TIMESTEP and the positions by id.
+std::set<std::string> dumpFiles(const fs::path& run) {
+  std::set<std::string> names;
+  for (const auto& e : fs::directory_iterator(run / "particles" / "post"))
+    names.insert(e.path().filename().string());
+  return names;
+}
+
+long long dumpStep(const fs::path& file, std::map<long long, std::vector<double>>& position) {
+  std::ifstream in(file);
+  long long step = -1;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line == "ITEM: TIMESTEP") {
+      std::getline(in, line);
+      step = std::stoll(line);
+    } else if (line.rfind("ITEM: ATOMS id type x y z", 0) == 0) {
+      while (std::getline(in, line)) {
+        std::istringstream r(line);
+        long long id = 0, type = 0;
+        std::vector<double> x(3);
+        if (r >> id >> type >> x[0] >> x[1] >> x[2]) position[id] = x;
+      }
+    }
+  }
+  return step;
+}
+}  // namespace
 
 TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   const fs::path out = fs::temp_directory_path() / ("cosim-plasma-ci-" + std::to_string(getpid()));
@@ -106,6 +141,21 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   std::printf("CI bed: %zu passes of %zu parcels; %zu parcels never in the zone\n", passes.size(),
               withPass, n - withPass);
 
+  // The LIGGGHTS dumps are on the run's clock: one at t = 0 and one every write_interval
+  // (0.05 s = 10,000 DEM steps of 5e-6 s), named and stamped with the step counted from the start
+  // of the coupling (not of the 0.1 s of settling before it); the last one, at the final time,
+  // holds the parcels where the run ended (to the dump's 6 significant digits).
+  EXPECT_EQ(dumpFiles(r.folder), (std::set<std::string>{"grains_0.dump", "grains_10000.dump"}));
+  std::map<long long, std::vector<double>> dumped;
+  EXPECT_EQ(dumpStep(r.folder / "particles/post/grains_10000.dump", dumped), 10000);
+  ASSERT_EQ(dumped.size(), n);
+  double dx = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& d = dumped[r.final_state.ids[i]];
+    for (int c = 0; c < 3; ++c) dx = std::max(dx, std::fabs(d[c] - x[3 * i + c]));
+  }
+  EXPECT_LT(dx, 1e-6) << "final dump against the final state [m]";
+
   // Analytics and report.
   cosim::analysis::ReportOptions ro;
   ro.runs = {r.folder};
@@ -149,6 +199,7 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   fs::copy(base / "full", base / "cut", fs::copy_options::recursive);
   fs::remove_all(base / "cut/checkpoints/0.04");
   fs::remove_all(base / "cut/checkpoints/0.05");
+  fs::remove(base / "cut/particles/post/grains_10000.dump");  // written after 0.03 s
   RunOptions ro;
   ro.quiet = true;
   ro.resume = base / "cut";
@@ -229,6 +280,12 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
       EXPECT_NEAR(mb[i], it->second, 1e-12 * mb[i]) << "parcel " << b.ids[i];
     }
   }
+  // The resumed run's dumps carry on the run's clock: the same files as the uninterrupted run's,
+  // the final one written again by the resumed run at step 10,000 (t = 0.05 s).
+  EXPECT_EQ(dumpFiles(base / "cut"), dumpFiles(base / "full"));
+  std::map<long long, std::vector<double>> dumped;
+  EXPECT_EQ(dumpStep(base / "cut/particles/post/grains_10000.dump", dumped), 10000);
+  EXPECT_EQ(dumped.size(), b.size());
   fs::remove_all(base);
 }
 

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
@@ -14,6 +15,7 @@
 #include "cosim/liggghts/drag_relaxation_fix.h"
 #include "cosim/liggghts/hertz_contact_time.h"
 #include "cosim/liggghts/liggghts_error.h"
+#include "dump.h"
 #include "fix.h"
 #include "fix_property_atom.h"
 #include "fix_property_global.h"
@@ -21,6 +23,7 @@
 #include "lammps.h"
 #include "memory.h"
 #include "modify.h"
+#include "output.h"
 #include "update.h"
 
 namespace cosim::liggghts {
@@ -146,18 +149,28 @@ std::vector<std::string> words(const std::string& line) {
 }
 
 // The command a logical line of the script asks for, rewritten for a resume; "" leaves it out.
-std::string forResume(const std::string& command, const std::filesystem::path& restart) {
+// `dropped`: ids of the fixes left out so far (their `unfix` is left out too).
+std::string forResume(const std::string& command, const std::filesystem::path& restart,
+                      std::set<std::string>& dropped) {
   const auto w = words(command);
   if (w.empty()) return command;
   const std::string& verb = w[0];
   if (verb == "create_box" || verb == "read_data" || verb == "read_restart")
     return "read_restart " + restart.string();
-  if (verb == "create_atoms" || verb == "run" || verb == "write_restart") return "";
+  // reset_timestep: the restart file holds the step counter of the run's clock.
+  if (verb == "create_atoms" || verb == "run" || verb == "write_restart" ||
+      verb == "reset_timestep")
+    return "";
   // fix ID group STYLE args
   if (verb == "fix" && w.size() > 3 && w[3].rfind("insert/", 0) == 0) {
-    for (std::size_t i = 4; i + 1 < w.size(); ++i)
-      if (w[i] == "insert_every" && w[i + 1] == "once") return "";
+    for (std::size_t i = 4; i + 1 < w.size(); ++i) {
+      if (w[i] == "insert_every" && w[i + 1] == "once") {
+        dropped.insert(w[1]);
+        return "";
+      }
+    }
   }
+  if (verb == "unfix" && w.size() > 1 && dropped.count(w[1])) return "";
   return command;
 }
 
@@ -174,12 +187,13 @@ void Engine::resumeScript(const std::filesystem::path& script,
   keep_restored_forces_ = std::filesystem::exists(restart.parent_path() / kOtherForcesMarker);
   std::ifstream in(script);
   std::string logical, line;
+  std::set<std::string> dropped;
   auto flush = [&] {
     const auto hash = logical.find('#');
     const std::string cmd = trim(hash == std::string::npos ? logical : logical.substr(0, hash));
     logical.clear();
     if (cmd.empty()) return;
-    const std::string now = forResume(cmd, restart);
+    const std::string now = forResume(cmd, restart, dropped);
     if (!now.empty()) command(now);
   };
   while (std::getline(in, line)) {
@@ -253,6 +267,24 @@ void Engine::installCoupling() {
 }
 
 double Engine::timestep() const { return lmp_->update->dt; }
+
+std::int64_t Engine::step() const { return lmp_->update->ntimestep; }
+
+int Engine::dumpCount() const { return lmp_->output->ndump; }
+
+void Engine::writeDumpsNow() {
+  guarded("writing the dumps of the final state", [&] {
+    LAMMPS_NS::Output* out = lmp_->output;
+    const LAMMPS_NS::bigint now = lmp_->update->ntimestep;
+    for (int i = 0; i < out->ndump; ++i) {
+      if (out->last_dump[i] == now) continue;
+      // as Output::write does at a dump's step
+      if (out->dump[i]->clearstep || out->every_dump[i] == 0) lmp_->modify->clearstep_compute();
+      out->dump[i]->write();
+      out->last_dump[i] = now;
+    }
+  });
+}
 
 std::int64_t Engine::particleCount() const {
   long long local = lmp_->atom->nlocal, total = 0;

@@ -228,7 +228,26 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
           options_.script, dt, welcome.cfd_dt(), welcome.dem_steps(), wanted, wanted, hint));
     }
   }
+  warnIfDumpsOffTheRunClock(welcome);
   checkTimestep();
+}
+
+// LIGGGHTS names and stamps its dumps by its step counter. After a DEM-only settling in the
+// script, that counter is ahead of the coupled run's clock unless the script restarts it
+// (docs/liggghts.md); a resumed run continues the counter of its restart file.
+void LiggghtsSolver::warnIfDumpsOffTheRunClock(const cosim::wire::Welcome& welcome) const {
+  if (rank_ != 0 || engine_->dumpCount() == 0 || !welcome.restart_from().empty()) return;
+  const double dt = engine_->timestep();
+  const auto expected = static_cast<std::int64_t>(std::llround(welcome.start_time() / dt));
+  const std::int64_t step = engine_->step();
+  if (step == expected) return;
+  spdlog::warn(
+      "[liggghts] the script {} leaves LIGGGHTS at step {} while the coupled run starts at t = {} "
+      "s (step {}): its dumps are named and stamped {:.6g} s off the run's clock. After the "
+      "settling `run`, `unfix` the one-off insertion and write `reset_timestep {}` before the "
+      "`dump` command (docs/liggghts.md)",
+      options_.script, step, welcome.start_time(), expected,
+      static_cast<double>(step - expected) * dt, expected);
 }
 
 void LiggghtsSolver::checkTimestep() {
@@ -300,6 +319,11 @@ std::vector<std::string> LiggghtsSolver::doCheckpoint(const std::string& path) {
   return {file.string()};
 }
 
-void LiggghtsSolver::doFinish() { engine_.reset(); }
+void LiggghtsSolver::doFinish() {
+  // The run's final state in every dump of the script, also when the end time is not a multiple
+  // of the dump interval.
+  if (engine_ && !engine_->broken()) engine_->writeDumpsNow();
+  engine_.reset();
+}
 
 }  // namespace cosim::liggghts

@@ -13,44 +13,75 @@ bool Context::within(const std::string& key, const std::string& path) {
          (key.size() == path.size() || key[path.size()] == '.' || key[path.size()] == '[');
 }
 
+void Context::setExtends(std::filesystem::path base, std::set<std::string> base_keys,
+                         std::set<std::string> own, std::set<std::string> own_values) {
+  base_ = std::move(base);
+  base_keys_ = std::move(base_keys);
+  own_ = std::move(own);
+  own_values_ = std::move(own_values);
+}
+
+const std::filesystem::path& Context::fileOf(const std::string& key) const {
+  if (base_.empty() || own_.count(key)) return origin_;
+  for (const auto& v : own_values_)
+    if (within(key, v)) return origin_;  // the scenario file replaced a parent of it wholesale
+  return base_keys_.count(key) ? base_ : origin_;  // a key neither gives: the scenario's
+}
+
+const std::pair<std::string, std::string>* Context::blamedOverride(const std::string& key,
+                                                                   const std::string& what) const {
+  for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o)
+    if (within(key, o->first)) return &*o;
+  // An override below the key whose name the message quotes, e.g. models.drag.k and "parameter
+  // 'k' must be a number": the model checks its parameters together, under models.drag.
+  for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
+    if (!within(o->first, key)) continue;
+    const auto cut = o->first.find_last_of(".[");
+    std::string leaf = cut == std::string::npos ? o->first : o->first.substr(cut + 1);
+    if (!leaf.empty() && leaf.back() == ']') leaf.pop_back();
+    if (!leaf.empty() && what.find("'" + leaf + "'") != std::string::npos) return &*o;
+  }
+  return nullptr;
+}
+
+std::string Context::overridesNote(const std::string& key) const {
+  for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
+    if (within(o->first, key))
+      return " (" + o->first + " comes from the command line: " + o->second + ")";
+  }
+  if (overrides_.empty()) return "";
+  std::string list;
+  for (const auto& o : overrides_) list += (list.empty() ? "" : ", ") + o.second;
+  return " (the command line changed the scene: " + list + ")";
+}
+
+std::string Context::sceneNote() const { return " (scene " + origin_.string() + ")"; }
+
 std::string Context::where(const YAML::Node& node, const std::string& key) const {
   for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
-    if (within(key, o->first)) return origin_.string() + ": " + o->second;
+    if (within(key, o->first)) return "command line " + o->second;
   }
   std::ostringstream out;
-  out << origin_.string();
+  out << fileOf(key).string();
   if (node.IsDefined() && node.Mark().line >= 0) out << ":" << node.Mark().line + 1;
   return out.str();
 }
 
 void Context::fail(const YAML::Node& node, const std::string& key, const std::string& what) const {
-  std::ostringstream os;
-  os << origin_.string();
   // A value that came from the command line has no line in the file: name the override.
-  for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
-    if (within(key, o->first)) {
-      os << ": " << o->second << ": " << key << ": " << what;
-      throw ScenarioError(os.str());
-    }
-  }
-  if (node.IsDefined() && node.Mark().line >= 0) os << ":" << node.Mark().line + 1;
-  os << ": " << key << ": " << what;
-  for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
-    if (within(o->first, key)) {
-      os << " (" << o->first << " comes from the command line: " << o->second << ")";
-      break;
-    }
-  }
-  throw ScenarioError(os.str());
+  if (const auto* o = blamedOverride(key, what))
+    throw ScenarioError("command line " + o->second + ": " + key + ": " + what + sceneNote());
+  throw ScenarioError(where(node, key) + ": " + key + ": " + what + overridesNote(key));
 }
 
 void Context::failTop(const std::string& key, const std::string& what) const {
-  for (auto o = overrides_.rbegin(); o != overrides_.rend(); ++o) {
-    if (within(key, o->first)) {
-      throw ScenarioError(origin_.string() + ": " + o->second + ": " + key + ": " + what);
-    }
-  }
-  throw ScenarioError(origin_.string() + ": " + key + ": " + what);
+  if (const auto* o = blamedOverride(key, what))
+    throw ScenarioError("command line " + o->second + ": " + key + ": " + what + sceneNote());
+  throw ScenarioError(fileOf(key).string() + ": " + key + ": " + what + overridesNote(key));
+}
+
+void Context::failCommandLine(const std::string& shown, const std::string& what) const {
+  throw ScenarioError("command line " + shown + ": " + what + sceneNote());
 }
 
 std::string Context::keyName(const YAML::Node& key, const std::string& where) const {

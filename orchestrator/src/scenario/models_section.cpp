@@ -109,16 +109,22 @@ ModelsSection parseModels(const YAML::Node& m, const Context& ctx, const fs::pat
       out.plugins.push_back(pth);
     }
   }
-  auto check = [&](const YAML::Node& node, const std::string& key, auto make) {
+  // Builds the model once to check its parameters. An unknown law is the fault of the key
+  // naming it (models.drag.law), anything else of the model's node (its parameters together).
+  auto check = [&](const YAML::Node& node, const std::string& key, const std::string& name_key,
+                   const std::string& law, const std::vector<std::string>& known, auto make) {
     try {
       make();
     } catch (const std::exception& e) {
+      if (std::find(known.begin(), known.end(), law) == known.end())
+        ctx.fail(node[name_key], key + "." + name_key, e.what());
       ctx.fail(node, key, e.what());
     }
   };
   if (m["drag"]) {
     out.drag = modelSpec(m["drag"], "models.drag", "drag law", "law", ctx);
-    check(m["drag"], "models.drag", [&] { registry.makeDrag(out.drag->law, out.drag->params); });
+    check(m["drag"], "models.drag", "law", out.drag->law, registry.dragNames(),
+          [&] { registry.makeDrag(out.drag->law, out.drag->params); });
   }
   if (m["forces"]) {
     if (!m["forces"].IsSequence())
@@ -126,14 +132,15 @@ ModelsSection parseModels(const YAML::Node& m, const Context& ctx, const fs::pat
     for (std::size_t i = 0; i < m["forces"].size(); ++i) {
       const std::string key = "models.forces[" + std::to_string(i) + "]";
       out.forces.push_back(modelSpec(m["forces"][i], key, "force model", "law", ctx));
-      check(m["forces"][i], key,
+      check(m["forces"][i], key, "law", out.forces.back().law, registry.forceNames(),
             [&] { registry.makeForce(out.forces.back().law, out.forces.back().params); });
     }
   }
   if (m["mass_transfer"]) {
     out.mass_transfer =
         modelSpec(m["mass_transfer"], "models.mass_transfer", "mass transfer law", "law", ctx);
-    check(m["mass_transfer"], "models.mass_transfer",
+    check(m["mass_transfer"], "models.mass_transfer", "law", out.mass_transfer->law,
+          registry.massTransferNames(),
           [&] { registry.makeMassTransfer(out.mass_transfer->law, out.mass_transfer->params); });
   }
   if (m["coating_zone"]) {
@@ -144,7 +151,8 @@ ModelsSection parseModels(const YAML::Node& m, const Context& ctx, const fs::pat
     }
     out.coating_zone =
         modelSpec(m["coating_zone"], "models.coating_zone", "coating zone", "shape", ctx);
-    check(m["coating_zone"], "models.coating_zone",
+    check(m["coating_zone"], "models.coating_zone", "shape", out.coating_zone->law,
+          registry.zoneNames(),
           [&] { registry.makeZone(out.coating_zone->law, out.coating_zone->params); });
   }
   return out;

@@ -10,7 +10,8 @@ const std::vector<KeySpec>& OutputSection::keys() {
   static const std::vector<KeySpec> k = {
       {"folder", "runs/NAME",
        "run folder, relative to where cosim runs, without '..'; an existing one is never "
-       "overwritten (a -2, -3 suffix is added)"},
+       "overwritten (a -2, -3 suffix is added; a folder given with cosim run -o is refused "
+       "instead)"},
       {"interval", "0", "particle snapshot interval [s]; 0 = every coupling step"},
   };
   return k;

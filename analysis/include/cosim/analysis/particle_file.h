@@ -24,6 +24,10 @@ class ParticleFile {
   ParticleFile& operator=(ParticleFile&&) noexcept;
 
   const std::filesystem::path& path() const { return path_; }
+  // The run the file belongs to (root attributes run_id, as in summary.json, and cg); "" and 1
+  // for a file recorded before they were written.
+  const std::string& runId() const { return run_id_; }
+  double cg() const { return cg_; }
   const std::vector<std::string>& fields() const { return fields_; }
   bool hasField(const std::string& name) const;
   // Snapshots sorted by time.
@@ -38,6 +42,8 @@ class ParticleFile {
   struct Impl;
   std::filesystem::path path_;
   std::vector<std::string> fields_;
+  std::string run_id_;
+  double cg_ = 1.0;
   std::vector<SnapshotInfo> snapshots_;
   std::unique_ptr<Impl> impl_;
 };

@@ -42,6 +42,10 @@ inline constexpr const char* precursor_removed = "precursor_removed";  // [kg] o
 
 // Number of components of a field (1 for scalars); 0 for an unknown name.
 unsigned components(const std::string& name);
+// SI unit of a field as written in particles.h5 ("m", "m/s", "kg", "-" ...); "" if unknown.
+const char* units(const std::string& name);
+// What a field means, one line (recorded with it in particles.h5); "" for an unknown name.
+const char* description(const std::string& name);
 // Every known field name.
 const std::vector<std::string>& all();
 

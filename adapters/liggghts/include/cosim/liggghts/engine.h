@@ -66,9 +66,10 @@ class Engine {
   void runScript(const std::filesystem::path& script);
   // Resume: runs the scene's script with the commands that build and fill the box replaced by
   // `read_restart restart` (create_box, read_data -> read_restart; create_atoms, one-off
-  // insertions `insert_every once`, run and write_restart left out), so the particles, their
-  // coating and their contact history continue from the restart file. Other fixes, walls,
-  // continuous insertions and dumps are defined again as written and pick up their restart data.
+  // insertions `insert_every once` and their `unfix`, run, reset_timestep and write_restart left
+  // out), so the particles, their coating, their contact history and the step counter continue
+  // from the restart file. Other fixes, walls, continuous insertions and dumps are defined again
+  // as written and pick up their restart data.
   void resumeScript(const std::filesystem::path& script, const std::filesystem::path& restart);
   // One LIGGGHTS command.
   void command(const std::string& line);
@@ -76,6 +77,13 @@ class Engine {
   void installCoupling();
 
   double timestep() const;
+  // LIGGGHTS' step counter (update->ntimestep).
+  std::int64_t step() const;
+  // Number of dumps the script defines.
+  int dumpCount() const;
+  // Writes every dump of the script at the current step, unless it already did at this step
+  // (a run's final state: LIGGGHTS writes dumps only at multiples of their interval).
+  void writeDumpsNow();
   std::int64_t particleCount() const;
   // Rayleigh and Hertz times over all current particles, from the script's fix property/global
   // youngsModulus and poissonsRatio. Throws std::runtime_error if they are not defined.

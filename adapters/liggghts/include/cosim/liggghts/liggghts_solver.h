@@ -53,6 +53,7 @@ class LiggghtsSolver : public cosim::link::Solver {
   std::vector<std::string> doCheckpoint(const std::string& path);
   void doFinish();
   void checkTimestep();
+  void warnIfDumpsOffTheRunClock(const cosim::wire::Welcome& welcome) const;
 
   MPI_Comm comm_;
   int rank_ = 0;
