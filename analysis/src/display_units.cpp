@@ -5,6 +5,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <utility>
 
 namespace cosim::analysis {
 
@@ -85,6 +87,22 @@ std::string htmlNumber(double v, int digits) {
   const int ex = std::stoi(e.substr(epos + 1));
   return sign + mantissa + "&times;10<sup>" + (ex < 0 ? "&minus;" : "") +
          std::to_string(std::abs(ex)) + "</sup>";
+}
+
+std::string textNumber(double v, int digits) {
+  std::string s = htmlNumber(v, digits);
+  const std::pair<const char*, const char*> entities[] = {{"&#8239;", "\u202f"},
+                                                          {"&minus;", "\u2212"},
+                                                          {"&times;10<sup>", "\u00d710^"},
+                                                          {"</sup>", ""},
+                                                          {"&ndash;", "\u2013"}};
+  for (const auto& [from, to] : entities) {
+    for (auto at = s.find(from); at != std::string::npos; at = s.find(from, at)) {
+      s.replace(at, std::strlen(from), to);
+      at += std::strlen(to);
+    }
+  }
+  return s;
 }
 
 std::string htmlQuantity(double value_si, const DisplayUnit& unit, int digits) {

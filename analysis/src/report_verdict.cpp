@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "cosim/analysis/display_units.h"
 #include "cosim/analysis/report.h"
 #include "report_internal.h"
 
@@ -15,8 +16,7 @@ namespace {
 constexpr const char* kNbsp = "\u00a0";
 
 std::string number(double v, int digits = 3) {
-  if (!std::isfinite(v)) return "?";
-  return fmt::format("{:.{}g}", v, digits);
+  return std::isfinite(v) ? textNumber(v, digits) : "?";
 }
 std::string duration(double s) {
   if (!std::isfinite(s)) return "?";
@@ -24,7 +24,7 @@ std::string duration(double s) {
   if (std::abs(s) > 120.0) return number(s / 60.0) + kNbsp + "min";
   return number(s) + kNbsp + "s";
 }
-std::string percent(double share) { return fmt::format("{:.0f}{}%", 100.0 * share, kNbsp); }
+std::string percent(double share) { return number(100.0 * share) + kNbsp + "%"; }
 std::string quantity(double si, const DisplayUnit& u) {
   return std::isfinite(si) ? number(u.of(si)) + kNbsp + u.name : "?";
 }
@@ -87,9 +87,8 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
   }
   if (!v.relaxed.empty()) {
     t.head = "Well mixed only under relaxed criteria";
-    s = "(";
     for (std::size_t i = 0; i < v.relaxed.size(); ++i) s += (i ? ", " : "") + v.relaxed[i];
-    s += "), so the extrapolation is at your own risk. After ";
+    s += "; the extrapolation is at your own risk. After ";
   } else {
     t.head = "Well mixed";
     s = "after ";

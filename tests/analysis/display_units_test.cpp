@@ -45,6 +45,8 @@ TEST(DisplayUnits, NumbersHaveTheirSignificantDigitsAndNothingToBreakAt) {
   EXPECT_EQ(htmlNumber(1.234e-12), "1.234&times;10<sup>&minus;12</sup>");
   EXPECT_EQ(htmlNumber(-2.5e7, 3), "&minus;2.5&times;10<sup>7</sup>");
   EXPECT_EQ(htmlNumber(std::nan("")), "&ndash;");
+  EXPECT_EQ(textNumber(995920.0), "995\u202f900");
+  EXPECT_EQ(textNumber(-1.234e-12), "\u22121.234\u00d710^\u221212");
   EXPECT_EQ(htmlQuantity(2.49e-10, massUnitFor(2.49e-10)), "249&nbsp;ng");
   EXPECT_EQ(htmlDuration(0.05), "50&nbsp;ms");
   EXPECT_EQ(htmlDuration(1.0), "1&nbsp;s");

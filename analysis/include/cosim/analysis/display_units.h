@@ -26,6 +26,9 @@ DisplayUnit lengthUnitFor(double typical_m);
 // that does not allow a line break after it; "&ndash;" when not finite. Nothing in it lets a
 // browser break the line.
 std::string htmlNumber(double v, int digits = 4);
+// The same as plain UTF-8 text (for sentences and JSON): narrow no-break spaces, U+2212 minus,
+// "1.23×10^-5" (with the minus sign).
+std::string textNumber(double v, int digits = 4);
 // v in `unit` followed by a no-break space and the unit's name ("12.3&nbsp;ng").
 std::string htmlQuantity(double value_si, const DisplayUnit& unit, int digits = 4);
 // A duration in the unit a reader expects, 3 significant digits: ms below 1 s, min above
