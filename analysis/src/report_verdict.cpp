@@ -103,8 +103,9 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
       const auto d = predictDistribution(a.fit, times[i], o.band);
       s += (i ? " and " : "") + number(d.cv) + " at " + duration(times[i]);
     }
-    s += " (\u00b1" + fmt::format("{:.0f}", 100 * o.band) + kNbsp + "% for that error in a2); at " +
-         duration(times.front()) + " a real grain would carry ";
+    const std::string band = fmt::format("{:.0f}", 100 * o.band) + kNbsp + "%";
+    s += " (each \u00b1" + band + " for a " + band + " error in a2); at " + duration(times.front()) +
+         " a real grain would carry ";
     const auto d = predictDistribution(a.fit, times.front(), o.band);
     s += quantity(c.grain.perGrain(d.mean), a.mass_unit);
     const double h = c.grain.thickness(d.mean);
