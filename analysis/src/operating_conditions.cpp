@@ -155,7 +155,7 @@ OperatingConditions readOperatingConditions(const ConditionInputs& in, const Par
                                       scene->viscosity, scene->gravity.value_or(9.81));
     if (std::isfinite(c.u_mf)) {
       c.u_mf_source = fmt::format(
-          "Wen-Yu for the real grains ({:.3g} um, {:.4g} kg/m3) in the gas ({:.4g} kg/m3, {:.3g} "
+          "Wen-Yu for the real grains ({:.3g} µm, {:.4g} kg/m3) in the gas ({:.4g} kg/m3, {:.3g} "
           "Pa s); "
           "the scene gives no {}",
           1e6 * c.grain.grain_diameter, *scene->particle_density, rhoGas, scene->viscosity,
