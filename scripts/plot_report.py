@@ -45,13 +45,22 @@ def scale_for(values_kg):
     return 1e15, "pg"
 
 
+def mass_unit(r, values_kg=None):
+    """The report's one unit for coating mass (report.json / comparison.json "units"): (factor, name).
+    Older files without it: the unit in which values_kg read between 1 and 1000."""
+    u = r.get("units")
+    if u and u.get("mass_kg"):
+        return 1.0 / u["mass_kg"], u["mass"]
+    return scale_for(values_kg if values_kg is not None else np.array([0.0]))
+
+
 def plot_histograms(r, folder):
     hs = r["histograms"]
     if not hs:
         return
     fig, axes = plt.subplots(1, len(hs), figsize=(3.6 * len(hs), 3.2), squeeze=False)
     allmax = [h["max"] for h in hs if h.get("max") is not None]
-    f, unit = scale_for(num(allmax)) if allmax else (1e9, "µg")
+    f, unit = mass_unit(r, num(allmax))
     for ax, h in zip(axes[0], hs):
         edges = num(h["edges"]) * f
         counts = np.array(h["counts"], dtype=float)
@@ -77,7 +86,7 @@ def plot_statistics_time(r, folder):
     s = r["snapshots"]
     t = num(s["time"])
     mean = num(s["mean"])
-    f, unit = scale_for(mean)
+    f, unit = mass_unit(r, mean)
     fig, axes = plt.subplots(1, 3, figsize=(12, 3.3))
     axes[0].plot(t, mean * f, "b.-", ms=3, label="mean")
     low = mean - num(s["std"])
@@ -99,7 +108,7 @@ def plot_statistics_time(r, folder):
 def plot_cv_mean(r, folder):
     s = r["snapshots"]
     mean = num(s["mean"])
-    f, unit = scale_for(mean)
+    f, unit = mass_unit(r, mean)
     fig, ax = plt.subplots(figsize=(5, 3.6))
     ax.plot(mean * f, num(s["cv"]), "k.-", ms=3)
     ax.set_xlabel("mean coating mass per parcel [%s]" % unit)
@@ -115,18 +124,20 @@ def plot_fit(r, folder):
     t = num(s["time"])
     t0c = fit["coating_start"] or 0.0
     mean = num(s["mean"])
-    var = num(s["variance"])
-    f, unit = scale_for(mean)
+    sd = num(s["std"])
+    f, unit = mass_unit(r, mean)
     fig, axes = plt.subplots(1, 3, figsize=(13, 3.5))
     axes[0].plot(t, mean * f, "b.", ms=4, label="simulated")
-    axes[1].plot(t, var * f * f, "g.", ms=4, label="simulated")
+    # Eq. 10 fits the variance a2^2 t; drawn as the standard deviation a2 sqrt(t), in the page's unit.
+    axes[1].plot(t, sd * f, "g.", ms=4, label="simulated")
     if fit["ok"]:
         tt = np.linspace(max(t0c, 0.0), max(t.max(), fit["t1"]), 200)
         tau = tt - t0c
         a1, a2 = fit["a1"], fit["a2"]
-        axes[0].plot(tt, a1 * tau * f, "r-", label="a1 t, a1 = %.3g ± %.2g kg/s" % (a1, fit["a1_error"]))
-        axes[1].plot(tt, a2 * a2 * tau * f * f, "r-",
-                     label="a2² t, a2 = %.3g ± %.2g kg/s^0.5" % (a2, fit["a2_error"]))
+        axes[0].plot(tt, a1 * tau * f, "r-",
+                     label="a1 t, a1 = %.4g ± %.2g %s/s" % (a1 * f, fit["a1_error"] * f, unit))
+        axes[1].plot(tt, a2 * np.sqrt(tau) * f, "r-",
+                     label="a2 √t, a2 = %.4g ± %.2g %s/s^0.5" % (a2 * f, fit["a2_error"] * f, unit))
         tf = num(fit["time"])
         rm = num(fit["mean_residual"]) / np.maximum(num(fit["mean"]), 1e-300)
         rv = num(fit["variance_residual"]) / np.maximum(num(fit["variance"]), 1e-300)
@@ -142,7 +153,7 @@ def plot_fit(r, folder):
         ax.legend(fontsize=7)
         ax.grid(alpha=0.3)
     axes[0].set_ylabel("mean coating mass [%s]" % unit)
-    axes[1].set_ylabel("variance [%s²]" % unit)
+    axes[1].set_ylabel("standard deviation [%s]" % unit)
     axes[2].set_xlabel("time [s]")
     axes[2].set_ylabel("residual / data [%]")
     axes[2].set_title("residuals of the fit (paper Fig. 10E)", fontsize=9)
@@ -223,7 +234,7 @@ def plot_refused_distributions(r, folder):
     fig, ax = figure_with_note("No reconstructed distributions.\n" + refusal_text(r))
     if hs and hs[-1]["counts"]:
         h = hs[-1]
-        f, unit = scale_for(num([h["max"]]))
+        f, unit = mass_unit(r, num([h["max"]]))
         edges = num(h["edges"]) * f
         ax.bar(edges[:-1], h["counts"], width=np.diff(edges), align="edge", color="#7fa7d9", edgecolor="#2c5d9b",
                lw=0.5, label="simulated, t = %.3g s" % h["time"])
@@ -238,7 +249,7 @@ def plot_distributions(r, folder):
     ds = r["distributions"]
     if not ds:
         return
-    f, unit = scale_for(num([d["mean"] + 4 * d["sigma"] for d in ds]))
+    f, unit = mass_unit(r, num([d["mean"] + 4 * d["sigma"] for d in ds]))
     fig, ax = plt.subplots(figsize=(6, 3.8))
     for d in ds:
         x = np.linspace(max(0.0, d["mean"] - 4.5 * d["sigma_high"]), d["mean"] + 4.5 * d["sigma_high"], 300)
@@ -285,7 +296,7 @@ def plot_mass_balance(r, folder):
     cout = ts["precursor_out"] - (ts["precursor_out"][0] if initial else 0.0)
     held = ts["precursor_held"] - mb["held_start"]
     coated = ts["coated_mass"] - mb["coated_start"]
-    f, unit = scale_for(np.array([cin.max()]))
+    f, unit = mass_unit(r, np.array([cin.max()]))
     fig, axes = plt.subplots(1, 2, figsize=(11, 3.6))
     axes[0].plot(t, cin * f, label="in")
     axes[0].plot(t, cout * f, label="out")
@@ -321,15 +332,23 @@ def plot_window_study(r, folder):
     use_wall = np.isfinite(wall).all() and wall[-1] > 0
     x = wall if use_wall else num([p["t_end"] for p in pts])
     xlabel = "wall time to simulate the window [s]" if use_wall else "end of the fit window [s]"
-    fig, axes = plt.subplots(1, 2, figsize=(11, 3.6))
-    axes[0].plot(x, num([p["cv_horizon"] for p in pts]), "bo-", ms=4)
-    axes[0].set_ylabel("extrapolated CV at %.3g min" % (w["horizon"] / 60.0))
+    # A poorly mixed run: no extrapolated CV (it would contradict the verdict), only how well
+    # shorter windows predict the simulated CV at the run's end.
+    extrapolate = r["verdict"]["well_mixed"]
+    fig, axes = plt.subplots(1, 2 if extrapolate else 1, figsize=(11 if extrapolate else 6, 3.6), squeeze=False)
+    axes = axes[0]
+    if extrapolate:
+        axes[0].plot(x, num([p["cv_horizon"] for p in pts]), "bo-", ms=4)
+        axes[0].set_ylabel("extrapolated CV at %.3g min" % (w["horizon"] / 60.0))
+    err_ax = axes[-1]
     err = num([p["cv_run_end_error"] for p in pts])
     ok = np.isfinite(err)
     if ok.any():
-        axes[1].plot(x[ok], 100 * np.abs(err[ok]), "ro-", ms=4)
-        axes[1].set_ylim(bottom=0)
-    axes[1].set_ylabel("|error| of the CV predicted at t = %.3g s [%%]" % w["run_end"])
+        err_ax.plot(x[ok], 100 * np.abs(err[ok]), "ro-", ms=4)
+        err_ax.set_ylim(bottom=0)
+    err_ax.set_ylabel("|error| of the CV predicted at t = %.3g s [%%]" % w["run_end"])
+    if not extrapolate:
+        err_ax.set_title("poorly mixed: no extrapolated CV", fontsize=9)
     for ax in axes:
         ax.set_xlabel(xlabel)
         ax.grid(alpha=0.3, which="both")
@@ -384,6 +403,51 @@ def run_report(folder):
     plot_zone_passes(r, folder)
 
 
+def plot_side_by_side(reports, f, unit, folder):
+    """One column per run with its verdict: CV over time, CV against mean coating (Fig. 8), and the
+    growth of mean and standard deviation with the fit of Eqs. 9-10 (Fig. 10), rows sharing axes."""
+    n = len(reports)
+    fig, axes = plt.subplots(4, n, figsize=(3.3 * n, 10.5), squeeze=False, sharey="row")
+    for k, (run, r) in enumerate(reports):
+        s = r["snapshots"]
+        fit = r["fit"]
+        t = num(s["time"])
+        mean, sd, cv = num(s["mean"]), num(s["std"]), num(s["cv"])
+        ok = np.isfinite(cv)
+        well = run["well_mixed"]
+        colour = "#186a1e" if well else "#a11"
+        col = axes[:, k]
+        cond = run.get("conditions") or {}
+        lines = [run["label"]]
+        if cond.get("flow_lpm") is not None:
+            lines.append("%.4g L/min" % cond["flow_lpm"] + (
+                ", u/u_mf = %.2g" % cond["u_over_umf"] if cond.get("u_over_umf") is not None else ""))
+        lines.append(run.get("verdict_short", "well mixed" if well else "poorly mixed"))
+        col[0].set_title("\n".join(lines), fontsize=9, color=colour)
+        col[0].plot(t[ok], cv[ok], "k.-", ms=3)
+        col[0].set_xlabel("time [s]")
+        col[1].plot(mean[ok] * f, cv[ok], "k.-", ms=3)
+        col[1].set_xlabel("mean coating per parcel [%s]" % unit)
+        col[2].plot(t, mean * f, "b.", ms=3, label="simulated")
+        col[3].plot(t, sd * f, "g.", ms=3, label="simulated")
+        if fit["ok"]:
+            t0c = fit["coating_start"] or 0.0
+            tt = np.linspace(max(t0c, float(np.nanmin(t))), float(np.nanmax(t)), 100)
+            tau = np.maximum(tt - t0c, 0.0)
+            col[2].plot(tt, fit["a1"] * tau * f, "r-", lw=1, label="a1 t")
+            col[3].plot(tt, fit["a2"] * np.sqrt(tau) * f, "r-", lw=1, label="a2 √t")
+        for ax in col[2:]:
+            ax.set_xlabel("time [s]")
+            ax.legend(fontsize=7, loc="upper left")
+        for ax in col:
+            ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel("CV [-]")
+    axes[1][0].set_ylabel("CV [-]")
+    axes[2][0].set_ylabel("mean coating per parcel [%s]" % unit)
+    axes[3][0].set_ylabel("standard deviation [%s]" % unit)
+    save(fig, folder, "compare_side_by_side.png")
+
+
 def comparison_report(folder):
     with open(os.path.join(folder, "comparison.json")) as fh:
         c = json.load(fh)
@@ -392,7 +456,8 @@ def comparison_report(folder):
         with open(os.path.join(folder, run["report"])) as fh:
             reports.append((run, json.load(fh)))
     allmean = np.concatenate([num(r["snapshots"]["mean"]) for _, r in reports])
-    f, unit = scale_for(allmean)
+    f, unit = mass_unit(c, allmean)
+    plot_side_by_side(reports, f, unit, folder)
 
     fig, ax = plt.subplots(figsize=(6, 4))
     for run, r in reports:

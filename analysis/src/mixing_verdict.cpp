@@ -31,6 +31,7 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
   v.last_time = last.time;
   v.uncoated_share = last.uncoated_share;
   if (last.count > 0 && last.uncoated_share > c.max_uncoated_share) {
+    v.too_many_uncoated = true;
     v.reasons.push_back(
         fmt::format("{:.1f} %", 100 * last.uncoated_share) +
         " of the parcels were never coated by t = " + fmt::format("{:g}", last.time) +
@@ -38,15 +39,18 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
         "): some particles do not reach the coating zone");
   }
   if (!fit.ok) {
+    v.no_fit = true;
     v.reasons.push_back("no fit of Eqs. 9-10: " + fit.problem);
   } else {
     if (fit.mean_relative_rms > c.max_mean_relative_rms) {
+      v.mean_not_linear = true;
       v.reasons.push_back("the mean coating mass is not linear in time: RMS residual " +
                           fmt::format("{:.1f} %", 100 * fit.mean_relative_rms) +
                           " of the mean (limit " +
                           fmt::format("{:.0f} %", 100 * c.max_mean_relative_rms) + ")");
     }
     if (fit.variance_relative_rms > c.max_variance_relative_rms) {
+      v.variance_not_linear = true;
       v.reasons.push_back("the variance of the coating mass is not linear in time: RMS residual " +
                           fmt::format("{:.1f} %", 100 * fit.variance_relative_rms) +
                           " of the mean variance (limit " +
@@ -74,6 +78,7 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
     const double excess = v.normality.kurtosis - 3.0;
     if (std::abs(v.normality.skewness) > c.max_abs_skewness ||
         std::abs(excess) > c.max_abs_excess_kurtosis) {
+      v.not_normal = true;
       v.reasons.push_back(
           "the coating distribution at t = " + fmt::format("{:g}", last.time) +
           " s is far from normal (skewness " + fmt::format("{:.2f}", v.normality.skewness) +

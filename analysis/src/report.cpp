@@ -21,14 +21,15 @@ void prepare(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) {
-    throw std::runtime_error("cannot create the report folder " + dir.string() + ": " + ec.message() +
-                             " (choose another with --output)");
+    throw std::runtime_error("cannot create the report folder " + dir.string() + ": " +
+                             ec.message() + " (choose another with --output)");
   }
   removePngs(dir);  // a figure left from an earlier report must not pass for a new one
 }
 void validate(const ReportOptions& o) {
   auto bad = [](const std::string& option, double value, const std::string& expected) {
-    throw std::runtime_error("report option " + option + " = " + std::to_string(value) + ": expected " + expected);
+    throw std::runtime_error("report option " + option + " = " + std::to_string(value) +
+                             ": expected " + expected);
   };
   if (!std::isfinite(o.coating_start)) bad("--coating-start", o.coating_start, "a time in seconds");
   for (double t : o.predict_times) {
@@ -37,24 +38,38 @@ void validate(const ReportOptions& o) {
   for (double t : o.histogram_times) {
     if (!std::isfinite(t)) bad("--histograms", t, "times in seconds");
   }
-  if (!(o.predict_until > 0)) bad("predict_until", o.predict_until, "a positive horizon in seconds (3600 = 60 min)");
-  if (!(o.band >= 0 && o.band < 1)) bad("band", o.band, "a relative error of a2 between 0 and 1 (0.2 = 20 %)");
-  if (!(o.uncoated_relative >= 0)) bad("uncoated_relative", o.uncoated_relative, "a fraction of the mean >= 0 (1e-6)");
+  if (!(o.predict_until > 0))
+    bad("predict_until", o.predict_until, "a positive horizon in seconds (3600 = 60 min)");
+  if (!(o.band >= 0 && o.band < 1))
+    bad("band", o.band, "a relative error of a2 between 0 and 1 (0.2 = 20 %)");
+  if (!std::isnan(o.coating_density) && !(o.coating_density > 0)) {
+    bad("--coating-density", o.coating_density,
+        "the density of the coating layer in kg/m3 (e.g. 1500)");
+  }
+  if (!std::isnan(o.u_mf) && !(o.u_mf > 0)) {
+    bad("--u-mf", o.u_mf, "the minimum fluidization velocity in m/s (e.g. 0.075)");
+  }
+  if (!(o.uncoated_relative >= 0))
+    bad("uncoated_relative", o.uncoated_relative, "a fraction of the mean >= 0 (1e-6)");
   if (!std::isnan(o.fit_start) && !std::isnan(o.fit_end) && !(o.fit_end > o.fit_start)) {
-    throw std::runtime_error("report options --fit-start " + std::to_string(o.fit_start) + " and --fit-end " +
-                             std::to_string(o.fit_end) + ": the window is empty; give --fit-end after --fit-start");
+    throw std::runtime_error("report options --fit-start " + std::to_string(o.fit_start) +
+                             " and --fit-end " + std::to_string(o.fit_end) +
+                             ": the window is empty; give --fit-end after --fit-start");
   }
 }
 }  // namespace
 
 std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOptions& o,
-                                        const std::filesystem::path& dir, std::string& plot_message) {
+                                        const std::filesystem::path& dir,
+                                        std::string& plot_message) {
   prepare(dir);
   writeJsonFile(dir / "report.json", toJson(a, o), 1);
   writeRunTables(a, dir);
   plot_message.clear();
-  if (o.plots) drawPlots(dir, plot_message);
-  else plot_message = "plots switched off (--no-plots)";
+  if (o.plots)
+    drawPlots(dir, plot_message);
+  else
+    plot_message = "plots switched off (--no-plots)";
   const auto pngs = pngsIn(dir);
   writeRunHtml(a, o, dir, pngs, plot_message);
   return pngs;
@@ -87,10 +102,15 @@ double parameter(const RunAnalysis& a, const std::string& name) {
   return std::nan("");
 }
 
-Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders) {
+Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders,
+                    const ReportOptions& o) {
   Json j = Json::object();
   j["format"] = "cosim-comparison";
   j["version"] = 1;
+  j["units"] = unitsJson(runs.front());  // the same for every run of a comparison
+  Json bt = Json::array();
+  for (double t : batchTimes(o)) bt.push_back(t);
+  j["batch_times_s"] = bt;
   const auto varied = variedParameters(runs);
   Json v = Json::array();
   for (const auto& n : varied) v.push_back(n);
@@ -124,6 +144,18 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
     r["a2_se"] = a.a2Error();
     r["well_mixed"] = a.verdict.well_mixed;
     r["verdict"] = a.verdict.summary();
+    r["verdict_short"] = shortVerdict(a.verdict);
+    r["verdict_plain"] = plainVerdict(a, o);
+    r["conditions"] = conditionsJson(a.conditions);
+    r["mean_per_grain"] = a.conditions.grain.perGrain(l.mean);
+    r["layer_thickness_m"] = a.conditions.grain.thickness(l.mean);
+    Json cvBatch = Json::array();
+    for (double t : batchTimes(o)) {
+      cvBatch.push_back(a.verdict.well_mixed && a.fit.ok
+                            ? Json(predictDistribution(a.fit, t, o.band).cv)
+                            : Json());
+    }
+    r["cv_batch"] = cvBatch;  // at batch_times_s; null for a poorly mixed run (refused)
     r["mass_balance_error_percent"] = a.mass_balance ? a.mass_balance->error_percent : std::nan("");
     r["wall_seconds"] = a.wall_seconds;
     const double nan = std::nan("");
@@ -139,16 +171,20 @@ Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std:
 
 void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::filesystem::path& dir) {
   std::string csv =
-      "run,end_time_s,total_kg,mean_kg,cv,uncoated_share,a1_kg_per_s,a1_se,a2_kg_per_sqrt_s,a2_se,well_mixed,"
-      "mass_balance_error_percent,wall_seconds\n";
+      "run,end_time_s,total_kg,mean_kg,cv,uncoated_share,a1_kg_per_s,a1_se,a2_kg_per_sqrt_s,a2_se,"
+      "well_mixed,"
+      "mass_balance_error_percent,wall_seconds,flow_lpm,u_m_per_s,u_over_umf,mean_per_grain_kg,"
+      "layer_thickness_m\n";
   for (const auto& a : runs) {
     const auto& l = a.snapshots.back();
     csv += fmt::format(
         "\"{}\",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{},{:.10g},"
-        "{:.10g}\n",
+        "{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}\n",
         a.label, l.time, l.total, l.mean, l.cv, l.uncoated_share, a.fit.a1, a.a1Error(), a.fit.a2,
         a.a2Error(), a.verdict.well_mixed ? 1 : 0,
-        a.mass_balance ? a.mass_balance->error_percent : std::nan(""), a.wall_seconds);
+        a.mass_balance ? a.mass_balance->error_percent : std::nan(""), a.wall_seconds,
+        a.conditions.flow_lpm, a.conditions.superficial_velocity, a.conditions.uOverUmf(),
+        a.conditions.grain.perGrain(l.mean), a.conditions.grain.thickness(l.mean));
   }
   writeFileAtomically(dir / "comparison.csv", csv);
 }
@@ -156,17 +192,20 @@ void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::file
 int runReport(const ReportOptions& o) {
   std::ostream& log = o.log != nullptr ? *o.log : std::cout;
   try {
-    if (o.runs.empty()) throw std::runtime_error("no run folder given: `cosim report RUN [RUN...]`");
+    if (o.runs.empty())
+      throw std::runtime_error("no run folder given: `cosim report RUN [RUN...]`");
     validate(o);
     std::vector<RunAnalysis> analyses;
     for (const auto& run : o.runs) {
       log << "cosim report: analysing " << run.string() << "\n";
       analyses.push_back(analyseRun(run, o));
     }
+    chooseDisplayUnits(analyses);  // one unit for every run of a comparison
     const bool several = o.runs.size() > 1;
     std::filesystem::path out = o.output;
     if (out.empty()) {
-      out = several ? o.runs.front().lexically_normal().parent_path() / "report-comparison" : o.runs.front() / "report";
+      out = several ? o.runs.front().lexically_normal().parent_path() / "report-comparison"
+                    : o.runs.front() / "report";
     }
     std::vector<std::string> folders;
     std::set<std::string> used;
@@ -184,29 +223,35 @@ int runReport(const ReportOptions& o) {
         log << fmt::format("cosim report: {}: mass balance error {:.3g} kg ({:.3g} %)\n", a.label,
                            a.mass_balance->error, a.mass_balance->error_percent);
       }
-      log << "cosim report: wrote " << (dir / "report.html").string() << " (" << pngs.size() << " figures)\n";
+      log << "cosim report: wrote " << (dir / "report.html").string() << " (" << pngs.size()
+          << " figures)\n";
       if (!plotMessage.empty()) anyPlotProblem = plotMessage;
     }
     if (several) {
       prepare(out);
-      writeJsonFile(out / "comparison.json", comparisonJson(analyses, folders), 1);
+      writeJsonFile(out / "comparison.json", comparisonJson(analyses, folders, o), 1);
       writeComparisonTables(analyses, out);
       std::string plotMessage;
-      if (o.plots) drawPlots(out, plotMessage);
-      else plotMessage = "plots switched off (--no-plots)";
+      if (o.plots)
+        drawPlots(out, plotMessage);
+      else
+        plotMessage = "plots switched off (--no-plots)";
       const auto pngs = pngsIn(out);
-      writeComparisonHtml(analyses, folders, out, pngs, plotMessage);
-      log << "cosim report: wrote " << (out / "comparison.html").string() << " (" << pngs.size() << " figures)\n";
+      writeComparisonHtml(analyses, folders, o, out, pngs, plotMessage);
+      log << "cosim report: wrote " << (out / "comparison.html").string() << " (" << pngs.size()
+          << " figures)\n";
       if (!plotMessage.empty()) anyPlotProblem = plotMessage;
     }
     if (!anyPlotProblem.empty() && o.plots) {
-      log << "cosim report: numbers and HTML tables written, but no plots: " << anyPlotProblem << "\n";
+      log << "cosim report: numbers and HTML tables written, but no plots: " << anyPlotProblem
+          << "\n";
     }
     int rc = 0;
     if (!std::isnan(o.mass_balance_limit_percent)) {
       for (const auto& a : analyses) {
         if (!a.mass_balance) {
-          std::cerr << "cosim report: " << a.label << ": mass balance check failed: " << a.mass_balance_problem << "\n";
+          std::cerr << "cosim report: " << a.label
+                    << ": mass balance check failed: " << a.mass_balance_problem << "\n";
           rc = 3;
         } else if (!(std::abs(a.mass_balance->error_percent) <= o.mass_balance_limit_percent)) {
           std::cerr << fmt::format(
@@ -214,7 +259,8 @@ int runReport(const ReportOptions& o) {
               a.mass_balance->error_percent, o.mass_balance_limit_percent);
           rc = 3;
         } else {
-          log << "cosim report: " << a.label << ": mass balance within " << o.mass_balance_limit_percent << " %\n";
+          log << "cosim report: " << a.label << ": mass balance within "
+              << o.mass_balance_limit_percent << " %\n";
         }
       }
     }

@@ -30,15 +30,18 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   a.run = run;
   a.label = runLabel(run);
   if (!std::filesystem::is_directory(run)) {
-    throw std::runtime_error("run folder " + run.string() + " does not exist (give the folder a `cosim run` wrote, "
+    throw std::runtime_error("run folder " + run.string() +
+                             " does not exist (give the folder a `cosim run` wrote, "
                              "e.g. runs/plasma-coating-bed)");
   }
+  std::optional<double> cg;  // what the run used (summary.json)
   if (std::filesystem::exists(run / kSummaryFile)) {
     // Status and scenario parameters of the run (a sweep's comparison shows what differs).
     try {
       const Summary summary = readSummary(run / kSummaryFile);
       a.run_status = summary.status;
       a.parameters = summary.parameters;
+      cg = summary.cg;
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string(e.what()) +
                                "; move it away to report the run without it");
@@ -46,7 +49,8 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   }
   ParticleFile file(run / kParticlesFile);
   if (!file.hasField(cosim::field::coating_mass)) {
-    throw std::runtime_error(file.path().string() + " has no coating_mass field: this scene has no coating "
+    throw std::runtime_error(file.path().string() +
+                             " has no coating_mass field: this scene has no coating "
                              "(no mass_transfer model), so there is nothing to report on coating");
   }
   const auto& snaps = file.snapshots();
@@ -78,7 +82,8 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   // over the fitted ones.
   std::vector<std::size_t> fitted;
   for (std::size_t i = 0; i < snaps.size(); ++i) {
-    if (snaps[i].time >= t0 && snaps[i].time <= t1 && snaps[i].time > o.coating_start && snaps[i].count > 0) {
+    if (snaps[i].time >= t0 && snaps[i].time <= t1 && snaps[i].time > o.coating_start &&
+        snaps[i].count > 0) {
       fitted.push_back(i);
     }
   }
@@ -132,14 +137,16 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
       break;
     }
   }
-  if (lastInWindow != snaps.size() - 1) lastValues = file.read(lastInWindow, cosim::field::coating_mass);
+  if (lastInWindow != snaps.size() - 1)
+    lastValues = file.read(lastInWindow, cosim::field::coating_mass);
   a.verdict = judgeMixing(a.fit, a.snapshots[lastInWindow], lastValues, o.criteria);
   if (a.fit.ok) {
     // The extrapolation is computed whenever a fit exists (the check against later simulated
     // times is what tells a user how far to trust it); the report shows it only as a prediction
     // when the verdict allows it.
     a.cv_prediction = predictCv(a.fit, o.predict_until, 200, o.band);
-    for (double t : o.predict_times) a.distributions.push_back(predictDistribution(a.fit, t, o.band));
+    for (double t : o.predict_times)
+      a.distributions.push_back(predictDistribution(a.fit, t, o.band));
     a.prediction_check = checkPrediction(a.fit, a.snapshots);
   }
 
@@ -152,7 +159,8 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     TimeSeries ts = readTimeSeries(tsPath);
     a.window_study = studyFitWindow(a.snapshots, t0, o.coating_start, horizon, &ts);
     a.steps = ts.rows();
-    if (ts.has(column::wall_seconds) && ts.rows() > 0) a.wall_seconds = ts.at(column::wall_seconds).back();
+    if (ts.has(column::wall_seconds) && ts.rows() > 0)
+      a.wall_seconds = ts.at(column::wall_seconds).back();
     try {
       a.mass_balance = massBalance(ts);
       // Coating on the particles themselves when particles.h5 holds the state at the end of the
@@ -175,7 +183,28 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     }
   }
   a.zone_passes = analyseZonePasses(run, file, a, o, a.zone_passes_problem);
-  return a;
+  a.conditions = readOperatingConditions(
+      {run, a.parameters, cg, o.coating_start, o.coating_density, o.u_mf}, file);
+  std::vector<RunAnalysis> one;
+  one.push_back(std::move(a));
+  chooseDisplayUnits(one);
+  return std::move(one.front());
+}
+
+void chooseDisplayUnits(std::vector<RunAnalysis>& runs) {
+  double mean = 0, thickness = 0;
+  for (const auto& r : runs) {
+    for (const auto& s : r.snapshots) {
+      if (!(std::isfinite(s.mean) && s.mean > 0)) continue;
+      mean = std::max(mean, s.mean);
+      const double h = r.conditions.grain.thickness(s.mean);
+      if (std::isfinite(h)) thickness = std::max(thickness, h);
+    }
+  }
+  for (auto& r : runs) {
+    r.mass_unit = massUnitFor(mean);
+    r.thickness_unit = lengthUnitFor(thickness);
+  }
 }
 
 }  // namespace cosim::analysis

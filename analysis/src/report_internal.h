@@ -16,9 +16,14 @@ void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir);
 void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::filesystem::path& dir,
                   const std::vector<std::string>& pngs, const std::string& plot_message);
 
-Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders);
+Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders,
+                    const ReportOptions& o);
+// The report.json objects of the operating conditions and of the display units.
+Json conditionsJson(const OperatingConditions& c);
+Json unitsJson(const RunAnalysis& a);
 void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::filesystem::path& dir);
-void writeComparisonHtml(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders,
+void writeComparisonHtml(const std::vector<RunAnalysis>& runs,
+                         const std::vector<std::string>& folders, const ReportOptions& o,
                          const std::filesystem::path& dir, const std::vector<std::string>& pngs,
                          const std::string& plot_message);
 
@@ -35,6 +40,19 @@ std::string zonePassesHtml(const RunAnalysis& a);
 // Scenario parameters (summary.json) present in every run with different values.
 std::vector<std::string> variedParameters(const std::vector<RunAnalysis>& runs);
 double parameter(const RunAnalysis& a, const std::string& name);
+
+// The verdict in words (report_verdict.cpp): one or two sentences for the top of a page, the
+// short form for a table ("well mixed", "poorly mixed", ...), and the batch times it speaks of
+// (the last --predict time and predict_until, in seconds of coating) as "20-60 min".
+struct VerdictText {
+  std::string head;  // "Well mixed", "Poorly mixed", "Well mixed only under relaxed criteria"
+  std::string body;  // the rest: what was seen, and what it means for a batch
+};
+VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o);
+std::string plainVerdict(const RunAnalysis& a, const ReportOptions& o);  // head + ": " + body
+std::string shortVerdict(const MixingVerdict& v);
+std::vector<double> batchTimes(const ReportOptions& o);
+std::string batchRange(const ReportOptions& o);
 
 // PNG files (names) present in dir, sorted.
 std::vector<std::string> pngsIn(const std::filesystem::path& dir);

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <unordered_set>
 
+#include "cosim/analysis/display_units.h"
 #include "cosim/analysis/report.h"
 #include "cosim/link/fields.h"
 #include "report_internal.h"
@@ -27,13 +28,7 @@ std::string num(double v, fmt::format_string<double> spec = "{:.3g}") {
 std::string pct(double v) {
   return std::isfinite(v) ? fmt::format("{:.1f}&nbsp;%", 100.0 * v) : "&ndash;";
 }
-// A duration in the unit a reader expects: ms below 1 s, min above 2 min.
-std::string span(double s) {
-  if (!std::isfinite(s)) return "&ndash;";
-  if (std::abs(s) < 1.0) return fmt::format("{:.3g}&nbsp;ms", 1e3 * s);
-  if (std::abs(s) > 120.0) return fmt::format("{:.3g}&nbsp;min", s / 60.0);
-  return fmt::format("{:.3g}&nbsp;s", s);
-}
+std::string span(double s) { return htmlDuration(s); }
 std::string mm(double m) { return num(1e3 * m, "{:.1f}"); }
 
 Json spreadJson(const Spread& s) {
@@ -207,6 +202,9 @@ std::string zonePassesHtml(const RunAnalysis& a) {
   const auto& r = *a.zone_passes;
   const auto& s = r.stats;
   const double duration = s.end - s.start;
+  const auto mass = [&](double kg, int digits = 3) {
+    return htmlQuantity(kg, a.mass_unit, digits);
+  };
   h << "<p>The coating happens only while a parcel is in the coating zone. Every coupling step "
        "the simulation decides which parcels are in it; "
     << kZonePassesFile << " holds each parcel's passes (" << s.passes << " passes of " << s.parcels
@@ -235,10 +233,10 @@ std::string zonePassesHtml(const RunAnalysis& a) {
   }
   h << "<li><b>Passes per parcel:</b> " << num(s.passes_per_parcel.mean) << " on average (from "
     << num(s.passes_per_parcel.min, "{:.0f}") << " to " << num(s.passes_per_parcel.max, "{:.0f}")
-    << "), coefficient of variation " << num(s.passes_cv) << ". Coating per pass: " << num(s.w0)
-    << " kg on average (all coating in passes divided by the passes).</li>\n";
-  h << "<li><b>Coating only in the zone:</b> the passes hold " << num(s.coating_in_passes, "{:.6g}")
-    << " kg, the parcels received " << num(r.coating_on_parcels, "{:.6g}") << " kg.</li>\n</ul>\n";
+    << "), coefficient of variation " << num(s.passes_cv) << ". Coating per pass: " << mass(s.w0)
+    << " on average (all coating in passes divided by the passes).</li>\n";
+  h << "<li><b>Coating only in the zone:</b> the passes hold " << mass(s.coating_in_passes, 6)
+    << ", the parcels received " << mass(r.coating_on_parcels, 6) << ".</li>\n</ul>\n";
 
   if (r.never_entered_places.valid && r.never_entered_places.group.parcels > 0) {
     const auto& pl = r.never_entered_places;
@@ -261,27 +259,45 @@ std::string zonePassesHtml(const RunAnalysis& a) {
        "&mu;<sub>T</sub> &plusmn; &sigma;<sub>T</sub> and taking W<sub>0</sub> per pass has after "
        "a coating time t the mean W<sub>0</sub> t / &mu;<sub>T</sub> and the CV "
        "&sigma;<sub>T</sub> / &radic;(&mu;<sub>T</sub> t)):</p>\n";
-  if (!r.notes.empty()) {
-    h << "<p class=note>";
-    if (s.prediction_ok) {
-      h << "<b>Hypothetical:</b> the cycles seen in this run do not describe the whole bed, so the "
-           "numbers below show what cycles like these would give, not a prediction for this bed. ";
+  // Beyond the run's end these are extrapolations: shown only as a labelled hypothetical when the
+  // run is poorly mixed or its cycles do not describe the whole bed.
+  const bool hypothetical = s.prediction_ok && (!a.verdict.well_mixed || !r.notes.empty());
+  if (hypothetical) {
+    h << "<div class=\"hypothetical\">\n<p class=note><b>Hypothetical: if the bed were well "
+         "mixed.</b> ";
+    if (!a.verdict.well_mixed) {
+      h << "The run is poorly mixed, so the numbers below show what cycles like the ones seen "
+           "would give in a "
+           "well-mixed bed, not a prediction for this bed. ";
+    } else {
+      h << "The cycles seen in this run do not describe the whole bed, so the numbers below show "
+           "what cycles "
+           "like these would give, not a prediction for this bed. ";
     }
+    for (const auto& n : r.notes) h << htmlEscape(n) << " ";
+    h << "</p>\n";
+  } else if (!r.notes.empty()) {
+    h << "<p class=note>";
     for (const auto& n : r.notes) h << htmlEscape(n) << " ";
     h << "</p>\n";
   }
   if (!s.prediction_ok) {
     h << "<p>No prediction: " << htmlEscape(s.prediction_problem) << ".</p>\n";
   } else {
-    h << "<table><tr><th>coating time</th><th>mean coating per parcel [kg]</th><th>CV "
-         "(cycle times)</th><th>CV (with the spread of coating per pass)</th><th>simulated "
-         "mean [kg]</th><th>simulated CV</th></tr>";
+    const char* cvHead = hypothetical ? "hypothetical CV" : "CV";
+    h << "<table><tr><th>coating time</th><th>" << (hypothetical ? "hypothetical " : "")
+      << "mean coating per parcel [" << a.mass_unit.name << "]</th><th>" << cvHead
+      << " (cycle times)</th><th>" << cvHead
+      << " (with the spread of coating per pass)</th><th>simulated mean [" << a.mass_unit.name
+      << "]</th><th>simulated CV</th></tr>";
     for (std::size_t i = 0; i < r.predictions.size(); ++i) {
       const auto& p = r.predictions[i];
-      h << "<tr><td>" << (i == 0 ? "run end, " : "") << span(p.t) << "</td><td>" << num(p.mean)
-        << "</td><td>" << num(p.cv) << "</td><td>" << num(p.cv_with_pass_spread) << "</td>";
+      h << "<tr><td>" << (i == 0 ? "run&nbsp;end,&nbsp;" : "") << span(p.t) << "</td><td>"
+        << htmlNumber(a.mass_unit.of(p.mean), 3) << "</td><td>" << num(p.cv) << "</td><td>"
+        << num(p.cv_with_pass_spread) << "</td>";
       if (i == 0) {
-        h << "<td>" << num(r.simulated_mean) << "</td><td>" << num(r.simulated_cv) << "</td>";
+        h << "<td>" << htmlNumber(a.mass_unit.of(r.simulated_mean), 3) << "</td><td>"
+          << num(r.simulated_cv) << "</td>";
       } else {
         h << "<td>&ndash;</td><td>&ndash;</td>";
       }
@@ -291,6 +307,7 @@ std::string zonePassesHtml(const RunAnalysis& a) {
       << " at the run end; the cycles predict " << num(r.predictions.front().cv)
       << " for it.</p>\n";
   }
+  if (hypothetical) h << "</div>\n";
   h << "<p>Per parcel: zone_passes_per_parcel.csv; every number: report.json "
        "(<code>zone_passes</code>).</p>\n";
   return h.str();

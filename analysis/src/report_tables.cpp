@@ -82,6 +82,36 @@ class Csv {
 };
 }  // namespace
 
+Json conditionsJson(const OperatingConditions& c) {
+  Json j = Json::object();
+  j["flow_lpm"] = c.flow_lpm;
+  j["superficial_velocity_m_per_s"] = c.superficial_velocity;
+  j["u_mf_m_per_s"] = c.u_mf;
+  j["u_mf_source"] = c.u_mf_source;
+  j["u_over_umf"] = c.uOverUmf();
+  j["nozzle_velocity_m_per_s"] = c.nozzle_velocity;
+  j["precursor_mass_fraction"] = c.precursor_fraction;
+  j["parcels"] = static_cast<unsigned long long>(c.parcels);
+  j["cg"] = c.grain.cg;
+  j["cg_source"] = c.cg_source;
+  j["coating_time_s"] = c.coating_time;
+  j["parcel_diameter_m"] = c.parcel_diameter;
+  j["parcel_diameter_source"] = c.parcel_diameter_source;
+  j["grain_diameter_m"] = c.grain.grain_diameter;
+  j["coating_density_kg_per_m3"] = c.grain.coating_density;
+  j["coating_density_source"] = c.coating_density_source;
+  return j;
+}
+
+Json unitsJson(const RunAnalysis& a) {
+  return {{"mass", a.mass_unit.name},
+          {"mass_ascii", a.mass_unit.ascii},
+          {"mass_kg", a.mass_unit.si},
+          {"thickness", a.thickness_unit.name},
+          {"thickness_ascii", a.thickness_unit.ascii},
+          {"thickness_m", a.thickness_unit.si}};
+}
+
 Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   Json j = Json::object();
   j["format"] = "cosim-report";
@@ -89,6 +119,22 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   j["run"] = a.run.string();
   j["label"] = a.label;
   j["run_status"] = a.run_status;
+  // Every number below is in SI units (kg, m, s); `units` is what the pages and plots show.
+  j["units"] = unitsJson(a);
+  j["conditions"] = conditionsJson(a.conditions);
+  {
+    const auto& l = a.snapshots.back();
+    const auto& gs = a.conditions.grain;
+    j["end_of_run"] = {{"time", l.time},
+                       {"mean_per_parcel_kg", l.mean},
+                       {"sd_per_parcel_kg", l.std_dev},
+                       {"mean_per_grain_kg", gs.perGrain(l.mean)},
+                       {"sd_per_grain_kg", gs.perGrain(l.std_dev)},
+                       {"layer_thickness_m", gs.thickness(l.mean)},
+                       {"layer_thickness_sd_m", gs.thickness(l.std_dev)},
+                       {"cv", l.cv},
+                       {"uncoated_share", l.uncoated_share}};
+  }
   Json& opt = j["options"] = Json::object();
   opt["fit_start"] = a.fit.t0;
   opt["fit_end"] = a.fit.t1;
@@ -160,6 +206,8 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   Json& vj = j["verdict"] = Json::object();
   vj["well_mixed"] = v.well_mixed;
   vj["summary"] = v.summary();
+  vj["short"] = shortVerdict(v);
+  vj["plain"] = plainVerdict(a, o);
   vj["reasons"] = strings(v.reasons);
   vj["warnings"] = strings(v.warnings);
   vj["relaxed_criteria"] = strings(v.relaxed);

@@ -216,6 +216,12 @@ int main(int argc, char** argv) {
   rep->add_option(
       "--uncoated-threshold", rep_opt.uncoated_relative,
       "a particle counts as never coated below this fraction of the mean coating (default 1e-6)");
+  rep->add_option("--coating-density", rep_opt.coating_density,
+                  "density of the coating layer [kg/m3] for its thickness (default: the scene's "
+                  "parameter coating_density, else 1500)");
+  rep->add_option("--u-mf", rep_opt.u_mf,
+                  "minimum fluidization velocity [m/s] for u/u_mf (default: the scene's parameter "
+                  "u_mf, else Wen-Yu for the real grains)");
   rep->add_option("--check-mass-balance", rep_opt.mass_balance_limit_percent,
                   "exit 3 if a run's mass-balance error exceeds this many percent (e.g. 0.01)");
   std::vector<std::string> mixing;

@@ -50,6 +50,12 @@ struct MixingVerdict {
   std::vector<std::string> reasons;   // why refused (empty when well mixed)
   std::vector<std::string> warnings;  // worth knowing, not refusing
   std::vector<std::string> relaxed;  // criteria set away from their defaults ("name v (default d)")
+  // Which refusal criteria failed (each has its sentence in reasons).
+  bool too_many_uncoated = false;    // never-coated share above the limit
+  bool no_fit = false;               // no fit of Eqs. 9-10
+  bool mean_not_linear = false;      // misfit of the mean
+  bool variance_not_linear = false;  // misfit of the variance
+  bool not_normal = false;           // far from normal
   RunsTest mean_runs, variance_runs;
   NormalityTest normality;    // on the last snapshot
   double uncoated_share = 0;  // at the last snapshot

@@ -16,12 +16,14 @@
 
 #include "cosim/analysis/bootstrap_errors.h"
 #include "cosim/analysis/coating_statistics.h"
+#include "cosim/analysis/display_units.h"
 #include "cosim/analysis/extrapolation.h"
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/growth_fit.h"
 #include "cosim/analysis/histogram.h"
 #include "cosim/analysis/mass_balance.h"
 #include "cosim/analysis/mixing_verdict.h"
+#include "cosim/analysis/operating_conditions.h"
 #include "cosim/analysis/parcel_places.h"
 #include "cosim/analysis/window_study.h"
 #include "cosim/analysis/zone_pass_statistics.h"
@@ -36,22 +38,28 @@ struct ReportOptions {
   // Fit window [fit_start, fit_end] in simulated seconds; NaN = first / last snapshot.
   double fit_start = std::numeric_limits<double>::quiet_NaN();
   double fit_end = std::numeric_limits<double>::quiet_NaN();
-  double coating_start = 0;         // [s] time at which coating starts (origin of Eqs. 9-10)
+  double coating_start = 0;             // [s] time at which coating starts (origin of Eqs. 9-10)
   std::vector<double> histogram_times;  // [s]; empty = 1/4, 1/2, 3/4 and all of the run
   std::vector<double> predict_times = {300.0, 1200.0};  // [s] reconstructed distributions (Fig. 12)
-  double predict_until = 3600.0;    // [s] CV prediction horizon (Fig. 11)
-  double band = 0.2;                // relative band on a2 (Fig. 11)
+  double predict_until = 3600.0;                        // [s] CV prediction horizon (Fig. 11)
+  double band = 0.2;                                    // relative band on a2 (Fig. 11)
   double uncoated_relative = 1e-6;  // never-coated threshold as a fraction of the mean
   MixingCriteria criteria;
+  // Density of the coating layer [kg/m3] for its thickness; NaN = the scene's parameter
+  // coating_density, else kDefaultCoatingDensity (operating_conditions.h).
+  double coating_density = std::numeric_limits<double>::quiet_NaN();
+  // Minimum fluidization velocity [m/s] for u / u_mf; NaN = the scene's parameter u_mf, else
+  // Wen-Yu for the real grains in the fluid's gas.
+  double u_mf = std::numeric_limits<double>::quiet_NaN();
   // Particle-bootstrap standard errors of a1 and a2 (bootstrap_errors.h): resamples (0 = off)
   // over at most bootstrap_snapshots snapshots evenly spread over the fit window.
   std::size_t bootstrap_resamples = 100;
   std::size_t bootstrap_snapshots = 50;
-  bool plots = true;                // false: numbers and HTML only
+  bool plots = true;  // false: numbers and HTML only
   // Check for CI: when set, runReport returns 3 if a run has no mass balance or its |error %|
   // exceeds this limit (the project's target: 0.01). NaN = no check.
   double mass_balance_limit_percent = std::numeric_limits<double>::quiet_NaN();
-  std::ostream* log = nullptr;      // progress and messages; nullptr = std::cout
+  std::ostream* log = nullptr;  // progress and messages; nullptr = std::cout
 };
 
 struct HistogramAt {
@@ -86,21 +94,30 @@ struct RunAnalysis {
   std::vector<CoatingStatistics> snapshots;
   std::vector<HistogramAt> histograms;
   GrowthFit fit;
-  BootstrapErrors bootstrap;             // particle-bootstrap errors of a1, a2 (preferred when ok)
+  BootstrapErrors bootstrap;  // particle-bootstrap errors of a1, a2 (preferred when ok)
   MixingVerdict verdict;
   CvPrediction cv_prediction;
   std::vector<PredictedDistribution> distributions;
   PredictionCheck prediction_check;
-  WindowStudy window_study;              // extrapolation against run length / wall time
+  WindowStudy window_study;  // extrapolation against run length / wall time
   std::optional<MassBalance> mass_balance;
-  std::string mass_balance_problem;      // why there is no mass balance
+  std::string mass_balance_problem;                                // why there is no mass balance
   double wall_seconds = std::numeric_limits<double>::quiet_NaN();  // last wall_seconds (cumulative)
-  std::string run_status;                // summary.json "status" ("completed", "failed", ...); empty if none
-  std::vector<std::pair<std::string, double>> parameters;  // summary.json extra.parameters (numbers)
-  std::size_t steps = 0;                 // rows of the time series
+  std::string run_status;  // summary.json "status" ("completed", "failed", ...); empty if none
+  std::vector<std::pair<std::string, double>>
+      parameters;                             // summary.json extra.parameters (numbers)
+  std::size_t steps = 0;                      // rows of the time series
   std::optional<ZonePassReport> zone_passes;  // when the run recorded zone_passes.csv
   std::string zone_passes_problem;            // why there is none
+  OperatingConditions conditions;             // flow, u / u_mf, parcels, cg, grain scale, ...
+  // The units the pages show: one for every coating mass (from the largest mean coating per
+  // parcel; a comparison puts every run in the same), one for the layer thickness.
+  DisplayUnit mass_unit, thickness_unit;
 };
+
+// The units of a report of these runs: mass from the largest mean coating per parcel over all
+// their snapshots, thickness from the layer that coating makes.
+void chooseDisplayUnits(std::vector<RunAnalysis>& runs);
 
 // The numbers of one run (no files written). Throws std::runtime_error with the file at fault.
 RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& options);
@@ -110,7 +127,8 @@ Json toJson(const RunAnalysis& a, const ReportOptions& options);
 // Writes report.json, the CSV tables, the PNGs (if possible) and report.html into folder.
 // Returns the names of the PNGs drawn; `plot_message` receives why plots are missing, if so.
 std::vector<std::string> writeRunReport(const RunAnalysis& a, const ReportOptions& options,
-                                        const std::filesystem::path& folder, std::string& plot_message);
+                                        const std::filesystem::path& folder,
+                                        std::string& plot_message);
 
 // Runs the whole report. Returns 0 on success (also when only the plots could not be drawn:
 // the message says what to install), 1 on an error (printed to std::cerr with what to do),
