@@ -23,6 +23,14 @@ trap 'rm -rf "$work"' EXIT
 "$cosim" run "$here/coated-particles.yaml" -o "$work/run" --quiet
 
 display=()
-[ -z "${DISPLAY:-}" ] && display=(xvfb-run -a)
-"${display[@]}" pvpython "$here/check_particles_in_paraview.py" "$work/run/particles.xmf" \
-  "$work/view.png"
+# A 24-bit screen (xvfb-run's default is 8-bit, which GLX visuals may lack)
+[ -z "${DISPLAY:-}" ] && display=(xvfb-run -a -s "-screen 0 800x600x24")
+# ParaView aborts (SIGABRT) when it cannot create its X window, which a virtual X server that is
+# still starting on a busy machine can cause: that, and only that, is tried once more.
+for attempt in 1 2; do
+  status=0
+  "${display[@]}" pvpython "$here/check_particles_in_paraview.py" "$work/run/particles.xmf" \
+    "$work/view.png" || status=$?
+  [ "$status" -eq 134 ] && [ "$attempt" -eq 1 ] && { echo "ParaView could not open its window (SIGABRT); once more" >&2; continue; }
+  exit "$status"
+done
