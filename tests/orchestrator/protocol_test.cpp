@@ -160,10 +160,10 @@ TEST(Protocol, WrongProtocolVersionIsRefusedAtHandshake) {
     EXPECT_EQ(hello->envelope->header().protocol_version(), static_cast<unsigned>(wire::PROTOCOL_VERSION));
     auto w = fromOrchestrator(0);
     w.mutable_welcome();
-    hub.send("particles", w);
+    hub.send(hello->peer, w);
     auto cmd = fromOrchestrator(1, 99);
     cmd.mutable_advance();
-    hub.send("particles", cmd);
+    hub.send(hello->peer, cmd);
   });
   session.handshake();
   try {
@@ -190,7 +190,7 @@ TEST(Protocol, OrchestratorRefusesAParticipantOfAnotherVersion) {
     ASSERT_TRUE(hello && hello->envelope);
     auto r = fromOrchestrator(0);
     r.mutable_refused()->set_reason("protocol version 1 but the orchestrator speaks version 2");
-    hub.send("particles", r);
+    hub.send(hello->peer, r);
   });
   try {
     session.handshake();
@@ -213,11 +213,11 @@ TEST(Protocol, OutOfOrderStepIsRefused) {
     ASSERT_TRUE(hello && hello->envelope);
     auto w = fromOrchestrator(0);
     w.mutable_welcome();
-    hub.send("particles", w);
+    hub.send(hello->peer, w);
     for (std::uint64_t s : {1u, 2u, 5u}) {  // 2 -> 5 skips steps
       auto c = fromOrchestrator(s);
       c.mutable_advance();
-      hub.send("particles", c);
+      hub.send(hello->peer, c);
     }
     // The session answers the bad step with an Error naming it.
     for (int i = 0; i < 50; ++i) {

@@ -1,5 +1,6 @@
 #include "cosim/link/transport.h"
 
+#include <atomic>
 #include <cerrno>
 #include <filesystem>
 #include <zmq.hpp>
@@ -44,15 +45,47 @@ wire::Envelope parse(const void* data, std::size_t size) {
 
 // ---- Channel ---------------------------------------------------------------------------------
 
+namespace {
+// A channel's connection, from ZeroMQ's socket monitor: up on CONNECTED, down on DISCONNECTED
+// (and from the start until the first connection).
+class ConnectionWatch : public zmq::monitor_t {
+ public:
+  bool up = false;
+  std::chrono::steady_clock::time_point down_since = std::chrono::steady_clock::now();
+
+  void on_event_connected(const zmq_event_t&, const char*) override { up = true; }
+  void on_event_disconnected(const zmq_event_t&, const char*) override {
+    up = false;
+    down_since = std::chrono::steady_clock::now();
+  }
+};
+
+std::string uniqueMonitorAddress() {
+  static std::atomic<unsigned long> next{0};
+  return "inproc://cosim-channel-watch-" + std::to_string(next++);
+}
+}  // namespace
+
 struct Channel::Impl {
   zmq::socket_t socket{context(), zmq::socket_type::dealer};
+  ConnectionWatch watch;  // declared after the socket: stops monitoring before it closes
 };
 
 Channel::Channel(const std::string& endpoint, const std::string& identity)
     : impl_(std::make_unique<Impl>()) {
   configure(impl_->socket);
-  impl_->socket.set(zmq::sockopt::routing_id, identity);
+  if (!identity.empty()) impl_->socket.set(zmq::sockopt::routing_id, identity);
+  impl_->watch.init(impl_->socket, uniqueMonitorAddress(),
+                    ZMQ_EVENT_CONNECTED | ZMQ_EVENT_DISCONNECTED);
   impl_->socket.connect(endpoint);
+}
+
+Millis Channel::timeWithoutConnection() {
+  while (impl_->watch.check_event(0)) {
+  }
+  if (impl_->watch.up) return Millis(0);
+  return std::chrono::duration_cast<Millis>(std::chrono::steady_clock::now() -
+                                            impl_->watch.down_since);
 }
 
 namespace {
@@ -133,7 +166,7 @@ void Hub::send(const std::string& peer, const wire::Envelope& env) {
     impl_->socket.send(zmq::buffer(peer), zmq::send_flags::sndmore);
     impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::none);
   } catch (const zmq::error_t& e) {
-    throw PeerError("cannot send to participant '" + peer + "': " + e.what() +
+    throw PeerError(std::string("cannot send to the peer: ") + e.what() +
                     " (not connected or gone)");
   }
 }
