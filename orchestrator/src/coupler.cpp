@@ -72,6 +72,9 @@ RunResult Coupler::run() {
     std::uint64_t done = 0;
     if (opt_.resume.empty()) {
       record_.startRecorders();
+      // Status "running" until the end; its space is what the last summary takes if the disk
+      // is full by then.
+      record_.summary(summarize(result, "running"));
       participants_.start(record_.folder());
       participants_.handshake();
       reportInitialState();
