@@ -9,6 +9,7 @@
 #include <sys/un.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -93,9 +94,10 @@ std::vector<pid_t> childrenOf(pid_t parent) {
   return out;
 }
 
-// `cosim run` of the settling sphere for a long time, as a process of its own.
-util::ChildProcess startCosim(const fs::path& out, const std::vector<std::string>& sets) {
-  std::vector<std::string> argv = {COSIM_EXE,    "run",   kSphere.string(),        "-o",
+// `cosim run` of a scene (the settling sphere) for a long time, as a process of its own.
+util::ChildProcess startCosim(const fs::path& out, const std::vector<std::string>& sets,
+                              const fs::path& scene = kSphere) {
+  std::vector<std::string> argv = {COSIM_EXE,    "run",   scene.string(),          "-o",
                                    out.string(), "--set", "coupling.end_time=1000"};
   for (const auto& s : sets) argv.insert(argv.end(), {"--set", s});
   fs::create_directories(out.parent_path());
@@ -209,6 +211,59 @@ TEST(KilledOrchestrator, LocalParticipantsDieWithItAndItsSocketFileIsCleanedUpLa
   fs::last_write_time(socket, fs::file_time_type::clock::now() - std::chrono::minutes(2));
   privateSocketFolder();
   EXPECT_FALSE(fs::exists(fs::symlink_status(socket))) << socket << " left behind";
+}
+
+// The same with the real DEM solver: an external cosim-liggghts stops within seconds, and a
+// local one under mpirun (2 ranks) dies with cosim, mpirun and both ranks.
+const fs::path kLiggghtsSphere =
+    fs::path(COSIM_SOURCE_DIR) / "tests" / "liggghts" / "data" / "settling-sphere-liggghts";
+
+TEST(KilledOrchestrator, ExternalLiggghtsParticipantStopsWithinSeconds) {
+  const std::string exe = std::string(COSIM_BIN_DIR) + "/cosim-liggghts";
+  if (!fs::exists(exe)) GTEST_SKIP() << exe << " not built (COSIM_BUILD_LIGGGHTS=OFF)";
+  const fs::path run = freshFolder("liggghts-external") / "run";
+  auto cosim = startCosim(run, {"participants.particles.launch=external"}, kLiggghtsSphere);
+  const auto args = externalArguments(run.string() + ".out", "particles");
+  ASSERT_FALSE(args.empty()) << readFile(run.string() + ".out");
+  std::vector<std::string> argv = {exe};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const fs::path plog = run.string() + ".particles.log";
+  util::ChildProcess particles(argv, ".", plog, {});
+  ASSERT_TRUE(waitFor(60, [&] { return rows(run) > 5; })) << readFile(run.string() + ".out");
+
+  ::kill(cosim.pid(), SIGKILL);
+  const auto killed = Clock::now();
+  EXPECT_TRUE(waitFor(30, [&] { return !particles.running(); }));
+  const double gone = secondsSince(killed);
+  std::printf("external cosim-liggghts stopped %.2f s after cosim was killed\n", gone);
+  EXPECT_LT(gone, 10.0);  // 3 s, then at most 5 s more if LIGGGHTS is in the middle of a step
+  EXPECT_EQ(particles.exitCode(), 3) << particles.exitDescription();
+  EXPECT_NE(readFile(plog).find("is gone: no connection to it for"), std::string::npos)
+      << readFile(plog);
+  cosim.wait();
+}
+
+TEST(KilledOrchestrator, LocalLiggghtsUnderMpirunDiesWithItRanksAndAll) {
+  const std::string exe = std::string(COSIM_BIN_DIR) + "/cosim-liggghts";
+  if (!fs::exists(exe)) GTEST_SKIP() << exe << " not built (COSIM_BUILD_LIGGGHTS=OFF)";
+  const fs::path run = freshFolder("liggghts-mpi") / "run";
+  auto cosim = startCosim(run, {"participants.particles.mpi=2"}, kLiggghtsSphere);
+  ASSERT_TRUE(waitFor(60, [&] { return rows(run) > 5; })) << readFile(run.string() + ".out");
+  std::vector<pid_t> all = childrenOf(cosim.pid());  // the fluid and mpirun
+  for (pid_t child : std::vector<pid_t>(all)) {
+    const auto ranks = childrenOf(child);
+    all.insert(all.end(), ranks.begin(), ranks.end());
+  }
+  ASSERT_GE(all.size(), 4u) << "expected the fluid, mpirun and two ranks";
+
+  ::kill(cosim.pid(), SIGKILL);
+  const auto killed = Clock::now();
+  EXPECT_TRUE(waitFor(
+      30, [&] { return std::none_of(all.begin(), all.end(), [](pid_t p) { return alive(p); }); }));
+  const double gone = secondsSince(killed);
+  std::printf("fluid, mpirun and 2 LIGGGHTS ranks gone %.2f s after cosim was killed\n", gone);
+  EXPECT_LT(gone, 10.0);
+  cosim.wait();
 }
 
 // Only sockets nothing listens on and older than a minute are removed; a live run's socket and

@@ -105,6 +105,20 @@ TEST(Protocol, RandomBytesAreRefusedWithoutCrash) {
   EXPECT_GT(refused, 1900);
 }
 
+// A string that is not UTF-8 makes the message undecodable: a ProtocolError, and no line of
+// protobuf's own on stderr (a stranger sending such messages must not fill the console).
+TEST(Protocol, TextThatIsNotUtf8IsRefusedWithoutALineOnStderr) {
+  wire::Envelope env;
+  env.mutable_header()->set_protocol_version(wire::PROTOCOL_VERSION);
+  env.mutable_header()->set_run_id("AAAA");
+  env.mutable_heartbeat()->set_sequence(1);
+  std::string bytes = link::serialize(env);
+  bytes.replace(bytes.find("AAAA"), 4, "\xff\xfe\xff\xfe");
+  testing::internal::CaptureStderr();
+  EXPECT_THROW(link::parse(bytes.data(), bytes.size()), link::ProtocolError);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(Protocol, HubReportsGarbageFromAPeerInsteadOfCrashing) {
   const auto ep = endpoint("garbage");
   link::Hub hub(ep);

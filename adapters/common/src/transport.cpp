@@ -1,5 +1,7 @@
 #include "cosim/link/transport.h"
 
+#include <google/protobuf/stubs/logging.h>
+
 #include <atomic>
 #include <cerrno>
 #include <filesystem>
@@ -10,6 +12,14 @@
 namespace cosim::link {
 
 namespace {
+// Bytes from a peer that do not parse are reported as a ProtocolError by parse(); protobuf's own
+// line on stderr for each (e.g. a string that is not UTF-8) would let any stranger fill the
+// console. Silenced once, before the first socket exists.
+void silenceProtobufLog() {
+  static const bool silenced = (google::protobuf::SetLogHandler(nullptr), true);
+  (void)silenced;
+}
+
 zmq::context_t& context() {
   static zmq::context_t ctx(1);
   return ctx;
@@ -30,6 +40,7 @@ std::string serialize(const wire::Envelope& env) {
 }
 
 wire::Envelope parse(const void* data, std::size_t size) {
+  silenceProtobufLog();
   wire::Envelope env;
   if (size > static_cast<std::size_t>(INT32_MAX) ||
       !env.ParseFromArray(data, static_cast<int>(size))) {
@@ -73,6 +84,7 @@ struct Channel::Impl {
 
 Channel::Channel(const std::string& endpoint, const std::string& identity)
     : impl_(std::make_unique<Impl>()) {
+  silenceProtobufLog();
   configure(impl_->socket);
   if (!identity.empty()) impl_->socket.set(zmq::sockopt::routing_id, identity);
   impl_->watch.init(impl_->socket, uniqueMonitorAddress(),
@@ -127,6 +139,7 @@ struct Hub::Impl {
 };
 
 Hub::Hub(const std::string& endpoint) : impl_(std::make_unique<Impl>()) {
+  silenceProtobufLog();
   // ZeroMQ unlinks whatever file an ipc:// endpoint names before it binds: never bind a path
   // that exists, so that no address can make cosim delete a file it did not create.
   if (endpoint.rfind("ipc://", 0) == 0) {
