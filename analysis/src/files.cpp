@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,27 +16,59 @@ namespace cosim::analysis {
 
 std::string formatShortest(double v) { return fmt::format("{}", v); }
 
+namespace {
+
+// Why writing `path` failed, from errno, with what to do when the disk is full.
+std::string writeFailure(const std::filesystem::path& path, int err) {
+  std::string why = "cannot write " + path.string() + ": " + std::strerror(err);
+  if (err == ENOSPC || err == EDQUOT) why += " (the disk is full: free space and run again)";
+  if (err == EFBIG) why += " (larger than the file size limit, ulimit -f)";
+  return why;
+}
+
+// Writes all of text to path (created or truncated); false with errno set on failure.
+bool writeWhole(const std::filesystem::path& path, const std::string& text) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) return false;
+  const bool written =
+      std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
+  const int err = errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!written) errno = err;
+  return written && closed;
+}
+
+}  // namespace
+
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f)
-      throw std::runtime_error("cannot write " + tmp.string() +
-                               ": check the folder exists and is writable");
-    f << text;
-    f.flush();
-    if (!f) throw std::runtime_error("writing " + tmp.string() + " failed (disk full?)");
+  if (!writeWhole(tmp, text)) {
+    const int err = errno;
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);  // never leave half a file behind
+    throw std::runtime_error(writeFailure(tmp, err));
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
-  if (ec)
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
     throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " +
                              ec.message());
+  }
+}
+
+void overwriteFile(const std::filesystem::path& path, const std::string& text) {
+  if (!writeWhole(path, text)) throw std::runtime_error(writeFailure(path, errno));
+}
+
+std::string jsonText(const Json& json, int indent) {
+  return json.dump(indent, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 void writeJsonFile(const std::filesystem::path& path, const Json& json, int indent) {
-  writeFileAtomically(path, json.dump(indent, ' ', false, Json::error_handler_t::replace) + "\n");
+  writeFileAtomically(path, jsonText(json, indent));
 }
 
 Json readJsonFile(const std::filesystem::path& path) {

@@ -110,7 +110,17 @@ void from_json(const Json& j, Summary& s) {
 }
 
 void writeSummary(const std::filesystem::path& path, const Summary& summary) {
-  writeJsonFile(path, Json(summary), 2);
+  const Json json(summary);
+  try {
+    writeJsonFile(path, json, 2);
+  } catch (const std::runtime_error& e) {
+    if (!std::filesystem::exists(path)) throw;
+    try {
+      overwriteFile(path, jsonText(json, 2));
+    } catch (const std::runtime_error& again) {
+      throw std::runtime_error(std::string(e.what()) + "; in place: " + again.what());
+    }
+  }
 }
 
 Summary readSummary(const std::filesystem::path& path) {

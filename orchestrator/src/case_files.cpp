@@ -1,7 +1,12 @@
 #include "case_files.h"
 
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+
+#include "cosim/analysis/files.h"
 
 namespace cosim::orchestrator {
 
@@ -20,7 +25,9 @@ int copyCaseFiles(const fs::path& from, const fs::path& to, const Variables& var
     if (!entry.is_regular_file()) continue;
     std::ifstream in(entry.path(), std::ios::binary);
     std::stringstream ss;
-    ss << in.rdbuf();
+    if (!in || (!(ss << in.rdbuf()) && fs::file_size(entry.path()) > 0))
+      throw std::runtime_error("cannot read the case file " + entry.path().string() + ": " +
+                               std::strerror(errno));
     std::string text = ss.str();
     const bool binary = text.find('\0') != std::string::npos;
     if (!binary && text.find("${") != std::string::npos) {
@@ -40,8 +47,14 @@ int copyCaseFiles(const fs::path& from, const fs::path& to, const Variables& var
       text = out;
       ++templated;
     }
-    std::ofstream os(dest, std::ios::binary);
-    os << text;
+    try {
+      analysis::overwriteFile(dest, text);
+    } catch (const std::exception& e) {
+      std::error_code ec;
+      fs::remove(dest, ec);  // no truncated copy for the solver to trip over
+      throw std::runtime_error(std::string(e.what()) + " (copying the case file " +
+                               entry.path().string() + ")");
+    }
     fs::permissions(dest, fs::status(entry.path()).permissions());
   }
   return templated;

@@ -9,7 +9,8 @@
 namespace cosim::orchestrator {
 
 // Returns the number of files in which something was substituted. Binary files are copied as
-// they are. Errors name the file and line.
+// they are. Errors name the file and line; a file that cannot be written (disk full) is named
+// with the reason and not left behind half written.
 int copyCaseFiles(const std::filesystem::path& from, const std::filesystem::path& to,
                   const Variables& vars);
 

@@ -78,6 +78,9 @@ RunResult Coupler::run() {
         std::error_code ec;  // a run folder reused with --overwrite keeps no stale passes
         std::filesystem::remove(record_.folder() / analysis::kZonePassesFile, ec);
       }
+      // Status "running" until the end; its space is what the last summary takes if the disk
+      // is full by then.
+      record_.summary(summarize(result, "running"));
       participants_.start(record_.folder());
       participants_.handshake();
       reportInitialState();

@@ -1,16 +1,20 @@
 #include "participants.h"
 
-#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
-
 #include <set>
 #include <thread>
 
 #include "case_files.h"
+#include "cosim/link/errors.h"
+#include "cosim/link/session.h"
 #include "processes.h"
+#include "run_token.h"
+#include "socket_folder.h"
 
 namespace cosim::orchestrator {
 
@@ -28,6 +32,7 @@ struct Participants::Peer {
   fs::path workdir;
   Clock::time_point last_seen = Clock::now();
   bool connected = false;
+  std::string route;  // ZeroMQ routing id of the socket its Hello came from; empty before
   std::vector<std::string> send, receive;
   // Step and time of the last message sent to it; its replies must be for that step. A peer
   // that idled (cosim bench runs one solver alone) gets its Shutdown at its own step.
@@ -45,18 +50,20 @@ std::string join(const std::vector<std::string>& v) {
 
 const char* roleName(wire::Role r) { return r == wire::FLUID ? "fluid" : "particles"; }
 
-// A heartbeat socket's identity is the participant's name with "#hb" appended.
-bool stripHeartbeat(std::string& who) {
-  if (who.size() > 3 && who.compare(who.size() - 3, 3, "#hb") == 0) {
-    who.resize(who.size() - 3);
-    return true;
-  }
-  return false;
+// A name a peer claims, as it may appear in cosim.log: printable, at most 40 characters.
+std::string shown(const std::string& claimed) {
+  std::string out;
+  for (char c : claimed.substr(0, 40)) out += (c >= 0x20 && c < 0x7f) ? c : '?';
+  return out;
 }
+
+// At most this many lines in cosim.log about dropped messages, whatever a stranger sends.
+constexpr std::size_t kMaxIgnoredLines = 20;
 
 // The command line that starts a participant cosim launches itself.
 std::vector<std::string> commandLine(const std::string& name, const ParticipantSpec& spec,
-                                     const std::string& endpoint, const std::string& run_id) {
+                                     const std::string& endpoint, const std::string& run_id,
+                                     long command_timeout_s) {
   auto exe = findExecutable(spec.command);
   if (!exe) {
     throw RunFailure(name, "cannot find the executable '" + spec.command + "' of adapter '" +
@@ -74,36 +81,29 @@ std::vector<std::string> commandLine(const std::string& name, const ParticipantS
     argv.push_back("--oversubscribe");
   }
   argv.push_back(exe->string());
-  for (const auto& a : {std::string("--endpoint"), endpoint, std::string("--name"), name,
-                        std::string("--run-id"), run_id}) {
+  for (const auto& a :
+       {std::string("--endpoint"), endpoint, std::string("--name"), name, std::string("--run-id"),
+        run_id, std::string("--command-timeout"), std::to_string(command_timeout_s)}) {
     argv.push_back(a);
   }
   for (const auto& a : spec.args) argv.push_back(a);
   return argv;
 }
 
-// The folder of this user's ipc:// sockets, /tmp/cosim-<uid>, that only the user can enter
-// (created with mode 0700; refused if another user owns it or others may enter it).
-fs::path privateSocketFolder() {
-  const fs::path dir = fs::temp_directory_path() / ("cosim-" + std::to_string(getuid()));
-  if (::mkdir(dir.c_str(), 0700) != 0 && errno != EEXIST)
-    throw RunFailure("", "cannot create " + dir.string() + " for the ipc:// socket: " +
-                             std::strerror(errno));
-  struct stat st {};
-  if (::lstat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != getuid() ||
-      (st.st_mode & 077) != 0) {
-    throw RunFailure("", dir.string() +
-                             " must be a folder of yours that only you can enter (mode 0700), "
-                             "since the run's ipc:// socket goes there; remove it or fix it "
-                             "(or set transport.bind)");
-  }
-  return dir;
+// How long a participant waits for the orchestrator's next command before it gives up: while
+// it waits, the orchestrator may wait for the slowest other participant (its timeout, e.g. a DEM
+// settling thousands of parcels before its first step) and then for itself. A gone orchestrator
+// is noticed within seconds anyway (the connection watch, docs/when-things-go-wrong.md).
+long commandTimeout(const std::map<std::string, ParticipantSpec>& participants) {
+  double longest = 0.0;
+  for (const auto& [name, spec] : participants) longest = std::max(longest, spec.timeout);
+  return static_cast<long>(std::ceil(2.0 * longest)) + 60;
 }
 
 }  // namespace
 
 Participants::Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log)
-    : sc_(sc), plan_(plan), run_id_(std::move(run_id)), log_(log) {}
+    : sc_(sc), plan_(plan), run_id_(std::move(run_id)), log_(log), token_(newRunToken()) {}
 
 Participants::~Participants() { shutdown(false); }
 
@@ -130,8 +130,8 @@ void Participants::start(const fs::path& run_folder) {
     fs::create_directories(peer->workdir);
     if (!resuming && !spec.files.empty()) copyCaseFiles(spec.files, peer->workdir, sc_.parameters);
     if (spec.launch == "local") {
-      const auto argv = commandLine(name, spec, connect, run_id_);
-      std::map<std::string, std::string> env;
+      const auto argv = commandLine(name, spec, connect, run_id_, commandTimeout(sc_.participants));
+      std::map<std::string, std::string> env{{link::kRunTokenVariable, token_}};
       if (spec.mpi > 1 && geteuid() == 0) {
         env["OMPI_ALLOW_RUN_AS_ROOT"] = "1";
         env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1";
@@ -142,6 +142,12 @@ void Participants::start(const fs::path& run_folder) {
         throw RunFailure(name, e.what());
       }
       log_.file("started " + name + ": " + join(argv));
+    } else {
+      if (token_file_.empty()) token_file_ = writeRunTokenFile(run_folder, token_);
+      log_.show("waiting for " + name + " (launch: external): start it with --endpoint " + connect +
+                " --name " + name + " --run-id " + run_id_ + " --command-timeout " +
+                std::to_string(commandTimeout(sc_.participants)) + " --token-file " +
+                token_file_.string());
     }
     peers_[name] = std::move(peer);
   }
@@ -177,7 +183,10 @@ void Participants::send(const std::string& name, wire::Envelope& env, bool own_c
     h->set_time(time_);
   }
   try {
-    hub_->send(name, env);
+    const auto it = peers_.find(name);
+    if (it == peers_.end() || it->second->route.empty())
+      throw link::PeerError("it has not connected");
+    hub_->send(it->second->route, env);
   } catch (const std::exception& e) {
     // Usually the peer's process just died: say how, rather than only "unreachable".
     auto it = peers_.find(name);
@@ -246,64 +255,100 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
       log_.show("signal " + std::to_string(g_stop_signal.load()) +
                 ": stopping after this step with a checkpoint (send it again to stop at once)");
     }
-    auto in = hub_->receive(link::Millis(100));
-    const auto now = Clock::now();
-    if (in) {
-      std::string who = in->peer;
-      stripHeartbeat(who);
-      auto pit = peers_.find(who);
-      if (pit == peers_.end()) {
-        // Unknown sender: not part of this run. Dropped; one line in the log per sender.
-        if (ignored_.insert(in->peer).second)
-          log_.file("ignored messages from unknown peer '" + in->peer + "'");
-        checkAlive(expected, got, start, timeout);
-        continue;
-      }
-      pit->second->last_seen = now;
-      if (!in->envelope) {
-        throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
-      }
-      const auto& env = *in->envelope;
-      if (env.has_heartbeat()) {
-        checkAlive(expected, got, start, timeout);
-        continue;
-      }
-      if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
-        throw RunFailure(who, "speaks protocol version " +
-                                  std::to_string(env.header().protocol_version()) +
-                                  ", the orchestrator " + std::to_string(wire::PROTOCOL_VERSION));
-      }
-      if (env.has_error()) {
-        throw RunFailure(
-            who, "reported an error: " + env.error().message() +
-                     (env.error().where().empty() ? "" : " (at " + env.error().where() + ")"));
-      }
-      auto eit = expected.find(who);
-      if (eit == expected.end() || got.count(who)) {
-        throw RunFailure(who, "sent an unexpected message at step " + std::to_string(step_));
-      }
-      if (env.body_case() != eit->second) {
-        throw RunFailure(who, "sent the wrong message type (body " +
-                                  std::to_string(env.body_case()) + ", expected " +
-                                  std::to_string(eit->second) + ") at step " +
-                                  std::to_string(step_));
-      }
-      if (env.header().run_id() != run_id_) {
-        throw RunFailure(
-            who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'");
-      }
-      const std::uint64_t at = peers_.count(who) ? peers_.at(who)->step : step_;
-      if (env.header().step() != at) {
-        throw RunFailure(who, "answered for step " + std::to_string(env.header().step()) +
-                                  " while the run is at step " + std::to_string(at) +
-                                  " (out-of-order step)");
-      }
-      got[who] = env;
+    if (auto in = hub_->receive(link::Millis(100))) {
+      if (const auto who = admit(*in)) take(*who, *in->envelope, expected, got);
     }
     // On every wake-up, message or not: no stream of messages may hide a dead or silent peer.
     checkAlive(expected, got, start, timeout);
   }
   return got;
+}
+
+void Participants::take(const std::string& who, const wire::Envelope& env,
+                        const std::map<std::string, wire::Envelope::BodyCase>& expected,
+                        Replies& got) {
+  if (env.has_heartbeat()) return;
+  if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
+    throw RunFailure(who, "speaks protocol version " +
+                              std::to_string(env.header().protocol_version()) +
+                              ", the orchestrator " + std::to_string(wire::PROTOCOL_VERSION));
+  }
+  if (env.has_error()) {
+    throw RunFailure(who,
+                     "reported an error: " + env.error().message() +
+                         (env.error().where().empty() ? "" : " (at " + env.error().where() + ")"));
+  }
+  if (env.has_hello()) return;  // a copy sent before its Welcome arrived
+  auto eit = expected.find(who);
+  if (eit == expected.end() || got.count(who)) {
+    throw RunFailure(who, "sent an unexpected message at step " + std::to_string(step_));
+  }
+  if (env.body_case() != eit->second) {
+    throw RunFailure(who, "sent the wrong message type (body " + std::to_string(env.body_case()) +
+                              ", expected " + std::to_string(eit->second) + ") at step " +
+                              std::to_string(step_));
+  }
+  if (env.header().run_id() != run_id_) {
+    throw RunFailure(
+        who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'");
+  }
+  const std::uint64_t at = peers_.at(who)->step;
+  if (env.header().step() != at) {
+    throw RunFailure(who, "answered for step " + std::to_string(env.header().step()) +
+                              " while the run is at step " + std::to_string(at) +
+                              " (out-of-order step)");
+  }
+  got[who] = env;
+}
+
+std::optional<std::string> Participants::admit(const link::Hub::Incoming& in) {
+  const std::string claimed = in.envelope ? in.envelope->header().participant() : "";
+  auto drop = [&](const std::string& why) -> std::optional<std::string> {
+    const std::string who = in.envelope ? "'" + shown(claimed) + "'" : "an unknown sender";
+    if (ignored_.size() < kMaxIgnoredLines && ignored_.emplace(shown(claimed), why).second) {
+      log_.file("ignored messages from " + who + ": " + why +
+                (ignored_.size() == kMaxIgnoredLines ? " (further ones are not logged)" : ""));
+    }
+    return std::nullopt;
+  };
+  if (!in.envelope) return drop(in.parse_error);
+  const auto& env = *in.envelope;
+  const auto pit = peers_.find(claimed);
+  if (pit == peers_.end()) return drop("not a participant of this run");
+  Peer& p = *pit->second;
+  if (!sameToken(env.header().token(), token_)) {
+    if (env.has_hello()) {
+      // Tell it, so that a participant of another run (or of an older cosim) stops waiting.
+      wire::Envelope r;
+      r.mutable_header()->set_protocol_version(wire::PROTOCOL_VERSION);
+      r.mutable_header()->set_participant(claimed);
+      r.mutable_refused()->set_reason(
+          "this Hello does not carry the run's token: a participant proves it belongs to the run "
+          "with the token cosim hands to the processes it starts (environment variable " +
+          std::string(link::kRunTokenVariable) + ") and writes to " + kRunTokenFile +
+          " in the run folder for those of launch: external (--token-file)");
+      try {
+        hub_->send(in.peer, r);
+      } catch (const std::exception&) {
+      }
+    }
+    return drop(env.header().token().empty()
+                    ? "a message without a run token (not from this run, or from an adapter "
+                      "older than protocol version 3)"
+                    : "a message with a wrong run token (not from this run)");
+  }
+  // The participant's own: its heartbeats come from a socket of their own; everything else
+  // from the socket its (first) Hello came from.
+  if (!env.has_heartbeat() && !p.route.empty() && in.peer != p.route)
+    return drop("a second connection with this run's token (is the participant started twice?)");
+  p.last_seen = Clock::now();
+  return claimed;
+}
+
+std::string Participants::ignoredNote(const std::string& name) const {
+  if (auto it = ignored_.find(name); it != ignored_.end())
+    return "; messages under its name were ignored: " + it->second;
+  return "";
 }
 
 void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCase>& expected,
@@ -339,51 +384,53 @@ void Participants::handshake() {
   const auto start = Clock::now();
   while (!waiting.empty()) {
     if (g_stop_signal) throw RunFailure("", "interrupted during start-up");
-    auto in = hub_->receive(link::Millis(100));
-    if (in) {
-      std::string who = in->peer;
-      if (stripHeartbeat(who)) continue;
-      if (!peers_.count(who)) {
-        log_.file("ignored a connection from unknown participant '" + who + "'");
-        continue;
+    if (auto in = hub_->receive(link::Millis(100))) {
+      if (const auto who = admit(*in)) {
+        const auto& env = *in->envelope;
+        if (env.has_error()) {
+          // e.g. a participant already welcomed whose configuration failed
+          const auto& err = env.error();
+          throw RunFailure(*who, "reported an error: " + err.message() +
+                                     (err.where().empty() ? "" : " (at " + err.where() + ")"));
+        }
+        // Heartbeats and copies of a Hello already answered are passed over.
+        if (!env.has_heartbeat() && waiting.count(*who)) {
+          welcome(*who, env, in->peer);
+          waiting.erase(*who);
+        }
       }
-      if (!in->envelope)
-        throw RunFailure(who, "sent bytes that are not a cosim message: " + in->parse_error);
-      if (in->envelope->has_error()) {
-        // e.g. a participant already welcomed whose configuration failed
-        const auto& err = in->envelope->error();
-        throw RunFailure(who, "reported an error: " + err.message() +
-                                  (err.where().empty() ? "" : " (at " + err.where() + ")"));
-      }
-      if (in->envelope->has_heartbeat()) continue;
-      welcome(who, *in->envelope);
-      waiting.erase(who);
-      continue;
     }
+    // On every wake-up, message or not: no stream of messages may hide a dead participant.
     for (const auto& n : waiting) {
       Peer& p = *peers_.at(n);
       if (p.process && !p.process->running()) {
         throw RunFailure(n, "the " + n + " process (" + p.spec.adapter + ") " +
-                                p.process->exitDescription() + " before connecting");
+                                p.process->exitDescription() + " before connecting" +
+                                ignoredNote(n));
       }
     }
     if (std::chrono::duration<double>(Clock::now() - start).count() >
         sc_.transport.handshake_timeout) {
       const std::string who = *waiting.begin();
-      throw RunFailure(who, "did not connect within " +
-                                std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
-                                " s (transport.handshake_timeout)" +
-                                (peers_.at(who)->spec.launch == "external"
-                                     ? "; start it with --endpoint " + connectEndpoint() +
-                                           " --name " + who + " --run-id " + run_id_
-                                     : ""));
+      throw RunFailure(
+          who, "did not connect within " +
+                   std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
+                   " s (transport.handshake_timeout)" + ignoredNote(who) +
+                   (peers_.at(who)->spec.launch == "external"
+                        ? "; start it with --endpoint " + connectEndpoint() + " --name " + who +
+                              " --run-id " + run_id_ + " --command-timeout " +
+                              std::to_string(commandTimeout(sc_.participants)) + " --token-file " +
+                              token_file_.string()
+                        : ""));
     }
   }
 }
 
 // Checks one Hello against what the scene needs and answers with the Welcome.
-void Participants::welcome(const std::string& who, const wire::Envelope& env) {
+void Participants::welcome(const std::string& who, const wire::Envelope& env,
+                           const std::string& route) {
   Peer& p = *peers_.at(who);
+  p.route = route;
   auto refuse = [&](const std::string& reason) {
     wire::Envelope r;
     r.mutable_refused()->set_reason(reason);
@@ -474,6 +521,11 @@ void Participants::shutdown(bool clean) {
   }
   peers_.clear();
   hub_.reset();  // the hub removes the ipc:// socket file it created
+  if (!token_file_.empty()) {
+    std::error_code ec;
+    fs::remove(token_file_, ec);
+    token_file_.clear();
+  }
 }
 
 }  // namespace cosim::orchestrator

@@ -88,12 +88,24 @@ class Participants {
   void send(const std::string& name, wire::Envelope& env, bool own_clock = false);
   Replies await(const std::map<std::string, wire::Envelope::BodyCase>& expected,
                 double timeout_seconds);
-  void welcome(const std::string& name, const wire::Envelope& hello);
+  // Checks one Hello (from the socket with routing id `route`) and answers Welcome or Refused.
+  void welcome(const std::string& name, const wire::Envelope& hello, const std::string& route);
+  // The participant a message comes from, if it proves it belongs to this run: it bears a
+  // participant's name (Header.participant) and this run's token and, but for heartbeats, comes
+  // from the socket its Hello came from. Anything else is dropped with one line per claimed
+  // name in cosim.log (at most 20), a stranger's Hello answered with Refused.
+  std::optional<std::string> admit(const link::Hub::Incoming& in);
+  // A message of a participant of this run while the replies in `expected` are awaited: put
+  // into `got` if it is one of them; heartbeats and copies of a Hello are passed over; anything
+  // else is a RunFailure saying what is wrong with it.
+  void take(const std::string& who, const wire::Envelope& env,
+            const std::map<std::string, wire::Envelope::BodyCase>& expected, Replies& got);
+  // Why a participant's name was dropped, for the message when it never connects.
+  std::string ignoredNote(const std::string& name) const;
   // Throws RunFailure if a participant in `expected` that has not answered yet has exited, has
   // been silent longer than the heartbeat timeout, or the wait has lasted `timeout` seconds.
   void checkAlive(const std::map<std::string, wire::Envelope::BodyCase>& expected,
-                  const Replies& got, std::chrono::steady_clock::time_point start,
-                  double timeout);
+                  const Replies& got, std::chrono::steady_clock::time_point start, double timeout);
   std::string connectEndpoint() const;
 
   const Scenario& sc_;
@@ -107,7 +119,9 @@ class Participants {
   double time_ = 0.0;
   std::filesystem::path restart_from_;
   bool stop_noted_ = false;
-  std::set<std::string> ignored_;  // senders that are not participants of this run
+  std::string token_;                           // this run's secret (run_token.h)
+  std::filesystem::path token_file_;            // written for participants of launch: external
+  std::map<std::string, std::string> ignored_;  // names claimed by dropped messages, and why
 };
 
 }  // namespace cosim::orchestrator

@@ -235,7 +235,8 @@ void RunRecord::summary(const analysis::Summary& s) {
   try {
     analysis::writeSummary(folder_ / analysis::kSummaryFile, s);
   } catch (const std::exception& e) {
-    log_.warn(std::string("could not write the summary: ") + e.what());
+    log_.warn(std::string("could not write the summary: ") + e.what() +
+              "; the run's status: " + s.status + (s.message.empty() ? "" : ": " + s.message));
   }
 }
 

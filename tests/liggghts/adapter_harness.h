@@ -67,6 +67,8 @@ class AdapterRun {
       if (!in) continue;
       if (!in->envelope) throw std::runtime_error("undecodable message: " + in->parse_error);
       if (in->envelope->has_heartbeat()) continue;
+      if (in->envelope->has_hello() && !peer_.empty()) continue;  // a copy sent before the Welcome
+      peer_ = in->peer;  // the adapter's routing id (ZeroMQ makes one up per connection)
       return *in->envelope;
     }
     throw std::runtime_error("adapter silent for " + std::to_string(timeout_s) + " s");
@@ -91,7 +93,7 @@ class AdapterRun {
     welcome->set_dem_steps(dem_steps);
     welcome->set_end_time(1.0);
     welcome->set_restart_from(restart_from);
-    hub_->send("particles", w);
+    hub_->send(peer_, w);
     return hello.hello();
   }
 
@@ -103,7 +105,7 @@ class AdapterRun {
     a->set_dt(dt);
     a->set_substeps(substeps);
     terms.toWire(*a->mutable_terms());
-    hub_->send("particles", e);
+    hub_->send(peer_, e);
     auto reply = receive();
     if (reply.has_advanced()) {
       ++step_;
@@ -115,14 +117,14 @@ class AdapterRun {
     wire::Envelope e;
     header(e);
     e.mutable_checkpoint()->set_path(path);
-    hub_->send("particles", e);
+    hub_->send(peer_, e);
     return receive();
   }
   wire::Envelope shutdown() {
     wire::Envelope e;
     header(e);
     e.mutable_shutdown()->set_reason("test done");
-    hub_->send("particles", e);
+    hub_->send(peer_, e);
     return receive();
   }
   // Exit code of the adapter (-1 if it is still running after timeout_s; -2 if killed by signal).
@@ -150,6 +152,7 @@ class AdapterRun {
   std::filesystem::path workdir_;
   std::string endpoint_;
   std::unique_ptr<link::Hub> hub_;
+  std::string peer_;  // routing id of the adapter's socket, from its messages
   pid_t pid_ = -1;
   bool exited_ = false;
   std::uint64_t step_ = 0;

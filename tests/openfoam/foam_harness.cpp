@@ -113,7 +113,7 @@ FoamRun::FoamRun(const FoamRunConfig& config) {
   w->set_cfd_dt(1e-3);
   w->set_end_time(1.0);
   w->set_species(config.species);
-  hub_->send("fluid", welcome);
+  hub_->send(peer_, welcome);
 }
 
 FoamRun::~FoamRun() {
@@ -160,6 +160,8 @@ cosim::wire::Envelope FoamRun::receive(const char* expecting) {
     }
     if (!in->envelope) throw std::runtime_error("undecodable message: " + in->parse_error);
     if (in->envelope->has_heartbeat()) continue;
+    if (in->envelope->has_hello() && !peer_.empty()) continue;  // a copy sent before the Welcome
+    peer_ = in->peer;  // the adapter's routing id (ZeroMQ makes one up per connection)
     if (in->envelope->has_error()) {
       throw std::runtime_error("cosimFoam error: " + in->envelope->error().message());
     }
@@ -170,7 +172,7 @@ cosim::wire::Envelope FoamRun::receive(const char* expecting) {
 
 cosim::wire::Envelope FoamRun::request(cosim::wire::Envelope env) {
   fillHeader(env.mutable_header());
-  hub_->send("fluid", env);
+  hub_->send(peer_, env);
   return receive(env.has_sample() ? "Samples" : env.has_advance() ? "Advanced" : "Goodbye");
 }
 
@@ -200,7 +202,7 @@ std::vector<std::string> FoamRun::checkpoint(const std::string& path) {
   cosim::wire::Envelope env;
   env.mutable_checkpoint()->set_path(path);
   fillHeader(env.mutable_header());
-  hub_->send("fluid", env);
+  hub_->send(peer_, env);
   const auto reply = receive("CheckpointWritten");
   if (!reply.has_checkpoint_written()) throw std::runtime_error("expected CheckpointWritten");
   return {reply.checkpoint_written().files().begin(), reply.checkpoint_written().files().end()};

@@ -62,6 +62,7 @@ class FoamRun {
   std::string dir_;
   std::string run_id_;
   std::unique_ptr<cosim::link::Hub> hub_;
+  std::string peer_;  // routing id of the adapter's socket, from its messages
   pid_t child_ = -1;
   std::uint64_t step_ = 0;
   double time_ = 0;

@@ -105,6 +105,20 @@ TEST(Protocol, RandomBytesAreRefusedWithoutCrash) {
   EXPECT_GT(refused, 1900);
 }
 
+// A string that is not UTF-8 makes the message undecodable: a ProtocolError, and no line of
+// protobuf's own on stderr (a stranger sending such messages must not fill the console).
+TEST(Protocol, TextThatIsNotUtf8IsRefusedWithoutALineOnStderr) {
+  wire::Envelope env;
+  env.mutable_header()->set_protocol_version(wire::PROTOCOL_VERSION);
+  env.mutable_header()->set_run_id("AAAA");
+  env.mutable_heartbeat()->set_sequence(1);
+  std::string bytes = link::serialize(env);
+  bytes.replace(bytes.find("AAAA"), 4, "\xff\xfe\xff\xfe");
+  testing::internal::CaptureStderr();
+  EXPECT_THROW(link::parse(bytes.data(), bytes.size()), link::ProtocolError);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+}
+
 TEST(Protocol, HubReportsGarbageFromAPeerInsteadOfCrashing) {
   const auto ep = endpoint("garbage");
   link::Hub hub(ep);
@@ -160,10 +174,10 @@ TEST(Protocol, WrongProtocolVersionIsRefusedAtHandshake) {
     EXPECT_EQ(hello->envelope->header().protocol_version(), static_cast<unsigned>(wire::PROTOCOL_VERSION));
     auto w = fromOrchestrator(0);
     w.mutable_welcome();
-    hub.send("particles", w);
+    hub.send(hello->peer, w);
     auto cmd = fromOrchestrator(1, 99);
     cmd.mutable_advance();
-    hub.send("particles", cmd);
+    hub.send(hello->peer, cmd);
   });
   session.handshake();
   try {
@@ -190,7 +204,7 @@ TEST(Protocol, OrchestratorRefusesAParticipantOfAnotherVersion) {
     ASSERT_TRUE(hello && hello->envelope);
     auto r = fromOrchestrator(0);
     r.mutable_refused()->set_reason("protocol version 1 but the orchestrator speaks version 2");
-    hub.send("particles", r);
+    hub.send(hello->peer, r);
   });
   try {
     session.handshake();
@@ -213,11 +227,11 @@ TEST(Protocol, OutOfOrderStepIsRefused) {
     ASSERT_TRUE(hello && hello->envelope);
     auto w = fromOrchestrator(0);
     w.mutable_welcome();
-    hub.send("particles", w);
+    hub.send(hello->peer, w);
     for (std::uint64_t s : {1u, 2u, 5u}) {  // 2 -> 5 skips steps
       auto c = fromOrchestrator(s);
       c.mutable_advance();
-      hub.send("particles", c);
+      hub.send(hello->peer, c);
     }
     // The session answers the bad step with an Error naming it.
     for (int i = 0; i < 50; ++i) {

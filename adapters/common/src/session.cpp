@@ -2,9 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "CLI/CLI.hpp"
 #include "cosim/link/errors.h"
@@ -12,22 +17,68 @@
 namespace cosim::link {
 
 namespace {
+using Clock = std::chrono::steady_clock;
+
+// How often an unanswered Hello is sent again, and how often a wait for a command looks
+// whether the orchestrator is gone.
+constexpr Millis kHelloResend{1000};
+constexpr Millis kCommandSlice{200};
+// Time the solver gets to come back to the session after the orchestrator is gone, before the
+// heartbeat thread ends the process (exitProcessWhenOrphaned).
+constexpr Millis kOrphanGrace{5000};
+
+Millis until(Clock::time_point deadline) {
+  return std::max(Millis(0), std::chrono::duration_cast<Millis>(deadline - Clock::now()));
+}
+
+// The run token in `file` (surrounding white space removed).
+std::string readTokenFile(const std::string& file) {
+  std::ifstream in(file);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string token = text.str();
+  const auto first = token.find_first_not_of(" \t\r\n");
+  const auto last = token.find_last_not_of(" \t\r\n");
+  token = first == std::string::npos ? "" : token.substr(first, last - first + 1);
+  if (!in.is_open() || token.empty()) {
+    throw std::runtime_error("--token-file " + file + ": " +
+                             (in.is_open() ? "the file is empty" : std::strerror(errno)) +
+                             "; cosim writes the run's token to .cosim-run-token in the run folder "
+                             "when it starts a run with a participant of launch: external");
+  }
+  return token;
+}
+
 const char* bodyName(const wire::Envelope& e) {
   switch (e.body_case()) {
-    case wire::Envelope::kHello: return "Hello";
-    case wire::Envelope::kWelcome: return "Welcome";
-    case wire::Envelope::kRefused: return "Refused";
-    case wire::Envelope::kSample: return "Sample";
-    case wire::Envelope::kSamples: return "Samples";
-    case wire::Envelope::kAdvance: return "Advance";
-    case wire::Envelope::kAdvanced: return "Advanced";
-    case wire::Envelope::kCheckpoint: return "Checkpoint";
-    case wire::Envelope::kCheckpointWritten: return "CheckpointWritten";
-    case wire::Envelope::kShutdown: return "Shutdown";
-    case wire::Envelope::kGoodbye: return "Goodbye";
-    case wire::Envelope::kError: return "Error";
-    case wire::Envelope::kHeartbeat: return "Heartbeat";
-    default: return "(none)";
+    case wire::Envelope::kHello:
+      return "Hello";
+    case wire::Envelope::kWelcome:
+      return "Welcome";
+    case wire::Envelope::kRefused:
+      return "Refused";
+    case wire::Envelope::kSample:
+      return "Sample";
+    case wire::Envelope::kSamples:
+      return "Samples";
+    case wire::Envelope::kAdvance:
+      return "Advance";
+    case wire::Envelope::kAdvanced:
+      return "Advanced";
+    case wire::Envelope::kCheckpoint:
+      return "Checkpoint";
+    case wire::Envelope::kCheckpointWritten:
+      return "CheckpointWritten";
+    case wire::Envelope::kShutdown:
+      return "Shutdown";
+    case wire::Envelope::kGoodbye:
+      return "Goodbye";
+    case wire::Envelope::kError:
+      return "Error";
+    case wire::Envelope::kHeartbeat:
+      return "Heartbeat";
+    default:
+      return "(none)";
   }
 }
 }  // namespace
@@ -47,6 +98,11 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   app.add_option("--endpoint", o.endpoint, "the orchestrator's ZeroMQ address (ipc:// or tcp://)");
   app.add_option("--name", o.name, "this participant's name in the scenario (fluid, particles)");
   app.add_option("--run-id", o.run_id, "the run's id, checked against the orchestrator's Welcome");
+  std::string token_file;
+  app.add_option("--token-file", token_file,
+                 "file holding the run's token (RUN/.cosim-run-token; otherwise the environment "
+                 "variable " +
+                     std::string(kRunTokenVariable) + ")");
   app.add_option("--heartbeat-ms", o.heartbeat_ms, "heartbeat interval [ms]")
       ->capture_default_str();
   app.add_option("--command-timeout", command_timeout_s,
@@ -63,12 +119,16 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   o.command_timeout_ms = 1000 * command_timeout_s;
   if (rest != nullptr) *rest = app.remaining();
   if (o.endpoint.empty() || o.name.empty()) throw std::runtime_error(usage);
+  if (!token_file.empty()) {
+    o.token = readTokenFile(token_file);
+  } else if (const char* t = std::getenv(kRunTokenVariable)) {
+    o.token = t;
+  }
   return o;
 }
 
 Session::Session(const ParticipantOptions& options, const Capabilities& caps)
-    : options_(options), caps_(caps),
-      channel_(std::make_unique<Channel>(options.endpoint, options.name)) {}
+    : options_(options), caps_(caps), channel_(std::make_unique<Channel>(options.endpoint)) {}
 
 Session::~Session() {
   stop_heartbeat_ = true;
@@ -81,6 +141,7 @@ void Session::fillHeader(wire::Header* h) const {
   h->set_participant(options_.name);
   h->set_step(step_);
   h->set_time(time_);
+  h->set_token(options_.token);
 }
 
 wire::Welcome Session::handshake() {
@@ -95,9 +156,16 @@ wire::Welcome Session::handshake() {
   char host[256] = {0};
   gethostname(host, sizeof(host) - 1);
   h->set_host(host);
-  channel_->send(hello);
 
-  auto reply = channel_->receive(Millis(options_.handshake_timeout_ms));
+  // Sent again every second until answered: the orchestrator ignores the copies it gets after
+  // its Welcome, and a stranger that held this participant's name at the orchestrator's socket
+  // when the first one went out only delays it.
+  const auto deadline = Clock::now() + Millis(options_.handshake_timeout_ms);
+  std::optional<wire::Envelope> reply;
+  while (!reply && Clock::now() < deadline) {
+    channel_->send(hello);
+    reply = channel_->receive(std::min(kHelloResend, until(deadline)));
+  }
   if (!reply) {
     throw TimeoutError("no answer from the orchestrator at " + options_.endpoint + " within " +
                        std::to_string(options_.handshake_timeout_ms / 1000) + " s");
@@ -115,17 +183,34 @@ wire::Welcome Session::handshake() {
   }
   run_id_ = reply->header().run_id();
 
-  // Heartbeats from a socket of their own (ZeroMQ sockets belong to one thread).
+  // Heartbeats from a socket of their own (ZeroMQ sockets belong to one thread). Its connection
+  // also tells whether the orchestrator is still there.
   heartbeat_ = std::thread([this] {
-    Channel hb(options_.endpoint, options_.name + "#hb");
+    Channel hb(options_.endpoint);
     std::uint64_t seq = 0;
+    Clock::time_point gone_at;
     while (!stop_heartbeat_) {
-      wire::Envelope e;
-      fillHeader(e.mutable_header());
-      e.mutable_heartbeat()->set_sequence(seq++);
-      try {
-        hb.send(e);
-      } catch (...) {
+      if (!orchestrator_gone_) {
+        wire::Envelope e;
+        fillHeader(e.mutable_header());
+        e.mutable_heartbeat()->set_sequence(seq++);
+        try {
+          hb.send(e);
+        } catch (...) {
+        }
+        const Millis lost = hb.timeWithoutConnection();
+        if (lost > Millis(options_.orchestrator_gone_ms)) {
+          gone_message_ = "the orchestrator at " + options_.endpoint +
+                          " is gone: no connection to it for " +
+                          std::to_string(lost.count() / 1000) +
+                          " s (cosim was killed, or its host is unreachable); stopping";
+          gone_at = Clock::now();
+          orchestrator_gone_ = true;
+        }
+      } else if (exit_when_orphaned_ && Clock::now() - gone_at > kOrphanGrace) {
+        // The solver is still busy in a step: nobody will ever read its result.
+        std::cerr << "[" << options_.name << "] " << gone_message_ << std::endl;
+        std::_Exit(3);
       }
       for (int waited = 0; waited < options_.heartbeat_ms && !stop_heartbeat_; waited += 50) {
         std::this_thread::sleep_for(Millis(50));
@@ -136,10 +221,16 @@ wire::Welcome Session::handshake() {
 }
 
 wire::Envelope Session::nextCommand() {
-  auto env = channel_->receive(Millis(options_.command_timeout_ms));
-  if (!env) {
-    throw TimeoutError("the orchestrator sent nothing for " +
-                       std::to_string(options_.command_timeout_ms / 1000) + " s; giving up");
+  const auto deadline = Clock::now() + Millis(options_.command_timeout_ms);
+  std::optional<wire::Envelope> env;
+  while (!env) {
+    env = channel_->receive(std::min(kCommandSlice, until(deadline)));
+    if (env) break;
+    if (orchestrator_gone_) throw PeerError(gone_message_);
+    if (Clock::now() >= deadline) {
+      throw TimeoutError("the orchestrator sent nothing for " +
+                         std::to_string(options_.command_timeout_ms / 1000) + " s; giving up");
+    }
   }
   const auto& h = env->header();
   if (h.protocol_version() != wire::PROTOCOL_VERSION) {
@@ -156,9 +247,9 @@ wire::Envelope Session::nextCommand() {
   }
   const bool in_order = !any_command_ ? true : (h.step() == step_ || h.step() == step_ + 1);
   if (!in_order) {
-    const std::string msg = std::string(bodyName(*env)) + " for step " +
-                            std::to_string(h.step()) + " refused: this participant is at step " +
-                            std::to_string(step_) + " (out-of-order step)";
+    const std::string msg = std::string(bodyName(*env)) + " for step " + std::to_string(h.step()) +
+                            " refused: this participant is at step " + std::to_string(step_) +
+                            " (out-of-order step)";
     sendError(msg, "header.step");
     throw ProtocolError(msg);
   }
@@ -186,6 +277,7 @@ void Session::sendError(const std::string& message, const std::string& where) {
 
 int runParticipant(Solver& solver, const ParticipantOptions& options) {
   Session session(options, solver.capabilities());
+  session.exitProcessWhenOrphaned();
   try {
     const wire::Welcome welcome = session.handshake();
     solver.configure(welcome);

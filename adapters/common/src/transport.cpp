@@ -1,5 +1,8 @@
 #include "cosim/link/transport.h"
 
+#include <google/protobuf/stubs/logging.h>
+
+#include <atomic>
 #include <cerrno>
 #include <filesystem>
 #include <zmq.hpp>
@@ -9,6 +12,14 @@
 namespace cosim::link {
 
 namespace {
+// Bytes from a peer that do not parse are reported as a ProtocolError by parse(); protobuf's own
+// line on stderr for each (e.g. a string that is not UTF-8) would let any stranger fill the
+// console. Silenced once, before the first socket exists.
+void silenceProtobufLog() {
+  static const bool silenced = (google::protobuf::SetLogHandler(nullptr), true);
+  (void)silenced;
+}
+
 zmq::context_t& context() {
   static zmq::context_t ctx(1);
   return ctx;
@@ -29,6 +40,7 @@ std::string serialize(const wire::Envelope& env) {
 }
 
 wire::Envelope parse(const void* data, std::size_t size) {
+  silenceProtobufLog();
   wire::Envelope env;
   if (size > static_cast<std::size_t>(INT32_MAX) ||
       !env.ParseFromArray(data, static_cast<int>(size))) {
@@ -44,15 +56,48 @@ wire::Envelope parse(const void* data, std::size_t size) {
 
 // ---- Channel ---------------------------------------------------------------------------------
 
+namespace {
+// A channel's connection, from ZeroMQ's socket monitor: up on CONNECTED, down on DISCONNECTED
+// (and from the start until the first connection).
+class ConnectionWatch : public zmq::monitor_t {
+ public:
+  bool up = false;
+  std::chrono::steady_clock::time_point down_since = std::chrono::steady_clock::now();
+
+  void on_event_connected(const zmq_event_t&, const char*) override { up = true; }
+  void on_event_disconnected(const zmq_event_t&, const char*) override {
+    up = false;
+    down_since = std::chrono::steady_clock::now();
+  }
+};
+
+std::string uniqueMonitorAddress() {
+  static std::atomic<unsigned long> next{0};
+  return "inproc://cosim-channel-watch-" + std::to_string(next++);
+}
+}  // namespace
+
 struct Channel::Impl {
   zmq::socket_t socket{context(), zmq::socket_type::dealer};
+  ConnectionWatch watch;  // declared after the socket: stops monitoring before it closes
 };
 
 Channel::Channel(const std::string& endpoint, const std::string& identity)
     : impl_(std::make_unique<Impl>()) {
+  silenceProtobufLog();
   configure(impl_->socket);
-  impl_->socket.set(zmq::sockopt::routing_id, identity);
+  if (!identity.empty()) impl_->socket.set(zmq::sockopt::routing_id, identity);
+  impl_->watch.init(impl_->socket, uniqueMonitorAddress(),
+                    ZMQ_EVENT_CONNECTED | ZMQ_EVENT_DISCONNECTED);
   impl_->socket.connect(endpoint);
+}
+
+Millis Channel::timeWithoutConnection() {
+  while (impl_->watch.check_event(0)) {
+  }
+  if (impl_->watch.up) return Millis(0);
+  return std::chrono::duration_cast<Millis>(std::chrono::steady_clock::now() -
+                                            impl_->watch.down_since);
 }
 
 namespace {
@@ -94,6 +139,7 @@ struct Hub::Impl {
 };
 
 Hub::Hub(const std::string& endpoint) : impl_(std::make_unique<Impl>()) {
+  silenceProtobufLog();
   // ZeroMQ unlinks whatever file an ipc:// endpoint names before it binds: never bind a path
   // that exists, so that no address can make cosim delete a file it did not create.
   if (endpoint.rfind("ipc://", 0) == 0) {
@@ -133,7 +179,7 @@ void Hub::send(const std::string& peer, const wire::Envelope& env) {
     impl_->socket.send(zmq::buffer(peer), zmq::send_flags::sndmore);
     impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::none);
   } catch (const zmq::error_t& e) {
-    throw PeerError("cannot send to participant '" + peer + "': " + e.what() +
+    throw PeerError(std::string("cannot send to the peer: ") + e.what() +
                     " (not connected or gone)");
   }
 }

@@ -15,8 +15,18 @@ using Json = nlohmann::ordered_json;
 std::string formatShortest(double v);
 
 // Write text to path atomically (write path.tmp, then rename), so a reader never sees half a
-// file. Throws std::runtime_error naming the path on failure.
+// file. Throws std::runtime_error naming the path and the reason (e.g. the disk is full) on
+// failure, having removed path.tmp: a failed write leaves the old file as it was and nothing else.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text);
+
+// Writes text over path in place (truncating it first, which frees its space). For when there
+// is no room for the second copy an atomic write needs (disk full): the file is briefly
+// incomplete. Throws std::runtime_error naming the path and the reason on failure.
+void overwriteFile(const std::filesystem::path& path, const std::string& text);
+
+// The text of json, indented by indent spaces, then a newline. Non-finite numbers become null;
+// bytes that are not UTF-8 are replaced.
+std::string jsonText(const Json& json, int indent);
 
 // Writes json (indented by indent spaces, then a newline) atomically. Non-finite numbers become
 // null; bytes that are not UTF-8 (e.g. in a participant's log tail) are replaced, not an error.

@@ -53,7 +53,10 @@ void to_json(Json& j, const Summary& s);
 // Throws nlohmann::json::exception when a required key is missing or has the wrong type.
 void from_json(const Json& j, Summary& s);
 
-// Writes the JSON (atomically). Throws std::runtime_error naming the path on failure.
+// Writes the JSON atomically. When that fails (no room for the second copy: disk full) and the
+// file exists (the orchestrator writes one with status "running" when a run starts), it is
+// written over the old one in place, whose space it takes. Throws std::runtime_error naming
+// the path and the reason when neither works.
 void writeSummary(const std::filesystem::path& path, const Summary& summary);
 // Reads it back. Throws std::runtime_error naming the path when it cannot be read, is not JSON,
 // or is not a summary.

@@ -19,20 +19,30 @@
 
 namespace cosim::link {
 
+// The environment variable through which the orchestrator hands its run token to the
+// participants it starts (never on the command line, which every user can read with ps).
+inline constexpr const char* kRunTokenVariable = "COSIM_RUN_TOKEN";
+
 // Command line every adapter understands (the orchestrator passes these).
 struct ParticipantOptions {
   std::string endpoint;  // --endpoint
   std::string name;      // --name
   std::string run_id;    // --run-id (checked against the Welcome header when given)
+  // The run's secret, carried by every message: read from --token-file, else from the
+  // environment variable COSIM_RUN_TOKEN (set by cosim for the participants it starts).
+  std::string token;
   int heartbeat_ms = 500;
   int handshake_timeout_ms = 30000;
   int command_timeout_ms = 600000;  // orchestrator silent this long: give up
-  // The adapter's command line, parsed with CLI11: --endpoint, --name, --run-id,
+  // After the Welcome: no connection to the orchestrator's socket for this long means the
+  // orchestrator is gone (killed, its host unreachable); the participant then stops.
+  int orchestrator_gone_ms = 3000;
+  // The adapter's command line, parsed with CLI11: --endpoint, --name, --run-id, --token-file,
   // --heartbeat-ms, --command-timeout (seconds), --help. `--help` prints `about` and the options
   // to stdout and returns nullopt (the adapter then exits 0). Arguments it does not know are
   // left in `rest` in their order (e.g. OpenFOAM's -parallel, -case DIR), or ignored when rest is
-  // null. Throws std::runtime_error with the usage when --endpoint or --name is missing or a
-  // value is malformed.
+  // null. Throws std::runtime_error with the usage when --endpoint or --name is missing, a
+  // value is malformed or the token file cannot be read.
   static std::optional<ParticipantOptions> parse(int argc, char** argv, const std::string& about,
                                                  std::vector<std::string>* rest = nullptr);
 };
@@ -55,7 +65,9 @@ class Solver {
   // Fluid only: sample the requested fields (welcome.send) at the given particles.
   virtual void sample(const ParticleData& particles, ParticleData& out,
                       std::vector<std::int64_t>& lost_ids) {
-    (void)particles; (void)out; (void)lost_ids;
+    (void)particles;
+    (void)out;
+    (void)lost_ids;
     throw std::runtime_error("this adapter does not sample fluid fields");
   }
   // Advance one coupling interval (dt == 0: only report the current state).
@@ -85,12 +97,18 @@ class Session {
  public:
   Session(const ParticipantOptions& options, const Capabilities& caps);
   ~Session();
-  // Sends Hello, waits for Welcome. Throws PeerError if refused.
+  // Sends Hello (again every second until answered: a stranger holding the participant's name
+  // at the orchestrator's socket only delays it), waits for Welcome. Throws PeerError if refused.
   wire::Welcome handshake();
   // Next command from the orchestrator. Heartbeats are sent in the background meanwhile.
   // Checks version, run id and step order: a command whose step is behind the last one seen
-  // or more than one ahead is answered with Error and a ProtocolError is thrown.
+  // or more than one ahead is answered with Error and a ProtocolError is thrown. Throws
+  // PeerError when the orchestrator is gone (options.orchestrator_gone_ms without a connection).
   wire::Envelope nextCommand();
+  // For a process that is nothing but this participant (runParticipant): when the orchestrator
+  // is gone while the solver is busy in a step, the heartbeat thread ends the process with the
+  // message and exit code 3 after another 5 s, instead of letting the step finish first.
+  void exitProcessWhenOrphaned() { exit_when_orphaned_ = true; }
   void reply(wire::Envelope& env);  // fills the header (step/time of the current command)
   void sendError(const std::string& message, const std::string& where = "");
   const std::string& runId() const { return run_id_; }
@@ -107,6 +125,10 @@ class Session {
   double time_ = 0.0;
   bool any_command_ = false;
   std::atomic<bool> stop_heartbeat_{false};
+  std::atomic<bool> exit_when_orphaned_{false};
+  // Set by the heartbeat thread when the orchestrator is gone; gone_message_ is written before.
+  std::atomic<bool> orchestrator_gone_{false};
+  std::string gone_message_;
   std::thread heartbeat_;
 };
 

@@ -1,6 +1,7 @@
 // Transport: ZeroMQ sockets carrying wire::Envelope messages. The orchestrator binds one Hub
-// (ROUTER) at one address; each participant connects a Channel (DEALER) whose routing id is its
-// participant name. ipc:// locally, tcp:// across nodes, same code. Every receive is bounded.
+// (ROUTER) at one address; each participant connects a Channel (DEALER); the hub tells its
+// peers apart by their ZeroMQ routing ids. ipc:// locally, tcp:// across nodes, same code.
+// Every receive is bounded.
 #pragma once
 
 #include <chrono>
@@ -22,7 +23,10 @@ wire::Envelope parse(const void* data, std::size_t size);
 // Participant side.
 class Channel {
  public:
-  Channel(const std::string& endpoint, const std::string& identity);
+  // identity: the ZeroMQ routing id the hub sees as the peer; empty: one ZeroMQ makes up for
+  // each connection (what participants use: a name a stranger could take first is no name to
+  // rely on, so the orchestrator knows a participant by its Hello, not by its routing id).
+  Channel(const std::string& endpoint, const std::string& identity = "");
   ~Channel();
   Channel(const Channel&) = delete;
   Channel& operator=(const Channel&) = delete;
@@ -32,6 +36,13 @@ class Channel {
   std::optional<wire::Envelope> receive(Millis timeout);
   // Raw bytes (used by tests to send garbage).
   void sendRaw(const std::string& bytes);
+  // How long this channel has been without a connection to the orchestrator's socket: zero
+  // while connected, else the time since the connection closed (or since the channel was made,
+  // if it never connected). A connection counts from the moment the socket connects, so an
+  // orchestrator that is only slow or stopped (its socket still accepts) keeps it connected,
+  // while one that is gone (nothing accepts at the address: killed, or its host unreachable
+  // once ZeroMQ's heartbeat closes the connection) leaves it disconnected.
+  Millis timeWithoutConnection();
 
  private:
   struct Impl;
@@ -47,10 +58,11 @@ class Hub {
   Hub& operator=(const Hub&) = delete;
 
   const std::string& endpoint() const;
+  // To the peer with this routing id (Incoming::peer). Throws PeerError if it is not connected.
   void send(const std::string& peer, const wire::Envelope& env);
 
   struct Incoming {
-    std::string peer;
+    std::string peer;                        // the sender's routing id
     std::optional<wire::Envelope> envelope;  // empty if the bytes did not parse
     std::string parse_error;
   };
