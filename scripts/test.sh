@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
-# Sets everything up on a bare Debian 12 machine, builds, and runs the whole test suite (ctest).
+# Sets everything up on a bare Debian 12 machine, builds, fuzzes each libFuzzer target for a bounded
+# time (COSIM_FUZZ_SECONDS, default 20) and runs the whole test suite (ctest).
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
 echo "== setup"; scripts/setup.sh
 echo "== build"; scripts/build.sh
+# The libFuzzer targets (scenario loader, expression evaluator, protocol decoder), each for a
+# bounded time after an instrumented build of about 10 CPU-minutes; a crash fails the suite and
+# leaves its input in build-fuzz/artifacts/ (docs/when-things-go-wrong.md, "Fuzzing")
+echo "== fuzz"; scripts/fuzz.sh "${COSIM_FUZZ_SECONDS:-20}"
 echo "== tests"
 cd build
 ctest --output-on-failure --timeout 900 "$@"

@@ -71,7 +71,12 @@ FoamRun::FoamRun(const FoamRunConfig& config) {
   }
 
   run_id_ = "test-" + tag;
-  const std::string endpoint = "ipc:///tmp/cosimfoam-" + tag + ".ipc";
+  // The socket file is this process's own (pid in the name): one left by an earlier process with
+  // the same pid is stale, and the Hub refuses to bind over an existing file.
+  const fs::path socket = fs::path("/tmp") / ("cosimfoam-" + tag + ".ipc");
+  std::error_code ec;
+  fs::remove(socket, ec);
+  const std::string endpoint = "ipc://" + socket.string();
   hub_ = std::make_unique<cosim::link::Hub>(endpoint);
 
   std::vector<std::string> args;
