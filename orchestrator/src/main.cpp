@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "adapter_check.h"
 #include "bench.h"
 #include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
@@ -64,6 +65,7 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
   Scenario sc = loadScenario(file, sets, unsets);
   SceneModels m = makeModels(sc);
   Plan p = makePlan(sc, m);
+  const auto checked = checkAdapters(sc, p);  // the adapters' own view of the scene
   std::cout << "scenario '" << sc.name << "' is valid (" << sc.file.string() << ")\n";
   std::cout << "  coupling: dt " << sc.coupling.dt << " s x " << sc.coupling.dem_steps
             << " DEM steps, t = " << sc.coupling.start_time << " .. " << sc.coupling.end_time
@@ -83,6 +85,7 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
             << ", coating zone " << (sc.models.coating_zone ? sc.models.coating_zone->law : "none")
             << "\n";
   for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
+  for (const auto& a : checked) std::cout << "  checked: " << a << "\n";
   std::cout << "  output: " << sc.output.folder.string() << "\n";
   return 0;
 }

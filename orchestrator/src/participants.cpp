@@ -426,6 +426,26 @@ void Participants::handshake() {
   }
 }
 
+wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const ParticipantSpec& spec,
+                         const fs::path& workdir, const fs::path& restart_from) {
+  wire::Welcome wel;
+  const bool fluid = spec.name == "fluid";
+  for (const auto& f : fluid ? plan.fluid_send : plan.particles_send) wel.add_send(f);
+  for (const auto& f : fluid ? plan.fluid_receive : plan.particles_receive) wel.add_receive(f);
+  YAML::Emitter em;
+  em << spec.options;
+  wel.set_config_yaml(em.c_str());
+  wel.set_workdir(fs::absolute(workdir).string());
+  wel.set_cfd_dt(sc.coupling.dt);
+  wel.set_dem_steps(sc.coupling.dem_steps);
+  wel.set_end_time(sc.coupling.end_time);
+  wel.set_start_time(sc.coupling.start_time);
+  for (const auto& [k, v] : sc.parameters) (*wel.mutable_parameters())[k] = v;
+  wel.set_species(plan.coating);
+  if (!restart_from.empty()) wel.set_restart_from(fs::absolute(restart_from).string());
+  return wel;
+}
+
 // Checks one Hello against what the scene needs and answers with the Welcome.
 void Participants::welcome(const std::string& who, const wire::Envelope& env,
                            const std::string& route) {
@@ -468,20 +488,8 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env,
     }
   }
   wire::Envelope w;
-  auto* wel = w.mutable_welcome();
-  for (const auto& f : p.send) wel->add_send(f);
-  for (const auto& f : p.receive) wel->add_receive(f);
-  YAML::Emitter em;
-  em << p.spec.options;
-  wel->set_config_yaml(em.c_str());
-  wel->set_workdir(fs::absolute(p.workdir).string());
-  wel->set_cfd_dt(sc_.coupling.dt);
-  wel->set_dem_steps(sc_.coupling.dem_steps);
-  wel->set_end_time(sc_.coupling.end_time);
-  wel->set_start_time(sc_.coupling.start_time);
-  for (const auto& [k, v] : sc_.parameters) (*wel->mutable_parameters())[k] = v;
-  wel->set_species(plan_.coating);
-  if (!restart_from_.empty()) wel->set_restart_from(fs::absolute(restart_from_ / who).string());
+  *w.mutable_welcome() = welcomeFor(sc_, plan_, p.spec, p.workdir,
+                                    restart_from_.empty() ? fs::path() : restart_from_ / who);
   send(who, w);
   p.connected = true;
   p.last_seen = Clock::now();

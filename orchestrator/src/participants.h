@@ -40,6 +40,12 @@ extern std::atomic<int> g_stop_count;
 // Replies by participant name.
 using Replies = std::map<std::string, wire::Envelope>;
 
+// The Welcome a participant gets: its fields, options, folder, the run's clock and parameters;
+// `restart_from` (empty for a fresh start) is its part of a checkpoint.
+wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const ParticipantSpec& spec,
+                         const std::filesystem::path& workdir,
+                         const std::filesystem::path& restart_from);
+
 class Participants {
  public:
   Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log);

@@ -167,6 +167,13 @@ int main(int argc, char** argv) {
         "cosim-analytic-fluid: a prescribed gas flow (a cosim fluid participant, normally started "
         "by `cosim run`)");
     if (!opts) return 0;  // --help
+    if (!opts->check_options.empty()) {
+      // Its options are all it reads: configuring is the whole check
+      return cosim::link::checkSceneOptions(*opts, [](const cosim::wire::Welcome& w, int) {
+        cosim::analytic::AnalyticFluid fluid;
+        fluid.configure(w);
+      });
+    }
     cosim::analytic::AnalyticFluid fluid;
     return cosim::link::runParticipant(fluid, *opts);
   } catch (const std::exception& e) {

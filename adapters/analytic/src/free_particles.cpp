@@ -237,6 +237,13 @@ int main(int argc, char** argv) {
         "cosim-free-particles: non-colliding particles under gravity and the coupling forces (a "
         "cosim particle participant, normally started by `cosim run`)");
     if (!opts) return 0;  // --help
+    if (!opts->check_options.empty()) {
+      // Its options are all it reads: configuring is the whole check
+      return cosim::link::checkSceneOptions(*opts, [](const cosim::wire::Welcome& w, int) {
+        cosim::analytic::FreeParticles particles;
+        particles.configure(w);
+      });
+    }
     cosim::analytic::FreeParticles particles;
     return cosim::link::runParticipant(particles, *opts);
   } catch (const std::exception& e) {

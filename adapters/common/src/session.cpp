@@ -108,6 +108,11 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   app.add_option("--command-timeout", command_timeout_s,
                  "give up when the orchestrator is silent this long [s]")
       ->capture_default_str();
+  app.add_option("--check-options", o.check_options,
+                 "only check a scene's options for this adapter and exit (0: accepted, 2: "
+                 "refused, with the reason); FILE is written by `cosim validate`");
+  app.add_option("--ranks", o.check_ranks, "with --check-options: the MPI ranks of the run")
+      ->check(CLI::Range(1, 4096));
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -118,6 +123,7 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   }
   o.command_timeout_ms = 1000 * command_timeout_s;
   if (rest != nullptr) *rest = app.remaining();
+  if (!o.check_options.empty()) return o;
   if (o.endpoint.empty() || o.name.empty()) throw std::runtime_error(usage);
   if (!token_file.empty()) {
     o.token = readTokenFile(token_file);
@@ -273,6 +279,35 @@ void Session::sendError(const std::string& message, const std::string& where) {
     channel_->send(e);
   } catch (...) {
   }
+}
+
+bool checkOptionsRequested(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--check-options" || a.rfind("--check-options=", 0) == 0) return true;
+  }
+  return false;
+}
+
+int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check) {
+  std::ifstream in(options.check_options, std::ios::binary);
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  wire::Welcome welcome;
+  if (!in.is_open() || !welcome.ParseFromString(bytes.str())) {
+    std::cerr << "--check-options " << options.check_options << ": "
+              << (in.is_open() ? "not a Welcome message" : std::strerror(errno))
+              << "; the file is written by `cosim validate`\n";
+    return 2;
+  }
+  try {
+    check(welcome, options.check_ranks);
+  } catch (const std::exception& e) {
+    std::cerr << e.what() << "\n";
+    return 2;
+  }
+  std::cout << "options accepted\n";
+  return 0;
 }
 
 int runParticipant(Solver& solver, const ParticipantOptions& options) {

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cosim/liggghts/liggghts_error.h"
+#include "cosim/liggghts/scene_check.h"
 #include "cosim/link/fields.h"
 
 namespace cosim::liggghts {
@@ -213,21 +214,9 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
                           std::filesystem::path(welcome.restart_from()) / "liggghts.restart");
   engine_->installCoupling();
 
-  const double dt = engine_->timestep();
-  if (welcome.cfd_dt() > 0 && welcome.dem_steps() > 0) {
-    const double wanted = welcome.cfd_dt() / welcome.dem_steps();
-    if (std::abs(dt - wanted) > 1e-9 * wanted) {
-      const double steps = welcome.cfd_dt() / dt;
-      std::string hint;
-      if (std::abs(steps - std::round(steps)) < 1e-6 && steps >= 1)
-        hint = fmt::format(" or set coupling.dem_steps: {:.0f} in the scenario", std::round(steps));
-      throw std::runtime_error(fmt::format(
-          "LIGGGHTS script {}: `timestep {:.6g}` does not match the coupling: coupling.dt {:.6g} s "
-          "/ "
-          "coupling.dem_steps {} = {:.6g} s per DEM step. Write `timestep {:.6g}` in the script{}",
-          options_.script, dt, welcome.cfd_dt(), welcome.dem_steps(), wanted, wanted, hint));
-    }
-  }
+  if (const auto why = timestepMismatch(options_.script, engine_->timestep(), welcome.cfd_dt(),
+                                        welcome.dem_steps()))
+    throw std::runtime_error(*why);
   warnIfDumpsOffTheRunClock(welcome);
   checkTimestep();
 }

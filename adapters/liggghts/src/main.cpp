@@ -9,8 +9,22 @@
 
 #include "cosim/link/session.h"
 #include "cosim/liggghts/liggghts_solver.h"
+#include "cosim/liggghts/scene_check.h"
 
 int main(int argc, char** argv) {
+  if (cosim::link::checkOptionsRequested(argc, argv)) {
+    // `cosim validate`: no MPI, no LIGGGHTS; only what can be told from the files
+    try {
+      const auto options = cosim::link::ParticipantOptions::parse(
+          argc, argv, "cosim-liggghts --check-options FILE: check a scene, start nothing");
+      if (!options) return 0;
+      return cosim::link::checkSceneOptions(
+          *options, [](const cosim::wire::Welcome& w, int) { cosim::liggghts::checkScene(w); });
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "cosim-liggghts: %s\n", e.what());
+      return 2;
+    }
+  }
   MPI_Init(&argc, &argv);
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -9,10 +9,10 @@
 #include <fstream>
 #include <map>
 #include <optional>
-#include <regex>
 #include <sstream>
 #include <stdexcept>
 
+#include "SceneCheck.h"
 #include "cosim/link/fields.h"
 #include "cosim/util/child_process.h"
 #include "cosim/util/text_file.h"
@@ -61,54 +61,18 @@ void runTool(const std::vector<std::string>& argv) {
   }
 }
 
-int subdomainsOf(const fs::path& dict) {
-  std::ifstream in(dict);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::smatch m;
-  const std::string text = ss.str();
-  if (std::regex_search(text, m, std::regex(R"(numberOfSubdomains\s+(\d+)\s*;)"))) {
-    return std::stoi(m[1]);
-  }
-  return -1;
-}
-
 // Mesh (blockMesh) and decomposition (decomposePar) before OpenFOAM reads the case. Rank 0 only.
 void prepareCase(const AdapterSettings& settings, int ranks) {
   const fs::path here = fs::current_path();
-  if (!fs::exists("system/controlDict")) {
-    throw std::runtime_error(
-        "cosimFoam: no system/controlDict in " + here.string() +
-        ": the fluid participant's `files:` folder must be an OpenFOAM case (system/, "
-        "constant/, 0/; see docs/openfoam.md)");
-  }
+  checkCase(settings, ranks, here);  // what `cosim validate` checks too
   const bool haveMesh =
       fs::exists("constant/polyMesh/faces") || fs::exists("constant/polyMesh/faces.gz");
   bool meshed = false;
   if (settings.mesh == "blockMesh" || (settings.mesh == "auto" && !haveMesh)) {
-    if (!fs::exists("system/blockMeshDict")) {
-      throw std::runtime_error("cosimFoam: " + here.string() +
-                               " has no mesh (constant/polyMesh) and no system/blockMeshDict "
-                               "to make one");
-    }
     runTool({"blockMesh"});
     meshed = true;
-  } else if (!haveMesh) {
-    throw std::runtime_error("cosimFoam: options.mesh is 'existing' but " + here.string() +
-                             "/constant/polyMesh has no mesh");
   }
   if (ranks > 1) {
-    if (!fs::exists("system/decomposeParDict")) {
-      throw std::runtime_error("cosimFoam: running on " + std::to_string(ranks) +
-                               " MPI ranks needs system/decomposeParDict in " + here.string());
-    }
-    const int n = subdomainsOf("system/decomposeParDict");
-    if (n != ranks) {
-      throw std::runtime_error(
-          "cosimFoam: system/decomposeParDict numberOfSubdomains is " + std::to_string(n) +
-          " but the participant runs on " + std::to_string(ranks) +
-          " MPI ranks (scenario key participants.<fluid>.mpi): make them equal");
-    }
     bool decomposed = true;
     for (int r = 0; r < ranks; ++r) {
       if (!fs::exists("processor" + std::to_string(r) + "/constant/polyMesh")) decomposed = false;

@@ -11,6 +11,7 @@
 
 #include "FoamParticipant.h"
 #include "RankBridge.h"
+#include "SceneCheck.h"
 #include "cosim/link/session.h"
 
 namespace {
@@ -42,6 +43,12 @@ int main(int argc, char** argv) {
         &rest);
     if (!parsed) return 0;  // --help
     options = *parsed;
+    if (!options.check_options.empty()) {
+      // `cosim validate`: no MPI, no OpenFOAM; only what the files tell
+      return cosim::link::checkSceneOptions(options, [](const cosim::wire::Welcome& w, int ranks) {
+        cosim::foam::checkScene(w, ranks);
+      });
+    }
   } catch (const std::exception& e) {
     std::cerr << "cosimFoam: " << e.what() << "\n"
               << "  OpenFOAM options (-parallel, -case DIR) may follow.\n";

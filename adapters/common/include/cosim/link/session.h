@@ -37,8 +37,14 @@ struct ParticipantOptions {
   // After the Welcome: no connection to the orchestrator's socket for this long means the
   // orchestrator is gone (killed, its host unreachable); the participant then stops.
   int orchestrator_gone_ms = 3000;
+  // `cosim validate` asks an adapter whether it accepts a scene without starting a run:
+  // --check-options FILE names a Welcome (binary protobuf, as the run would send it, its
+  // workdir a templated copy of the case files) and --ranks the MPI ranks the run would use.
+  // --endpoint and --name are then not needed (checkSceneOptions).
+  std::string check_options;
+  int check_ranks = 1;
   // The adapter's command line, parsed with CLI11: --endpoint, --name, --run-id, --token-file,
-  // --heartbeat-ms, --command-timeout (seconds), --help. `--help` prints `about` and the options
+  // --heartbeat-ms, --command-timeout (seconds), --check-options FILE, --ranks N, --help. `--help` prints `about` and the options
   // to stdout and returns nullopt (the adapter then exits 0). Arguments it does not know are
   // left in `rest` in their order (e.g. OpenFOAM's -parallel, -case DIR), or ignored when rest is
   // null. Throws std::runtime_error with the usage when --endpoint or --name is missing, a
@@ -87,6 +93,18 @@ class Solver {
   }
   virtual void finish() {}
 };
+
+// What an adapter checks of a scene before any solver starts (--check-options): its options,
+// the files they name, the MPI ranks. Throws std::runtime_error with the reason on refusal.
+using SceneCheck = std::function<void(const wire::Welcome& welcome, int ranks)>;
+
+// The --check-options mode: reads options.check_options, runs `check`, prints "options
+// accepted" (exit 0) or the reason to stderr (exit 2). No MPI, no solver, no connection.
+int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check);
+
+// True when the command line asks for --check-options (for adapters that must decide before
+// MPI_Init whether to start MPI at all).
+bool checkOptionsRequested(int argc, char** argv);
 
 // Runs the whole participant life: connect, Hello, Welcome, command loop, Goodbye.
 // Returns the process exit code (0 on a clean Shutdown).
