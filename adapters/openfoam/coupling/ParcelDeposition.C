@@ -40,11 +40,24 @@ void Foam::cosim::ParcelDeposition::place
     // 1. parcel centres, seeded by last step's cell
     centreCell_.setSize(n);
     labelList centreOwner(n, nobody);
+    auto cursor = lastCell_.cbegin();
+    auto seedOf = [&](std::int64_t id) -> label
+    {
+        const auto less = [](const std::pair<std::int64_t, label>& e, std::int64_t v)
+        {
+            return e.first < v;
+        };
+        // Ascending ids: the next one is at or after the cursor
+        if (cursor == lastCell_.cend() || cursor->first > id)
+        {
+            cursor = lastCell_.cbegin();
+        }
+        cursor = std::lower_bound(cursor, lastCell_.cend(), id, less);
+        return (cursor != lastCell_.cend() && cursor->first == id) ? cursor->second : -1;
+    };
     for (label i = 0; i < n; ++i)
     {
-        const auto seed = lastCell_.find(ids[i]);
-        centreCell_[i] =
-            locator_.locate(centreOf(i), seed == lastCell_.end() ? -1 : seed->second);
+        centreCell_[i] = locator_.locate(centreOf(i), seedOf(ids[i]));
         if (centreCell_[i] >= 0)
         {
             centreOwner[i] = me;
@@ -66,8 +79,12 @@ void Foam::cosim::ParcelDeposition::place
         lost_[i] = (centreOwner[i] == nobody);
         if (centreCell_[i] >= 0)
         {
-            lastCell_[ids[i]] = centreCell_[i];
+            lastCell_.emplace_back(ids[i], centreCell_[i]);
         }
+    }
+    if (!std::is_sorted(lastCell_.begin(), lastCell_.end()))
+    {
+        std::sort(lastCell_.begin(), lastCell_.end());
     }
 
     // 2. satellite points, seeded by the centre cell. Independent per parcel, so on one
@@ -89,6 +106,17 @@ void Foam::cosim::ParcelDeposition::place
             const bool near = centreCell_[i] >= 0 || locator_.inBounds(c, r);
             if (!near)
             {
+                continue;
+            }
+            // The whole parcel inside its centre cell (satellites lie within its radius):
+            // each satellite's walk would end there at its first test
+            if (centreCell_[i] >= 0 && locator_.holdsBall(c, r, centreCell_[i]))
+            {
+                for (label j = 0; j < nSat; ++j)
+                {
+                    satCell[i*nSat + j] = centreCell_[i];
+                    satOwner[i*nSat + j] = me;
+                }
                 continue;
             }
             for (label j = 0; j < nSat; ++j)
@@ -128,13 +156,29 @@ void Foam::cosim::ParcelDeposition::place
         Pstream::listCombineScatter(satOwner);
     }
 
-    // 3. deposits: owned satellites, plus orphans (outside the mesh) to the centre cell
+    // 3. deposits: owned satellites, plus orphans (outside the mesh) to the centre cell;
+    //    one entry per cell of a parcel (its satellites' weights added in their order), so
+    //    deposit and gatherAverage visit a few cells per parcel instead of every satellite
     start_.setSize(n + 1);
     depCell_.clear();
     depWeight_.clear();
+    auto add = [&](label begin, label celli, scalar w)
+    {
+        for (label d = begin; d < depCell_.size(); ++d)
+        {
+            if (depCell_[d] == celli)
+            {
+                depWeight_[d] += w;
+                return;
+            }
+        }
+        depCell_.append(celli);
+        depWeight_.append(w);
+    };
     for (label i = 0; i < n; ++i)
     {
-        start_[i] = depCell_.size();
+        const label begin = depCell_.size();
+        start_[i] = begin;
         if (lost_[i])
         {
             continue;
@@ -146,8 +190,7 @@ void Foam::cosim::ParcelDeposition::place
             const scalar w = satellites_.weights()[j];
             if (satOwner[k] == me)
             {
-                depCell_.append(satCell[k]);
-                depWeight_.append(w);
+                add(begin, satCell[k], w);
             }
             else if (satOwner[k] == nobody)
             {
@@ -156,8 +199,7 @@ void Foam::cosim::ParcelDeposition::place
         }
         if (orphan > 0 && centreCell_[i] >= 0)
         {
-            depCell_.append(centreCell_[i]);
-            depWeight_.append(orphan);
+            add(begin, centreCell_[i], orphan);
         }
     }
     start_[n] = depCell_.size();

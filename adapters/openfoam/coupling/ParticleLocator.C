@@ -28,6 +28,7 @@ Foam::cosim::ParticleLocator::ParticleLocator(const polyMesh& mesh)
     faceStart_[cells.size()] = n;
     faceCentre_.setSize(n);
     faceOut_.setSize(n);
+    faceArea_.setSize(n);
     across_.setSize(n);
     forAll(cells, c)
     {
@@ -37,6 +38,7 @@ Foam::cosim::ParticleLocator::ParticleLocator(const polyMesh& mesh)
             const bool owned = (own[facei] == c);
             faceCentre_[k] = Cf[facei];
             faceOut_[k] = owned ? Sf[facei] : -Sf[facei];
+            faceArea_[k] = mag(Sf[facei]);
             across_[k] =
                 mesh.isInternalFace(facei) ? (owned ? nei[facei] : own[facei]) : -1;
             ++k;
@@ -51,6 +53,24 @@ bool Foam::cosim::ParticleLocator::inside(const point& p, label c) const
     {
         const vector proj = p - faceCentre_[k];
         if ((faceOut_[k] & proj) > 0)
+        {
+            return false;
+        }
+    }
+    return true;
+}
+
+
+bool Foam::cosim::ParticleLocator::holdsBall
+(
+    const point& p,
+    scalar radius,
+    label c
+) const
+{
+    for (label k = faceStart_[c]; k < faceStart_[c + 1]; ++k)
+    {
+        if ((faceOut_[k] & (p - faceCentre_[k])) + radius*faceArea_[k] > 0)
         {
             return false;
         }
