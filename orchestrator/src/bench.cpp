@@ -20,7 +20,7 @@ const char* const kPhases[] = {"fluid_sample", "models", "advance", "bookkeeping
 std::string schemeOf(const std::string& stage) {
   if (stage == "dem") return "frozen-fluid";
   if (stage == "cfd") return "frozen-particles";
-  if (stage == "coupled") return "parallel";
+  if (stage == "coupled") return "";  // the scene's coupling.scheme
   throw std::invalid_argument("cosim bench: unknown stage '" + stage + "' (dem, cfd, coupled)");
 }
 

@@ -131,8 +131,10 @@ bool under(const std::string& key, const std::string& prefix) {
 }
 
 bool mayChange(const std::string& key) {
-  for (const char* p : {"coupling.end_time", "output", "checkpoint", "transport", "checks",
-                        "observables", "description"}) {
+  // coupling.scheme: the saved state is the same under either (the first interval after a
+  // resume samples between the intervals anyway)
+  for (const char* p : {"coupling.end_time", "coupling.scheme", "output", "checkpoint",
+                        "transport", "checks", "observables", "description"}) {
     if (under(key, p)) return true;
   }
   // participants.<name>.timeout

@@ -52,7 +52,8 @@ Coupler::Coupler(Scenario scenario, RunOptions options)
       run_id_(newRunId()),
       record_(sc_, plan_, log_),
       participants_(sc_, plan_, run_id_, log_),
-      scheme_(makeCouplingScheme(sc_, plan_, opt_.scheme)),
+      scheme_(makeCouplingScheme(sc_, plan_,
+                                 opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme)),
       monitor_(sc_) {}
 
 Coupler::~Coupler() { participants_.shutdown(false); }
@@ -176,8 +177,8 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
                       "what the saved state cannot honour:";
     for (const auto& d : differences) msg += "\n  - " + d;
     msg +=
-        "\n  (only coupling.end_time, output, checkpoint, transport, checks, observables and "
-        "timeouts may change; start a new run for anything else)";
+        "\n  (only coupling.end_time, coupling.scheme, output, checkpoint, transport, checks, "
+        "observables and timeouts may change; start a new run for anything else)";
     throw RunFailure("", msg);
   }
   if (saved.step >= nsteps_) {
@@ -297,14 +298,19 @@ CouplingTerms Coupler::termsOfStep() {
 }
 
 // Step 2: the gas velocity, voidage, ... at every parcel; parcels outside the mesh are `lost`.
+// Under the overlapped scheme the fluid has already sampled them during the last interval.
 link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
   lost.assign(state_.size(), 0);
   if (!plan_.fluid) return {};
+  if (auto ahead = scheme_->samplesAhead(state_)) return samplesOf(*ahead, lost);
   wire::Envelope e;
   state_.select(plan_.sample_state).toWire(*e.mutable_sample()->mutable_particles());
   const auto r = participants_.request("fluid", std::move(e), wire::Envelope::kSamples);
-  const auto& sm = r.samples();
-  participants_.addComputeSeconds("fluid_sample", sm.wall_seconds());
+  participants_.addComputeSeconds("fluid_sample", r.samples().wall_seconds());
+  return samplesOf(r.samples(), lost);
+}
+
+link::ParticleData Coupler::samplesOf(const wire::Samples& sm, std::vector<char>& lost) {
   link::ParticleData samples = link::ParticleData::fromWire(sm.at_particles());
   if (samples.ids != state_.ids) {
     throw RunFailure("fluid", "returned samples for other particles than it was sent (ids differ)");
@@ -334,7 +340,7 @@ CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
 
 // Step 4: as the coupling scheme says (today both at the same time).
 AdvanceReplies Coupler::advanceBoth(const CouplingTerms& terms) {
-  AdvanceReplies replies = scheme_->advance(participants_, terms);
+  AdvanceReplies replies = scheme_->advance(participants_, state_, terms);
   phases_.lap("advance");
   time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_);
   participants_.setClock(step_, time_);

@@ -39,7 +39,7 @@ struct RunOptions {
   bool quiet = false;               // no progress line
   std::filesystem::path output;     // overrides scenario output.folder
   bool overwrite = false;           // reuse an existing run folder
-  std::string scheme = "parallel";  // makeCouplingScheme; cosim bench runs the frozen ones too
+  std::string scheme;  // makeCouplingScheme; empty: the scene's coupling.scheme (bench: frozen ones)
   std::uint64_t untimed_steps = 0;  // phase and compute timings start after this many steps
   std::filesystem::path resume;     // continue the run in this folder from its newest checkpoint
 };
@@ -79,6 +79,8 @@ class Coupler {
   // The five steps of one coupling interval (docs/design.md section 2).
   void beginStep(std::uint64_t k);
   CouplingTerms termsOfStep();  // steps 2 and 3, or what the scheme replays
+  // The fluid's samples checked against the particles; `lost` marks those in no cell.
+  link::ParticleData samplesOf(const wire::Samples& samples, std::vector<char>& lost);
   link::ParticleData sampleFluid(std::vector<char>& lost);
   CouplingTerms evaluateModels(const link::ParticleData& samples, const std::vector<char>& lost);
   AdvanceReplies advanceBoth(const CouplingTerms& terms);

@@ -1,5 +1,6 @@
 #include "coupling_scheme.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "cosim/link/fields.h"
@@ -48,7 +49,9 @@ link::ParticleData onIds(const link::ParticleData& from, const std::vector<std::
 
 }  // namespace
 
-AdvanceReplies ParallelScheme::advance(Participants& participants, const CouplingTerms& terms) {
+AdvanceReplies ParallelScheme::advance(Participants& participants,
+                                       const link::ParticleData& /*state*/,
+                                       const CouplingTerms& terms) {
   std::map<std::string, wire::Envelope> messages;
   messages["particles"] = particleAdvance(sc_, plan_, terms);
   if (plan_.fluid) messages["fluid"] = fluidAdvance(sc_, plan_, terms);
@@ -59,6 +62,41 @@ AdvanceReplies ParallelScheme::advance(Participants& participants, const Couplin
   return r;
 }
 
+AdvanceReplies OverlappedScheme::advance(Participants& participants,
+                                         const link::ParticleData& state,
+                                         const CouplingTerms& terms) {
+  std::map<std::string, wire::Envelope> messages;
+  messages["particles"] = particleAdvance(sc_, plan_, terms);
+  if (plan_.fluid) {
+    auto fluid = fluidAdvance(sc_, plan_, terms);
+    state.select(plan_.sample_state).toWire(*fluid.mutable_advance()->mutable_sample_ahead());
+    messages["fluid"] = std::move(fluid);
+  }
+  auto replies = participants.exchange(std::move(messages), wire::Envelope::kAdvanced);
+  AdvanceReplies r;
+  r.particles = replies.at("particles").advanced();
+  ahead_.reset();
+  if (plan_.fluid) {
+    r.fluid = replies.at("fluid").advanced();
+    if (r.fluid->has_ahead()) {
+      ahead_ = r.fluid->ahead();
+      participants.addComputeSeconds("fluid_sample_ahead", ahead_->wall_seconds());
+    }
+  }
+  return r;
+}
+
+std::optional<wire::Samples> OverlappedScheme::samplesAhead(const link::ParticleData& state) {
+  if (!ahead_) return std::nullopt;
+  std::optional<wire::Samples> s = std::move(ahead_);
+  ahead_.reset();
+  const auto& ids = s->at_particles().ids();
+  if (static_cast<std::size_t>(ids.size()) != state.ids.size() ||
+      !std::equal(ids.begin(), ids.end(), state.ids.begin()))
+    return std::nullopt;  // particles appeared or left: sample them where they are
+  return s;
+}
+
 std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& state) {
   if (!frozen_) return std::nullopt;
   CouplingTerms t;
@@ -67,7 +105,9 @@ std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& stat
   return t;
 }
 
-AdvanceReplies FrozenScheme::advance(Participants& participants, const CouplingTerms& terms) {
+AdvanceReplies FrozenScheme::advance(Participants& participants,
+                                     const link::ParticleData& /*state*/,
+                                     const CouplingTerms& terms) {
   if (!frozen_) {
     frozen_ = terms;
     // The coating owed is paid once, with the first interval.
@@ -91,12 +131,13 @@ AdvanceReplies FrozenScheme::advance(Participants& participants, const CouplingT
 std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan,
                                                    const std::string& name) {
   if (name == "parallel") return std::make_unique<ParallelScheme>(sc, plan);
+  if (name == "overlapped") return std::make_unique<OverlappedScheme>(sc, plan);
   if (name == "frozen-fluid")
     return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::particles);
   if (name == "frozen-particles")
     return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::fluid);
   throw std::invalid_argument("unknown coupling scheme '" + name +
-                              "' (parallel, frozen-fluid, frozen-particles)");
+                              "' (parallel, overlapped, frozen-fluid, frozen-particles)");
 }
 
 }  // namespace cosim::orchestrator

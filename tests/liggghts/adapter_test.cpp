@@ -425,7 +425,9 @@ TEST(LiggghtsAdapter, DumpsAreOnTheRunClockWithOneAtTheFinalTime) {
     stateOf(run.advance(0, 0, ParticleData{}));
     for (int k = 0; k < 5; ++k) {
       final_state = stateOf(run.advance(3e-4, 30, ParticleData{}));
-      if (k == 1) ASSERT_TRUE(run.checkpoint(checkpoint.string()).has_checkpoint_written());
+      if (k == 1) {
+        ASSERT_TRUE(run.checkpoint(checkpoint.string()).has_checkpoint_written());
+      }
     }
     EXPECT_TRUE(run.shutdown().has_goodbye());
     EXPECT_EQ(run.waitExit(), 0);

@@ -115,6 +115,24 @@ TEST(EndToEnd, SphereInUpwardFlowReachesFlowMinusTerminalVelocity) {
   EXPECT_NEAR(h.vz.back(), u_up - ref.vt(), 1e-3 * ref.vt());
 }
 
+// coupling.scheme: overlapped. The fluid samples the gas during its step at position +
+// velocity dt; in a uniform upflow the gas is the same everywhere, so the history must follow the
+// same analytic curve, and no Sample may pass between the intervals after the first one.
+TEST(EndToEnd, OverlappedSchemeSamplesDuringTheFluidsStepAndFollowsTheSameSolution) {
+  const double u_up = 1.0e-3;
+  const auto h = runSphere({"u_up=0.001", "coupling.scheme=overlapped"}, "overlapped");
+  Reference ref;
+  ASSERT_EQ(h.t.size(), 50u);
+  for (std::size_t i = 0; i < h.t.size(); ++i) {
+    EXPECT_NEAR(h.vz[i], ref.vz(h.t[i], u_up), 1e-9 * ref.vt()) << "t = " << h.t[i];
+  }
+  std::ifstream summary(fs::temp_directory_path() /
+                        ("cosim-e2e-overlapped-" + std::to_string(getpid())) / "summary.json");
+  std::stringstream text;
+  text << summary.rdbuf();
+  EXPECT_NE(text.str().find("\"fluid_sample_ahead_compute\""), std::string::npos) << text.str();
+}
+
 TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehind) {
   Scenario sc = loadScenario(kScenario, {"coupling.end_time=1000", "coupling.dt=1e-4"});
   RunOptions o;

@@ -13,6 +13,7 @@
 
 #include "CLI/CLI.hpp"
 #include "cosim/link/errors.h"
+#include "cosim/link/fields.h"
 
 namespace cosim::link {
 
@@ -310,6 +311,32 @@ int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check
   return 0;
 }
 
+namespace {
+
+// The solver's Sample of `in`, as the Samples message, with the time it took.
+void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& s) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ParticleData samples;
+  samples.ids = in.ids;
+  std::vector<std::int64_t> lost;
+  solver.sample(in, samples, lost);
+  samples.toWire(*s.mutable_at_particles());
+  s.mutable_lost_ids()->Assign(lost.begin(), lost.end());
+  s.set_wall_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
+// The particles where they will be after dt: position + velocity dt (the position as it is when
+// no velocity is given).
+ParticleData predictedAt(ParticleData at, double dt) {
+  if (!at.has(field::position) || !at.has(field::velocity)) return at;
+  auto& x = at.field(field::position);
+  const auto& v = at.get(field::velocity);
+  for (std::size_t i = 0; i < x.size() && i < v.size(); ++i) x[i] += v[i] * dt;
+  return at;
+}
+
+}  // namespace
+
 int runParticipant(Solver& solver, const ParticipantOptions& options) {
   Session session(options, solver.capabilities());
   session.exitProcessWhenOrphaned();
@@ -323,16 +350,8 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
       const auto t0 = std::chrono::steady_clock::now();
       switch (cmd.body_case()) {
         case wire::Envelope::kSample: {
-          const ParticleData in = ParticleData::fromWire(cmd.sample().particles());
-          ParticleData samples;
-          samples.ids = in.ids;
-          std::vector<std::int64_t> lost;
-          solver.sample(in, samples, lost);
-          auto* s = out.mutable_samples();
-          samples.toWire(*s->mutable_at_particles());
-          s->mutable_lost_ids()->Assign(lost.begin(), lost.end());
-          s->set_wall_seconds(
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+          sampleInto(solver, ParticleData::fromWire(cmd.sample().particles()),
+                     *out.mutable_samples());
           break;
         }
         case wire::Envelope::kAdvance: {
@@ -341,6 +360,13 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
           auto* adv = out.mutable_advanced();
           solver.advance(cmd.advance(), terms, *adv, state);
           state.toWire(*adv->mutable_state());
+          if (cmd.advance().has_sample_ahead() && cmd.advance().dt() > 0) {
+            // Scheme `overlapped`: the next interval's Sample, where the particles will be
+            sampleInto(solver,
+                       predictedAt(ParticleData::fromWire(cmd.advance().sample_ahead()),
+                                   cmd.advance().dt()),
+                       *adv->mutable_ahead());
+          }
           adv->set_wall_seconds(
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
           break;

@@ -14,6 +14,10 @@ const std::vector<KeySpec>& CouplingSection::keys() {
       {"dem_steps", "1", "DEM steps per coupling interval; a whole number in 1 .. 1e7"},
       {"end_time", "required", "simulated time at the end [s]; later than start_time"},
       {"start_time", "0", "simulated time at the start [s]"},
+      {"scheme", "parallel",
+       "parallel (sample the gas between the intervals, both solvers waiting) | overlapped (the "
+       "fluid samples at the end of its step where the parcels will be, position + velocity dt, "
+       "while the particles advance; docs/performance.md)"},
   };
   return k;
 }
@@ -42,6 +46,12 @@ CouplingSection parseCoupling(const YAML::Node& coupling, const Context& ctx) {
                    coupling["dem_steps"].Scalar());
     }
     c.dem_steps = static_cast<unsigned>(n);
+  }
+  if (coupling["scheme"]) {
+    c.scheme = ctx.text(coupling["scheme"], "coupling.scheme");
+    if (c.scheme != "parallel" && c.scheme != "overlapped")
+      ctx.fail(coupling["scheme"], "coupling.scheme",
+               "expected 'parallel' or 'overlapped', got '" + c.scheme + "'");
   }
   if (c.end_time <= c.start_time) {
     ctx.fail(coupling["end_time"], "coupling.end_time", "must be later than start_time");

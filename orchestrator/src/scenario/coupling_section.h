@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "scenario/context.h"
@@ -13,6 +14,10 @@ struct CouplingSection {
   unsigned dem_steps = 1;  // DEM steps per coupling interval
   double end_time = 0.0;   // [s]
   double start_time = 0.0;
+  // How the solvers share an interval (coupling_scheme.h): "parallel" samples the gas at the
+  // parcels between the intervals, while both solvers wait; "overlapped" has the fluid sample it
+  // at the end of its own step, where the parcels will be (position + velocity dt)
+  std::string scheme = "parallel";
 
   // Coupling steps of the run: (end_time - start_time) / dt rounded.
   std::uint64_t steps() const;
