@@ -1,8 +1,7 @@
 #include "adapter_check.h"
 
-#include <stdlib.h>
-
 #include <fmt/format.h>
+#include <stdlib.h>
 
 #include <chrono>
 #include <fstream>
@@ -93,16 +92,17 @@ std::vector<std::string> checkAdapters(const Scenario& sc, const Plan& plan, dou
                             " to check the adapters (disk full?)");
     }
     const fs::path log = tmp.path() / (name + ".check.log");
-    util::ChildProcess child({exe->string(), "--check-options", welcome.string(), "--ranks",
-                              std::to_string(spec.mpi)},
-                             workdir, log, {});
+    util::ChildProcess child(
+        {exe->string(), "--check-options", welcome.string(), "--ranks", std::to_string(spec.mpi)},
+        workdir, log, {});
     const auto deadline =
         std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
     while (child.running()) {
       if (std::chrono::steady_clock::now() > deadline) {
         child.stop(1.0);
         throw ScenarioError(where + ": adapter '" + spec.adapter + "' (" + exe->string() +
-                            ") did not answer --check-options within " + fmt::format("{:g}", timeout_s) +
+                            ") did not answer --check-options within " +
+                            fmt::format("{:g}", timeout_s) +
                             " s; is it a cosim adapter of this version?");
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

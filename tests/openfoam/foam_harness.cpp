@@ -192,10 +192,12 @@ FoamRun::SampleReply FoamRun::sample(const cosim::link::ParticleData& particles)
   return r;
 }
 
-cosim::wire::Advanced FoamRun::advance(double dt, const cosim::link::ParticleData& terms) {
+cosim::wire::Advanced FoamRun::advance(double dt, const cosim::link::ParticleData& terms,
+                                       const cosim::link::ParticleData* ahead) {
   cosim::wire::Envelope env;
   env.mutable_advance()->set_dt(dt);
   terms.toWire(*env.mutable_advance()->mutable_terms());
+  if (ahead != nullptr) ahead->toWire(*env.mutable_advance()->mutable_sample_ahead());
   const auto reply = request(env);
   if (!reply.has_advanced()) throw std::runtime_error("expected Advanced");
   ++step_;

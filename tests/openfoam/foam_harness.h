@@ -44,8 +44,10 @@ class FoamRun {
   };
   // Starts coupling step k (k = number of Advance calls so far).
   SampleReply sample(const cosim::link::ParticleData& particles);
-  // Advances the gas by dt with the exchange terms; ends the step.
-  cosim::wire::Advanced advance(double dt, const cosim::link::ParticleData& terms);
+  // Advances the gas by dt with the exchange terms; ends the step. `ahead`: the particles at the
+  // start of the step, sent as Advance.sample_ahead (coupling scheme overlapped).
+  cosim::wire::Advanced advance(double dt, const cosim::link::ParticleData& terms,
+                                const cosim::link::ParticleData* ahead = nullptr);
   // Checkpoint{path} -> CheckpointWritten; returns the files/folders written.
   std::vector<std::string> checkpoint(const std::string& path);
   // Shutdown -> Goodbye; returns the process exit code.

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "cosim/link/session.h"
 #include "foam_harness.h"
 
 namespace cosim::test {
@@ -73,6 +74,52 @@ void moveAndCheck(int ranks) {
 }
 
 TEST(OpenFoamParticleLocation, MovingParcelsFoundLostOnesReported) { moveAndCheck(1); }
+
+// Coupling scheme overlapped: the fluid samples at position + velocity dt after its step,
+// having located the parcels there on a helper thread during the step. Each of the 25 parcels
+// moves one cell in +x over the step (velocity 40 m/s x 1e-4 s = 4 mm): the five of the last
+// column leave the mesh (x > 20 mm), the others stay alone in their new cells. The samples must
+// be exactly those of a plain Sample at the same positions.
+TEST(OpenFoamParticleLocation, SamplesAheadAreThoseOfASampleWhereTheParcelsWillBe) {
+  FoamRunConfig cfg;
+  cfg.substitute = {{"inlet_velocity", "0.1"}, {"inlet_precursor", "0"},
+                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.options_yaml = "{min_voidage: 0.05}";
+  cfg.send = {"voidage", "cell_size", "fluid_velocity"};
+  cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
+  FoamRun run(cfg);
+  const double dt = 1e-4;
+  std::vector<double> xyz, v;
+  for (int j = 0; j < 5; ++j)
+    for (int i = 0; i < 5; ++i) {
+      xyz.insert(xyz.end(), {(i + 0.5) * kCell, (j + 0.5) * kCell, (2 + (i + j) % 3 + 0.5) * kCell});
+      v.insert(v.end(), {kCell / dt, 0.0, 0.0});
+    }
+  auto particles = makeParticles(xyz, kR);
+  particles.field("velocity") = v;
+  run.sample(particles);
+  const auto advanced = run.advance(dt, cosim::link::ParticleData{}, &particles);
+  ASSERT_TRUE(advanced.has_ahead());
+  const auto ahead = cosim::link::ParticleData::fromWire(advanced.ahead().at_particles());
+  std::vector<std::int64_t> lostAhead(advanced.ahead().lost_ids().begin(),
+                                      advanced.ahead().lost_ids().end());
+  std::sort(lostAhead.begin(), lostAhead.end());
+  // ids 1..25 row by row: the last column is i = 4, ids 5, 10, 15, 20, 25
+  EXPECT_EQ(lostAhead, (std::vector<std::int64_t>{5, 10, 15, 20, 25}));
+  const double alone = 1 - 4.0 / 3.0 * std::numbers::pi * kR * kR * kR / (kCell * kCell * kCell);
+  for (std::size_t p = 0; p < 25; ++p) {
+    if (p % 5 == 4) continue;
+    EXPECT_NEAR(ahead.get("voidage")[p], alone, 1e-12) << "parcel " << particles.ids[p];
+  }
+  // The same as a plain Sample at the predicted positions, bit for bit
+  const auto plain = run.sample(cosim::link::predictedAt(particles, dt));
+  for (const char* name : {"voidage", "cell_size", "fluid_velocity"})
+    EXPECT_EQ(ahead.get(name), plain.at.get(name)) << name;
+  std::vector<std::int64_t> lostPlain = plain.lost;
+  std::sort(lostPlain.begin(), lostPlain.end());
+  EXPECT_EQ(lostAhead, lostPlain);
+  EXPECT_EQ(run.shutdown(), 0);
+}
 
 TEST(OpenFoamParticleLocation, SameOnTwoRanksAcrossTheProcessorBoundary) { moveAndCheck(2); }
 

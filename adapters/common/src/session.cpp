@@ -325,8 +325,8 @@ void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& s) {
   s.set_wall_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
-// The particles where they will be after dt: position + velocity dt (the position as it is when
-// no velocity is given).
+}  // namespace
+
 ParticleData predictedAt(ParticleData at, double dt) {
   if (!at.has(field::position) || !at.has(field::velocity)) return at;
   auto& x = at.field(field::position);
@@ -334,8 +334,6 @@ ParticleData predictedAt(ParticleData at, double dt) {
   for (std::size_t i = 0; i < x.size() && i < v.size(); ++i) x[i] += v[i] * dt;
   return at;
 }
-
-}  // namespace
 
 int runParticipant(Solver& solver, const ParticipantOptions& options) {
   Session session(options, solver.capabilities());

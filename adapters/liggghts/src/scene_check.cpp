@@ -81,11 +81,12 @@ void checkScene(const cosim::wire::Welcome& welcome) {
   const fs::path script = dir / options.script;
   std::ifstream in(script);
   if (!in) {
-    throw std::runtime_error("scenario file, participants.<particles>.options.script: the LIGGGHTS "
-                             "script '" +
-                             options.script +
-                             "' is not in the participant's files: folder (the path is relative "
-                             "to that folder)");
+    throw std::runtime_error(
+        "scenario file, participants.<particles>.options.script: the LIGGGHTS "
+        "script '" +
+        options.script +
+        "' is not in the participant's files: folder (the path is relative "
+        "to that folder)");
   }
   const bool resuming = !welcome.restart_from().empty();
   std::optional<double> last_dt;
@@ -104,9 +105,10 @@ void checkScene(const cosim::wire::Welcome& welcome) {
       char* end = nullptr;
       const double dt = std::strtod(w[1].c_str(), &end);
       if (end == w[1].c_str() || *end != '\0' || !(dt > 0) || !std::isfinite(dt))
-        throw std::runtime_error(fmt::format("{}: `timestep {}`: expected a positive number of "
-                                             "seconds",
-                                             where, w[1]));
+        throw std::runtime_error(
+            fmt::format("{}: `timestep {}`: expected a positive number of "
+                        "seconds",
+                        where, w[1]));
       last_dt = dt;  // the last one set is the one the coupled run steps with
     }
   }

@@ -19,18 +19,35 @@ Foam::cosim::ParcelDeposition::ParcelDeposition(const fvMesh& mesh, label divisi
 {}
 
 
-void Foam::cosim::ParcelDeposition::place
+Foam::cosim::ParcelDeposition::~ParcelDeposition()
+{
+    if (prepared_)
+    {
+        prepared_->result.wait();
+    }
+}
+
+
+Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
 (
     const std::vector<std::int64_t>& ids,
     const std::vector<double>& position,
-    const std::vector<double>& radius
-)
+    const std::vector<double>& radius,
+    label threads
+) const
 {
+    Placement out;
     const label n = label(ids.size());
     const label nSat = satellites_.size();
     const label me = Pstream::myProcNo();
     const label nobody = labelMax;
-    nParticles_ = n;
+    out.n = n;
+    labelList& centreCell = out.centreCell;
+    boolList& lost = out.lost;
+    labelList& start = out.start;
+    DynamicList<label>& depCell = out.depCell;
+    DynamicList<scalar>& depWeight = out.depWeight;
+    std::vector<std::pair<std::int64_t, label>>& seeds = out.seeds;
 
     auto centreOf = [&](label i)
     {
@@ -38,7 +55,7 @@ void Foam::cosim::ParcelDeposition::place
     };
 
     // 1. parcel centres, seeded by last step's cell
-    centreCell_.setSize(n);
+    centreCell.setSize(n);
     labelList centreOwner(n, nobody);
     auto cursor = lastCell_.cbegin();
     auto seedOf = [&](std::int64_t id) -> label
@@ -57,8 +74,8 @@ void Foam::cosim::ParcelDeposition::place
     };
     for (label i = 0; i < n; ++i)
     {
-        centreCell_[i] = locator_.locate(centreOf(i), seedOf(ids[i]));
-        if (centreCell_[i] >= 0)
+        centreCell[i] = locator_.locate(centreOf(i), seedOf(ids[i]));
+        if (centreCell[i] >= 0)
         {
             centreOwner[i] = me;
         }
@@ -68,23 +85,22 @@ void Foam::cosim::ParcelDeposition::place
         Pstream::listCombineGather(centreOwner, minEqOp<label>());
         Pstream::listCombineScatter(centreOwner);
     }
-    lost_.setSize(n);
-    lastCell_.clear();
+    lost.setSize(n);
     for (label i = 0; i < n; ++i)
     {
         if (centreOwner[i] != me)
         {
-            centreCell_[i] = -1;
+            centreCell[i] = -1;
         }
-        lost_[i] = (centreOwner[i] == nobody);
-        if (centreCell_[i] >= 0)
+        lost[i] = (centreOwner[i] == nobody);
+        if (centreCell[i] >= 0)
         {
-            lastCell_.emplace_back(ids[i], centreCell_[i]);
+            seeds.emplace_back(ids[i], centreCell[i]);
         }
     }
-    if (!std::is_sorted(lastCell_.begin(), lastCell_.end()))
+    if (!std::is_sorted(seeds.begin(), seeds.end()))
     {
-        std::sort(lastCell_.begin(), lastCell_.end());
+        std::sort(seeds.begin(), seeds.end());
     }
 
     // 2. satellite points, seeded by the centre cell. Independent per parcel, so on one
@@ -97,24 +113,24 @@ void Foam::cosim::ParcelDeposition::place
     {
         for (label i = begin; i < end; ++i)
         {
-            if (lost_[i])
+            if (lost[i])
             {
                 continue;
             }
             const point c = centreOf(i);
             const scalar r = radius[i];
-            const bool near = centreCell_[i] >= 0 || locator_.inBounds(c, r);
+            const bool near = centreCell[i] >= 0 || locator_.inBounds(c, r);
             if (!near)
             {
                 continue;
             }
             // The whole parcel inside its centre cell (satellites lie within its radius):
             // each satellite's walk would end there at its first test
-            if (centreCell_[i] >= 0 && locator_.holdsBall(c, r, centreCell_[i]))
+            if (centreCell[i] >= 0 && locator_.holdsBall(c, r, centreCell[i]))
             {
                 for (label j = 0; j < nSat; ++j)
                 {
-                    satCell[i*nSat + j] = centreCell_[i];
+                    satCell[i*nSat + j] = centreCell[i];
                     satOwner[i*nSat + j] = me;
                 }
                 continue;
@@ -123,9 +139,9 @@ void Foam::cosim::ParcelDeposition::place
             {
                 const point x = c + r*satellites_.offsets()[j];
                 label celli = -1;
-                if (centreCell_[i] >= 0)
+                if (centreCell[i] >= 0)
                 {
-                    celli = locator_.walk(x, centreCell_[i]);
+                    celli = locator_.walk(x, centreCell[i]);
                 }
                 if (celli < 0)
                 {
@@ -139,7 +155,7 @@ void Foam::cosim::ParcelDeposition::place
             }
         }
     };
-    const label nThreads = (Pstream::parRun() || n < 512) ? 1 : threads_;
+    const label nThreads = (Pstream::parRun() || n < 512) ? 1 : threads;
     std::vector<std::thread> helpers;
     for (label t = 1; t < nThreads; ++t)
     {
@@ -159,27 +175,27 @@ void Foam::cosim::ParcelDeposition::place
     // 3. deposits: owned satellites, plus orphans (outside the mesh) to the centre cell;
     //    one entry per cell of a parcel (its satellites' weights added in their order), so
     //    deposit and gatherAverage visit a few cells per parcel instead of every satellite
-    start_.setSize(n + 1);
-    depCell_.clear();
-    depWeight_.clear();
+    start.setSize(n + 1);
+    depCell.clear();
+    depWeight.clear();
     auto add = [&](label begin, label celli, scalar w)
     {
-        for (label d = begin; d < depCell_.size(); ++d)
+        for (label d = begin; d < depCell.size(); ++d)
         {
-            if (depCell_[d] == celli)
+            if (depCell[d] == celli)
             {
-                depWeight_[d] += w;
+                depWeight[d] += w;
                 return;
             }
         }
-        depCell_.append(celli);
-        depWeight_.append(w);
+        depCell.append(celli);
+        depWeight.append(w);
     };
     for (label i = 0; i < n; ++i)
     {
-        const label begin = depCell_.size();
-        start_[i] = begin;
-        if (lost_[i])
+        const label begin = depCell.size();
+        start[i] = begin;
+        if (lost[i])
         {
             continue;
         }
@@ -197,13 +213,75 @@ void Foam::cosim::ParcelDeposition::place
                 orphan += w;
             }
         }
-        if (orphan > 0 && centreCell_[i] >= 0)
+        if (orphan > 0 && centreCell[i] >= 0)
         {
-            add(begin, centreCell_[i], orphan);
+            add(begin, centreCell[i], orphan);
         }
     }
-    start_[n] = depCell_.size();
+    start[n] = depCell.size();
+    return out;
 }
+
+
+void Foam::cosim::ParcelDeposition::adopt(Placement&& p)
+{
+    nParticles_ = p.n;
+    centreCell_.transfer(p.centreCell);
+    lost_.transfer(p.lost);
+    start_.transfer(p.start);
+    depCell_.transfer(p.depCell);
+    depWeight_.transfer(p.depWeight);
+    lastCell_ = std::move(p.seeds);
+}
+
+
+void Foam::cosim::ParcelDeposition::place
+(
+    const std::vector<std::int64_t>& ids,
+    const std::vector<double>& position,
+    const std::vector<double>& radius
+)
+{
+    if (prepared_)
+    {
+        const std::unique_ptr<Prepared> ahead = std::move(prepared_);
+        Placement p = ahead->result.get();
+        if (ahead->ids == ids && ahead->position == position && ahead->radius == radius)
+        {
+            adopt(std::move(p));
+            return;
+        }
+    }
+    adopt(compute(ids, position, radius, threads_));
+}
+
+
+void Foam::cosim::ParcelDeposition::prepare
+(
+    const std::vector<std::int64_t>& ids,
+    const std::vector<double>& position,
+    const std::vector<double>& radius
+)
+{
+    if (Pstream::parRun())
+    {
+        return;  // the placement talks to the other processors: main thread only
+    }
+    if (prepared_)
+    {
+        prepared_->result.wait();
+    }
+    prepared_.reset(new Prepared{ids, position, radius, {}});
+    const Prepared& p = *prepared_;
+    prepared_->result = std::async
+    (
+        std::launch::async,
+        [this, &p]() { return compute(p.ids, p.position, p.radius, 1); }
+    );
+}
+
+
+
 
 
 void Foam::cosim::ParcelDeposition::deposit

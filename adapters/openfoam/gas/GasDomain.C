@@ -178,6 +178,14 @@ public:
         }
     }
 
+    void prepare(const ParticleSet& particles) override
+    {
+        guarded("preparing the particles' placement", [&]
+        {
+            parcels_().prepare(particles.ids, particles.position, particles.radius);
+        });
+    }
+
     std::vector<std::size_t> place(const ParticleSet& particles) override
     {
         return guarded("placing particles", [&]

@@ -69,6 +69,10 @@ class GasDomain {
   // Returns the indices of particles whose centre is in no cell.
   virtual std::vector<std::size_t> place(const ParticleSet& particles) = 0;
 
+  // Starts placing these particles ahead, while advance() runs (coupling scheme overlapped);
+  // the next place() with exactly these particles takes the result. Serial runs only.
+  virtual void prepare(const ParticleSet& particles) = 0;
+
   // Fields at the particles placed last (cosim::field names, components interleaved); lost
   // particles get zeros.
   virtual std::map<std::string, std::vector<double>> sample(

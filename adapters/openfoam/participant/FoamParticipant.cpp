@@ -254,16 +254,21 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
   const std::size_t n = sampledIds_.size();
   std::vector<double> K, k;
   if (terms.size() > 0) {
-    std::map<std::int64_t, std::size_t> where;
-    for (std::size_t i = 0; i < n; ++i) where[sampledIds_[i]] = i;
     std::vector<std::size_t> slot(terms.size());
-    for (std::size_t t = 0; t < terms.size(); ++t) {
-      const auto it = where.find(terms.ids[t]);
-      if (it == where.end()) {
-        throw std::runtime_error("Advance for cosimFoam: particle " + std::to_string(terms.ids[t]) +
-                                 " has exchange terms but was not in this step's Sample");
+    if (terms.ids == sampledIds_) {
+      for (std::size_t t = 0; t < terms.size(); ++t) slot[t] = t;  // the usual case: same order
+    } else {
+      std::map<std::int64_t, std::size_t> where;
+      for (std::size_t i = 0; i < n; ++i) where[sampledIds_[i]] = i;
+      for (std::size_t t = 0; t < terms.size(); ++t) {
+        const auto it = where.find(terms.ids[t]);
+        if (it == where.end()) {
+          throw std::runtime_error("Advance for cosimFoam: particle " +
+                                   std::to_string(terms.ids[t]) +
+                                   " has exchange terms but was not in this step's Sample");
+        }
+        slot[t] = it->second;
       }
-      slot[t] = it->second;
     }
     auto align = [&](const std::string& name, std::vector<double>& dst) {
       if (!terms.has(name)) return;
@@ -273,6 +278,21 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
     };
     align(field::drag_coefficient, K);
     if (species_) align(field::transfer_coefficient, k);
+  }
+
+  // Scheme `overlapped`: the session samples at position + velocity dt after this step. Where
+  // that is, is known now: on a single processor the parcels are located there on a helper
+  // thread during the gas step (the particles' core idles once their DEM steps are done).
+  if (cmd.has_sample_ahead() && bridge_.size() == 1) {
+    const auto ahead =
+        cosim::link::predictedAt(cosim::link::ParticleData::fromWire(cmd.sample_ahead()), dt);
+    if (ahead.has(field::position) && ahead.has(field::radius)) {
+      ParticleSet set;
+      set.ids = ahead.ids;
+      set.position = ahead.get(field::position);
+      set.radius = ahead.get(field::radius);
+      gas_->prepare(set);
+    }
   }
 
   bridge_.command(RankCommand::advance);

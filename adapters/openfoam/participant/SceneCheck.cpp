@@ -91,8 +91,8 @@ void checkCase(const AdapterSettings& settings, int ranks, const fs::path& dir) 
                                   std::pair{"outlet_patches", &settings.gas.outlet_patches}}) {
     for (const auto& patch : *list) {
       if (!hasWord(text, patch)) {
-        throw std::runtime_error("scenario file, participants.<fluid>.options." +
-                                 std::string(key) + ": no patch '" + patch + "' in " +
+        throw std::runtime_error("scenario file, participants.<fluid>.options." + std::string(key) +
+                                 ": no patch '" + patch + "' in " +
                                  fs::relative(names, dir).string() +
                                  " of the case; give the names of the mesh's inlet and outlet "
                                  "patches (docs/openfoam.md)");

@@ -106,6 +106,12 @@ int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check
 // MPI_Init whether to start MPI at all).
 bool checkOptionsRequested(int argc, char** argv);
 
+// Coupling scheme `overlapped`: the particles of Advance.sample_ahead where they will be after
+// dt, position + velocity dt (positions as they are when no velocity is given). The session
+// samples there after the fluid's advance; a fluid adapter may use the same positions to
+// prepare that sampling during its step (they are the same numbers, bit for bit).
+ParticleData predictedAt(ParticleData at, double dt);
+
 // Runs the whole participant life: connect, Hello, Welcome, command loop, Goodbye.
 // Returns the process exit code (0 on a clean Shutdown).
 int runParticipant(Solver& solver, const ParticipantOptions& options);
