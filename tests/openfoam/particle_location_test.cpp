@@ -17,7 +17,8 @@ namespace {
 constexpr double kCell = 0.004;
 constexpr double kR = 0.8e-3;
 
-void moveAndCheck(int ranks) {
+// The column case with a slow upflow, sending voidage, cell size and gas velocity.
+FoamRunConfig columnConfig(int ranks) {
   FoamRunConfig cfg;
   cfg.substitute = {{"inlet_velocity", "0.1"}, {"inlet_precursor", "0"},
                     {"write_steps", "100000"}, {"wall_U", "slip"}};
@@ -25,7 +26,11 @@ void moveAndCheck(int ranks) {
   cfg.send = {"voidage", "cell_size", "fluid_velocity"};
   cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
   cfg.ranks = ranks;
-  FoamRun run(cfg);
+  return cfg;
+}
+
+void moveAndCheck(int ranks) {
+  FoamRun run(columnConfig(ranks));
 
   // One parcel per column of cells (x, y), at the centre of cell k = 2 + (i + j) % 3: each
   // alone in its cell. Id 26 starts outside the mesh (x < 0).
@@ -81,13 +86,7 @@ TEST(OpenFoamParticleLocation, MovingParcelsFoundLostOnesReported) { moveAndChec
 // column leave the mesh (x > 20 mm), the others stay alone in their new cells. The samples must
 // be exactly those of a plain Sample at the same positions.
 TEST(OpenFoamParticleLocation, SamplesAheadAreThoseOfASampleWhereTheParcelsWillBe) {
-  FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0.1"}, {"inlet_precursor", "0"},
-                    {"write_steps", "100000"}, {"wall_U", "slip"}};
-  cfg.options_yaml = "{min_voidage: 0.05}";
-  cfg.send = {"voidage", "cell_size", "fluid_velocity"};
-  cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
-  FoamRun run(cfg);
+  FoamRun run(columnConfig(1));
   const double dt = 1e-4;
   std::vector<double> xyz, v;
   for (int j = 0; j < 5; ++j)
