@@ -94,6 +94,9 @@ std::optional<wire::Samples> OverlappedScheme::samplesAhead(const link::Particle
   if (static_cast<std::size_t>(ids.size()) != state.ids.size() ||
       !std::equal(ids.begin(), ids.end(), state.ids.begin()))
     return std::nullopt;  // particles appeared or left: sample them where they are
+  // A parcel predicted outside the mesh (moving towards a wall it will bounce off) would lose
+  // its drag and its volume for a step: sample them all where they are instead
+  if (s->lost_ids_size() > 0) return std::nullopt;
   return s;
 }
 

@@ -62,8 +62,9 @@ class ParallelScheme final : public CouplingScheme {
 // at the start of the interval (Advance.sample_ahead); after its CFD step the fluid places them
 // at position + velocity dt and returns the gas there (Advanced.ahead), while the particles are
 // still advancing. The next interval uses those samples when the particles are the same (same
-// ids in the same order), else it samples as usual (an insertion, a deletion, the first step,
-// the first step after a resume). The placement is off by the particles' change of velocity
+// ids in the same order) and none was predicted outside the mesh, else it samples as usual (an
+// insertion, a deletion, a parcel about to bounce off a wall, the first step, the first step
+// after a resume). The placement is off by the particles' change of velocity
 // over the interval, about a dt^2 / 2 (1e-7 m for a = g and dt = 1e-4 s, against cells of
 // millimetres); the fluid's voidage and exchange terms follow the same placement, so mass and
 // momentum stay balanced. A fluid adapter that does not answer sample_ahead is sampled as usual

@@ -72,7 +72,7 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
             << " s ("
             << static_cast<long long>(
                    std::llround((sc.coupling.end_time - sc.coupling.start_time) / sc.coupling.dt))
-            << " steps)\n";
+            << " steps), scheme " << sc.coupling.scheme << "\n";
   std::cout << "  particles: " << sc.participants.at("particles").adapter << "; sends "
             << join(p.particles_send) << "; receives " << join(p.particles_receive) << "\n";
   if (p.fluid) {
