@@ -237,7 +237,9 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
     RunOptions no;
     no.quiet = true;
     no.output = base / "no-checkpoints";
-    RunResult plain = Coupler(loadScenario(scene, {"coupling.end_time=0.0102"}), no).run();
+    RunResult plain =
+        Coupler(loadScenario(scene, {"coupling.end_time=0.0102", "coupling.scheme=parallel"}), no)
+            .run();
     ASSERT_EQ(plain.exit_code, 0) << plain.message;
     const auto tp = cosim::analysis::readTimeSeries(base / "no-checkpoints/timeseries.csv");
     const double pa = ta.at("pressure_drop")[row(ta, 0.0102)];
