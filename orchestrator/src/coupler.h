@@ -36,10 +36,11 @@
 namespace cosim::orchestrator {
 
 struct RunOptions {
-  bool quiet = false;               // no progress line
-  std::filesystem::path output;     // overrides scenario output.folder
-  bool overwrite = false;           // reuse an existing run folder
-  std::string scheme;  // makeCouplingScheme; empty: the scene's coupling.scheme (bench: frozen ones)
+  bool quiet = false;            // no progress line
+  std::filesystem::path output;  // overrides scenario output.folder
+  bool overwrite = false;        // reuse an existing run folder
+  std::string
+      scheme;  // makeCouplingScheme; empty: the scene's coupling.scheme (bench: frozen ones)
   std::uint64_t untimed_steps = 0;  // phase and compute timings start after this many steps
   std::filesystem::path resume;     // continue the run in this folder from its newest checkpoint
 };

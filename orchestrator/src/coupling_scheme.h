@@ -108,8 +108,8 @@ class FrozenScheme final : public CouplingScheme {
   std::optional<CouplingTerms> frozen_;
 };
 
-// `name`: "parallel" or "overlapped" (coupling.scheme of a run), "frozen-fluid" (particles alone) or "frozen-particles" (fluid
-// alone); the last two are what `cosim bench` measures.
+// `name`: "parallel" or "overlapped" (coupling.scheme of a run), "frozen-fluid" (particles alone)
+// or "frozen-particles" (fluid alone); the last two are what `cosim bench` measures.
 std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan,
                                                    const std::string& name = "parallel");
 

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +15,6 @@
 #include <numbers>
 #include <thread>
 #include <zmq.hpp>
-#include <atomic>
 
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/time_series.h"
@@ -171,8 +171,8 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
   const auto at = ss.str().find("\"run_id\": \"");
   ASSERT_NE(at, std::string::npos);
   const std::string id = ss.str().substr(at + 11, ss.str().find('"', at + 11) - at - 11);
-  const fs::path socket = fs::temp_directory_path() / ("cosim-" + std::to_string(getuid())) /
-                         (id + ".ipc");
+  const fs::path socket =
+      fs::temp_directory_path() / ("cosim-" + std::to_string(getuid())) / (id + ".ipc");
   EXPECT_FALSE(fs::exists(socket)) << socket << " left behind";
   // The socket's folder is the user's own and closed to others.
   struct stat st {};
@@ -221,7 +221,8 @@ TEST(EndToEnd, AFloodFromAStrangerNeitherDelaysCrashDetectionNorFillsTheLog) {
   ASSERT_TRUE(killed);
   EXPECT_LT(detect, 2.0) << "a dead participant must be noticed through the flood";
   EXPECT_NE(r.message.find("killed by signal 9"), std::string::npos) << r.message;
-  EXPECT_LT(fs::file_size(r.folder / "cosim.log"), 20000u) << "one line per stranger, not per message";
+  EXPECT_LT(fs::file_size(r.folder / "cosim.log"), 20000u)
+      << "one line per stranger, not per message";
 }
 
 TEST(EndToEnd, UnusedFluidIsNotStarted) {

@@ -1,6 +1,8 @@
 // `cosim validate` asks each adapter about the scene through --check-options (issue 15): what
 // the run would refuse only after starting its solvers is refused before anything starts, with
 // the scenario file, the participant and the adapter's reason; nothing is left behind.
+#include "adapter_check.h"
+
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -9,7 +11,6 @@
 #include <string>
 #include <vector>
 
-#include "adapter_check.h"
 #include "cosim/models/registry.h"
 #include "plan.h"
 #include "scenario.h"
@@ -105,9 +106,9 @@ TEST_F(AdapterCheck, AMissingScriptAndAMissingWallMeshAreNamed) {
 }
 
 TEST_F(AdapterCheck, TheFluidsPatchesMeshAndRanksAreChecked) {
-  expectFragments(refusal(kBed, {"participants.fluid.options.inlet_patches=[distributer]"}),
-                  {"participants.fluid", "inlet_patches", "no patch 'distributer'",
-                   "system/blockMeshDict"});
+  expectFragments(
+      refusal(kBed, {"participants.fluid.options.inlet_patches=[distributer]"}),
+      {"participants.fluid", "inlet_patches", "no patch 'distributer'", "system/blockMeshDict"});
   expectFragments(refusal(kBed, {"participants.fluid.options.outlet_patches=[top]"}),
                   {"outlet_patches", "no patch 'top'"});
   // The message names the case folder of the scene, not the check's temporary copy
@@ -124,8 +125,7 @@ TEST_F(AdapterCheck, TheFluidsPatchesMeshAndRanksAreChecked) {
 }
 
 TEST_F(AdapterCheck, TheAnalyticAdaptersCheckTheirOptionsToo) {
-  const fs::path scene =
-      fs::path(COSIM_SOURCE_DIR) / "scenarios/settling-sphere/scenario.yaml";
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/settling-sphere/scenario.yaml";
   EXPECT_EQ(accepted(scene, {}).size(), 2u);
   expectFragments(refusal(scene, {"participants.fluid.options.voidage=2"}),
                   {"participants.fluid", "analytic-fluid", "voidage"});
@@ -140,8 +140,7 @@ TEST_F(AdapterCheck, AnAdapterThatDoesNotAnswerIsStoppedAndNamed) {
     out << "#!/bin/sh\nsleep 30\n";
   }
   fs::permissions(hang, fs::perms::owner_all);
-  const fs::path scene =
-      fs::path(COSIM_SOURCE_DIR) / "scenarios/settling-sphere/scenario.yaml";
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/settling-sphere/scenario.yaml";
   const auto t0 = std::chrono::steady_clock::now();
   const auto msg = refusal(scene, {"participants.fluid.command=" + hang.string()}, 1.0);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
@@ -150,9 +149,8 @@ TEST_F(AdapterCheck, AnAdapterThatDoesNotAnswerIsStoppedAndNamed) {
 }
 
 TEST_F(AdapterCheck, ACustomAdapterIsNotAskedAndSaysSo) {
-  const fs::path scene =
-      fs::path(COSIM_SOURCE_DIR) / "scenarios/settling-sphere/scenario.yaml";
-  const auto lines = accepted(scene, {"participants.fluid.adapter=my-fluid",
-                                      "participants.fluid.command=/bin/false"});
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/settling-sphere/scenario.yaml";
+  const auto lines = accepted(
+      scene, {"participants.fluid.adapter=my-fluid", "participants.fluid.command=/bin/false"});
   expectFragments(lines.at(0), {"fluid", "not checked", "custom adapter 'my-fluid'"});
 }
