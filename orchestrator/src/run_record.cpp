@@ -1,7 +1,8 @@
 #include "run_record.h"
 
 #include <fcntl.h>
-#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -24,23 +25,40 @@ namespace fs = std::filesystem;
 RunRecord::RunRecord(const Scenario& sc, const Plan& plan, RunLog& log)
     : sc_(sc), plan_(plan), log_(log) {}
 
-RunRecord::~RunRecord() {
-  if (!lock_.empty()) {
-    std::error_code ec;
-    fs::remove(lock_, ec);
-  }
-}
+RunRecord::~RunRecord() { release(); }
 
 namespace {
 
 constexpr const char* kLockFile = ".cosim-run.lock";
 
-// Pid in a lock file; 0 if unreadable.
+// Pid in a lock file; 0 if unreadable (or not yet written by the run that holds it).
 long lockHolder(const fs::path& lock) {
   std::ifstream in(lock);
   long pid = 0;
   in >> pid;
   return pid;
+}
+
+// Whether a live run holds the lock file: the kernel drops a run's flock when the run ends in
+// any way (kill -9 included), so a lock left behind by a dead run is free.
+bool lockIsHeld(const fs::path& lock) {
+  const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);
+  return held;
+}
+
+std::string holderText(const fs::path& lock) {
+  const long pid = lockHolder(lock);
+  return pid > 0 ? "pid " + std::to_string(pid) : "pid unknown";
+}
+
+// Whether `folder` holds anything besides our lock file.
+bool holdsRunFiles(const fs::path& folder) {
+  for (const auto& entry : fs::directory_iterator(folder))
+    if (entry.path().filename() != kLockFile) return true;
+  return false;
 }
 
 // Why `folder`, given with -o, is not used, and what to do instead.
@@ -52,9 +70,8 @@ std::string refusal(const fs::path& folder) {
   std::string what = "the run folder " + f + " already exists and is not empty";
   std::string how = "choose another folder with -o, remove this one first (rm -r " + f +
                     "), or add --overwrite to write into it anyway";
-  const long holder = lockHolder(folder / kLockFile);
-  if (holder > 0 && (::kill(static_cast<pid_t>(holder), 0) == 0 || errno == EPERM))
-    return what + "; a run (pid " + std::to_string(holder) +
+  if (lockIsHeld(folder / kLockFile))
+    return what + "; a run (" + holderText(folder / kLockFile) +
            ") is writing into it now: choose another folder with -o";
   try {
     const auto summary = analysis::readJsonFile(folder / analysis::kSummaryFile);
@@ -71,32 +88,55 @@ std::string refusal(const fs::path& folder) {
 
 }  // namespace
 
-// The run folder is claimed with a lock file created exclusively (O_EXCL): two runs can never
-// share a folder. A lock left by a run that no longer exists (kill -9) is taken over.
+// The run folder is claimed with an exclusive flock on its lock file, held for the whole run:
+// two runs can never share a folder, and the lock of a run that died (kill -9) is free again
+// because the kernel drops it with the process. The file is unlinked while still locked when
+// the run ends; a run that locked the file just before it was unlinked sees that its file is no
+// longer the one at the path and tries again.
 bool RunRecord::claim(const fs::path& folder) {
   fs::create_directories(folder);
   const fs::path lock = folder / kLockFile;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    const int fd = ::open(lock.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
-    if (fd >= 0) {
-      const std::string pid = std::to_string(::getpid()) + "\n";
-      const bool ok = ::write(fd, pid.data(), pid.size()) == static_cast<ssize_t>(pid.size());
-      ::close(fd);
-      if (!ok) throw std::runtime_error("cannot write " + lock.string() + " (disk full?)");
-      lock_ = lock;
-      return true;
-    }
-    if (errno != EEXIST) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) {
       throw std::runtime_error("cannot claim the run folder " + folder.string() + ": " +
                                std::strerror(errno));
     }
-    const long holder = lockHolder(lock);
-    if (holder > 0 && (::kill(static_cast<pid_t>(holder), 0) == 0 || errno == EPERM))
-      return false;  // a run that is alive holds it
-    std::error_code ec;
-    fs::remove(lock, ec);  // stale: its run is gone
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int err = errno;
+      ::close(fd);
+      if (err == EWOULDBLOCK) return false;  // a run that is alive holds it
+      throw std::runtime_error("cannot lock " + lock.string() + ": " + std::strerror(err));
+    }
+    struct stat held {};
+    struct stat at_path {};
+    if (::fstat(fd, &held) != 0 || ::stat(lock.c_str(), &at_path) != 0 ||
+        held.st_ino != at_path.st_ino || held.st_dev != at_path.st_dev) {
+      ::close(fd);  // the run that held it removed it meanwhile: lock the new one
+      continue;
+    }
+    const std::string pid = std::to_string(::getpid()) + "\n";
+    const bool ok = ::ftruncate(fd, 0) == 0 &&
+                    ::pwrite(fd, pid.data(), pid.size(), 0) == static_cast<ssize_t>(pid.size());
+    if (!ok) {
+      ::close(fd);
+      throw std::runtime_error("cannot write " + lock.string() + " (disk full?)");
+    }
+    lock_ = lock;
+    lock_fd_ = fd;
+    return true;
   }
   return false;
+}
+
+// The file is removed while still locked, so no run can lock it after we let it go.
+void RunRecord::release() {
+  if (lock_fd_ < 0) return;
+  std::error_code ec;
+  fs::remove(lock_, ec);
+  ::close(lock_fd_);
+  lock_fd_ = -1;
+  lock_.clear();
 }
 
 const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
@@ -108,10 +148,15 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
     if (used && !overwrite) throw std::runtime_error(refusal(base));
     if (!claim(base)) {
       throw std::runtime_error(overwrite ? "the run folder " + base.string() +
-                                               " is in use by another run (pid " +
-                                               std::to_string(lockHolder(base / kLockFile)) +
+                                               " is in use by another run (" +
+                                               holderText(base / kLockFile) +
                                                "); wait for it or choose another folder with -o"
                                          : refusal(base));
+    }
+    // A run that held the folder may have finished between the look above and our claim.
+    if (!overwrite && holdsRunFiles(base)) {
+      release();
+      throw std::runtime_error(refusal(base));
     }
     folder_ = base;
     writeResolvedScene();
@@ -127,13 +172,17 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
     const bool had_files = fs::exists(candidate) && !fs::is_empty(candidate);
     if (had_files && !overwrite) continue;
     if (claim(candidate)) {
+      // A run that held it may have finished between the look above and our claim.
+      if (!overwrite && holdsRunFiles(candidate)) {
+        release();
+        continue;
+      }
       folder_ = candidate;
       break;
     }
     if (overwrite) {
       throw std::runtime_error("the run folder " + candidate.string() +
-                               " is in use by another run (pid " +
-                               std::to_string(lockHolder(candidate / kLockFile)) +
+                               " is in use by another run (" + holderText(candidate / kLockFile) +
                                "); wait for it or choose another folder");
     }
   }
@@ -145,9 +194,8 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
 
 const fs::path& RunRecord::reopen(const fs::path& folder) {
   if (!claim(folder)) {
-    throw std::runtime_error("the run folder " + folder.string() +
-                             " is in use by another run (pid " +
-                             std::to_string(lockHolder(folder / kLockFile)) +
+    throw std::runtime_error("the run folder " + folder.string() + " is in use by another run (" +
+                             holderText(folder / kLockFile) +
                              "); a run can be resumed once it has stopped");
   }
   folder_ = folder;

@@ -71,14 +71,17 @@ class RunRecord {
 
  private:
   void makeColumns();
-  // Claims `folder` for this run (a lock file, removed when the record is destroyed); false if
-  // a run that is still alive holds it.
+  // Claims `folder` for this run (an flock on its lock file, held and then removed when the
+  // record is destroyed); false if a run that is still alive holds it.
   bool claim(const std::filesystem::path& folder);
+  // Gives a claim up again (removes the lock file).
+  void release();
   const Scenario& sc_;
   const Plan& plan_;
   RunLog& log_;
   std::filesystem::path folder_;
   std::filesystem::path lock_;
+  int lock_fd_ = -1;
   std::vector<std::string> columns_;
   std::unique_ptr<analysis::ParticleRecorder> particles_;
   std::unique_ptr<analysis::TimeSeriesRecorder> series_file_;
