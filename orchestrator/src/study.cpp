@@ -151,6 +151,16 @@ void printOutcome(const Variant& v, const std::string& before) {
   std::cout << std::endl;
 }
 
+// Renames `folder` to the first free FOLDER.previous-N and returns that name.
+fs::path keepAside(const fs::path& folder) {
+  for (int i = 1;; ++i) {
+    const fs::path kept = folder.string() + ".previous-" + std::to_string(i);
+    if (fs::exists(kept)) continue;
+    fs::rename(folder, kept);
+    return kept;
+  }
+}
+
 // Runs one variant in its folder, or reads it back when it completed before with the same scene.
 void runVariant(const StudyOptions& opt, Variant& v) {
   std::vector<std::string> sets = opt.sets;
@@ -169,6 +179,15 @@ void runVariant(const StudyOptions& opt, Variant& v) {
       std::cout << "study:   resuming " << v.folder.string()
                 << " from its checkpoint at t = " << g6(*from) << " s" << std::endl;
   } else {
+    // A folder holding a run of another scene (or a failed one) is kept under another name,
+    // never written over; --rerun asks for the variant's folder to be replaced.
+    if (!opt.rerun && fs::exists(v.folder) && !fs::is_empty(v.folder)) {
+      const fs::path kept = keepAside(v.folder);
+      if (!opt.quiet)
+        std::cout << "study:   " << v.folder.string()
+                  << " holds a run of another scene (or an unfinished one): kept as "
+                  << kept.string() << std::endl;
+    }
     ro.output = v.folder;
     ro.overwrite = true;
   }

@@ -134,10 +134,13 @@ TEST(Study, CompletedVariantsAreReadBackNotRunAgain) {
   o.finest = 0;
   ASSERT_EQ(runStudy(o), 0);
   EXPECT_EQ(fs::last_write_time(out / "variant-01" / "summary.json"), stamp1);
-  // A changed scene (another end time) is run again.
+  // A changed scene (another end time) is run again; the earlier run is kept, not written over.
+  const std::string first_summary = read(out / "variant-00" / "summary.json");
   o.sets = {"coupling.end_time=4e-3"};
   ASSERT_EQ(runStudy(o), 0);
   EXPECT_NE(fs::last_write_time(out / "variant-00" / "summary.json"), stamp);
+  EXPECT_EQ(read(out / "variant-00.previous-1" / "summary.json"), first_summary);
+  EXPECT_TRUE(fs::exists(out / "variant-01.previous-1" / "particles.h5"));
   // --rerun runs everything again.
   const auto stamp2 = fs::last_write_time(out / "variant-00" / "summary.json");
   o.rerun = true;
