@@ -26,6 +26,7 @@ packages=(
   paraview python3-paraview xvfb xauth   # tests/paraview: particles.xmf as ParaView shows it
   dpkg-dev
   clang libclang-rt-14-dev    # libFuzzer targets (scripts/fuzz.sh)
+  slurmd slurmctld slurm-client munge   # launch: slurm, tested on a one-node cluster (scripts/local-slurm.sh)
 )
 
 missing=()

@@ -13,6 +13,7 @@
 #include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 #include "coupler.h"
+#include "launchers.h"
 #include "plan.h"
 #include "scenario.h"
 #include "study.h"
@@ -84,6 +85,10 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
             << (sc.models.mass_transfer ? sc.models.mass_transfer->law : "none")
             << ", coating zone " << (sc.models.coating_zone ? sc.models.coating_zone->law : "none")
             << "\n";
+  for (const auto& [name, spec] : sc.participants) {
+    if (name == "fluid" && !p.fluid) continue;
+    std::cout << "  launch " << name << ": " << describeLaunch(spec) << "\n";
+  }
   for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
   for (const auto& a : checked) std::cout << "  checked: " << a << "\n";
   std::cout << "  output: " << sc.output.folder.string() << "\n";

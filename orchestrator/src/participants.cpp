@@ -12,6 +12,7 @@
 #include "case_files.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/session.h"
+#include "launchers.h"
 #include "processes.h"
 #include "run_token.h"
 #include "socket_folder.h"
@@ -70,16 +71,7 @@ std::vector<std::string> commandLine(const std::string& name, const ParticipantS
                                spec.adapter +
                                "' (looked next to cosim and in PATH; was it built?)");
   }
-  std::vector<std::string> argv;
-  if (spec.mpi > 1) {
-    auto mpirun = findExecutable("mpirun");
-    if (!mpirun)
-      throw RunFailure(
-          name, "mpi: " + std::to_string(spec.mpi) + " needs mpirun (apt-get install openmpi-bin)");
-    argv = {mpirun->string(), "-np", std::to_string(spec.mpi)};
-    if (geteuid() == 0) argv.push_back("--allow-run-as-root");
-    argv.push_back("--oversubscribe");
-  }
+  std::vector<std::string> argv = launcherPrefix(name, spec);
   argv.push_back(exe->string());
   for (const auto& a :
        {std::string("--endpoint"), endpoint, std::string("--name"), name, std::string("--run-id"),
@@ -129,7 +121,7 @@ void Participants::start(const fs::path& run_folder) {
       throw RunFailure(name, "cannot resume: its folder " + peer->workdir.string() + " is gone");
     fs::create_directories(peer->workdir);
     if (!resuming && !spec.files.empty()) copyCaseFiles(spec.files, peer->workdir, sc_.parameters);
-    if (spec.launch == "local") {
+    if (spec.launch != "external") {
       const auto argv = commandLine(name, spec, connect, run_id_, commandTimeout(sc_.participants));
       std::map<std::string, std::string> env{{link::kRunTokenVariable, token_}};
       if (spec.mpi > 1 && geteuid() == 0) {
@@ -141,7 +133,7 @@ void Participants::start(const fs::path& run_folder) {
       } catch (const std::exception& e) {
         throw RunFailure(name, e.what());
       }
-      log_.file("started " + name + ": " + join(argv));
+      log_.file("started " + name + " (" + describeLaunch(spec) + "): " + join(argv));
     } else {
       if (token_file_.empty()) token_file_ = writeRunTokenFile(run_folder, token_);
       log_.show("waiting for " + name + " (launch: external): start it with --endpoint " + connect +
@@ -156,7 +148,9 @@ void Participants::start(const fs::path& run_folder) {
   std::string who;
   for (const auto& [n, p] : peers_) {
     who += (who.empty() ? "" : ", ") + n + " (" + p->spec.adapter +
-           (p->spec.mpi > 1 ? ", " + std::to_string(p->spec.mpi) + " MPI ranks" : "") + ")";
+           (p->spec.mpi > 1 ? ", " + std::to_string(p->spec.mpi) + " MPI ranks" : "") +
+           (p->spec.launch == "slurm" || p->spec.launch == "mpirun" ? ", " + p->spec.launch : "") +
+           ")";
   }
   log_.console("orchestrator at " + connect + "; participants: " + who);
 }

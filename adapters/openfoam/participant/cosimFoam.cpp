@@ -57,9 +57,11 @@ int main(int argc, char** argv) {
 
   bool parallel = false;
   for (const auto& a : rest) parallel = parallel || a == "-parallel";
-  // Started by mpirun on several ranks without -parallel: a decomposed run is meant (otherwise
-  // every rank would be a separate serial participant of the same name)
-  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE"}) {
+  // Started by mpirun or srun on several ranks without -parallel: a decomposed run is meant
+  // (otherwise every rank would be a separate serial participant of the same name). srun with
+  // PMIx sets no size of its own: the step's task count is Slurm's.
+  for (const char* var :
+       {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "SLURM_STEP_NUM_TASKS"}) {
     const char* v = std::getenv(var);
     if (!parallel && v != nullptr && std::atoi(v) > 1) {
       parallel = true;

@@ -25,8 +25,13 @@ const std::vector<KeySpec>& ParticipantSpec::keys() {
        "with command:"},
       {"command", "the adapter's executable", "executable to run (found next to cosim or in PATH)"},
       {"args", "[]", "extra command-line arguments, a list of texts"},
-      {"launch", "local", "local (cosim starts it) | external (started elsewhere, connects)"},
-      {"mpi", "1", "MPI ranks, a whole number in 1 .. 4096 (> 1: run under mpirun)"},
+      {"launch", "local",
+       "local (cosim starts it here) | mpirun (cosim starts it with mpirun, hostfile:) | slurm "
+       "(cosim starts it with srun in your allocation, slurm:) | external (started elsewhere, "
+       "connects)"},
+      {"mpi", "1", "MPI ranks, a whole number in 1 .. 4096 (> 1: run under mpirun, or srun)"},
+      {"slurm", "{}", "launch: slurm: nodes, nodelist, args (docs/cluster.md)"},
+      {"hostfile", "none", "launch: mpirun: mpirun's host file, relative to the scenario file"},
       {"files", "none", "case folder, relative to the scenario file, copied and templated"},
       {"timeout", "300", "seconds one step may take before it counts as hung; > 0, <= 1e6"},
       {"options", "{}", "adapter settings, sent to the adapter as they are"},
@@ -34,7 +39,41 @@ const std::vector<KeySpec>& ParticipantSpec::keys() {
   return k;
 }
 
+const std::vector<KeySpec>& SlurmLaunch::keys() {
+  static const std::vector<KeySpec> k = {
+      {"nodes", "0", "srun --nodes: whole number of nodes, 0 = as Slurm places the ranks"},
+      {"nodelist", "none", "srun --nodelist, e.g. node[01-04]"},
+      {"args", "[]", "further srun options, a list of texts (e.g. --cpus-per-task=2)"},
+  };
+  return k;
+}
+
 namespace {
+
+SlurmLaunch parseSlurm(const YAML::Node& n, const Context& ctx, const std::string& key) {
+  if (!n.IsMap()) ctx.fail(n, key, "expected a map with nodes:, nodelist:, args:");
+  ctx.allowOnly(n, key, SlurmLaunch::keys());
+  SlurmLaunch s;
+  if (n["nodes"]) {
+    const double v = ctx.number(n["nodes"], key + ".nodes");
+    if (v < 0 || v != std::floor(v) || v > 100000)
+      ctx.fail(n["nodes"], key + ".nodes", "expected a whole number of nodes >= 0");
+    s.nodes = static_cast<int>(v);
+  }
+  if (n["nodelist"]) s.nodelist = ctx.text(n["nodelist"], key + ".nodelist");
+  if (n["args"]) {
+    if (!n["args"].IsSequence())
+      ctx.fail(n["args"], key + ".args", "expected a list of srun options");
+    for (std::size_t i = 0; i < n["args"].size(); ++i) {
+      const std::string a = ctx.text(n["args"][i], key + ".args[" + std::to_string(i) + "]");
+      if (a.rfind("-", 0) != 0)
+        ctx.fail(n["args"][i], key + ".args[" + std::to_string(i) + "]",
+                 "expected an srun option starting with '-', got '" + a + "'");
+      s.args.push_back(a);
+    }
+  }
+  return s;
+}
 
 ParticipantSpec parseParticipant(const std::string& pname, const YAML::Node& p, const Context& ctx,
                                  const fs::path& dir) {
@@ -70,11 +109,29 @@ ParticipantSpec parseParticipant(const std::string& pname, const YAML::Node& p, 
   }
   if (p["launch"]) {
     ps.launch = ctx.text(p["launch"], key + ".launch");
-    if (ps.launch != "local" && ps.launch != "external") {
+    if (ps.launch != "local" && ps.launch != "external" && ps.launch != "mpirun" &&
+        ps.launch != "slurm") {
       ctx.fail(p["launch"], key + ".launch",
-               "expected 'local' (cosim starts it) or 'external' (started elsewhere, connects to "
-               "the orchestrator)");
+               "expected 'local' (cosim starts it here), 'mpirun' (with mpirun and a host file), "
+               "'slurm' (with srun in your allocation) or 'external' (started elsewhere, connects "
+               "to the orchestrator)");
     }
+  }
+  if (p["slurm"]) {
+    if (ps.launch != "slurm")
+      ctx.fail(p["slurm"], key + ".slurm",
+               "only used with launch: slurm (launch is " + ps.launch + ")");
+    ps.slurm = parseSlurm(p["slurm"], ctx, key + ".slurm");
+  }
+  if (p["hostfile"]) {
+    if (ps.launch != "mpirun")
+      ctx.fail(p["hostfile"], key + ".hostfile",
+               "only used with launch: mpirun (launch is " + ps.launch + ")");
+    ps.hostfile = dir / ctx.text(p["hostfile"], key + ".hostfile");
+    if (!fs::is_regular_file(ps.hostfile))
+      ctx.fail(p["hostfile"], key + ".hostfile",
+               "host file '" + ps.hostfile.string() +
+                   "' does not exist (paths are relative to the scenario file)");
   }
   if (p["mpi"]) {
     double n = ctx.number(p["mpi"], key + ".mpi");

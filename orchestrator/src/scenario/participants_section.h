@@ -12,17 +12,29 @@
 
 namespace cosim::orchestrator {
 
+// participants.<name>.slurm: the job step srun starts (launch: slurm).
+struct SlurmLaunch {
+  int nodes = 0;                  // --nodes; 0: as Slurm places the ranks
+  std::string nodelist;           // --nodelist, e.g. "node[01-04]"; empty: any of the allocation
+  std::vector<std::string> args;  // further srun options, e.g. --cpus-per-task=2, --mpi=pmi2
+
+  static const std::vector<KeySpec>& keys();
+};
+
 struct ParticipantSpec {
   std::string name;  // key under participants: "fluid" or "particles"
   wire::Role role = wire::ROLE_UNSPECIFIED;
-  std::string adapter;            // analytic-fluid | openfoam | free-particles | liggghts | custom
-  std::string command;            // executable (resolved from adapter unless given)
-  std::vector<std::string> args;  // extra arguments for the executable
-  std::string launch = "local";   // local: cosim starts it; external: it connects by itself
-  int mpi = 1;                    // ranks; > 1 runs it under mpirun -np
-  std::filesystem::path files;    // case folder to copy and template into the run folder
-  double timeout = 300.0;         // seconds one step may take before it counts as hung
-  YAML::Node options;             // adapter-specific, sent verbatim in Welcome.config_yaml
+  std::string adapter;             // analytic-fluid | openfoam | free-particles | liggghts | custom
+  std::string command;             // executable (resolved from adapter unless given)
+  std::vector<std::string> args;   // extra arguments for the executable
+  std::string launch = "local";    // local | mpirun | slurm: cosim starts it (launchers.h);
+                                   // external: it is started elsewhere and connects by itself
+  int mpi = 1;                     // ranks; > 1 runs it under mpirun -np (srun with launch: slurm)
+  SlurmLaunch slurm;               // launch: slurm
+  std::filesystem::path hostfile;  // launch: mpirun: mpirun's --hostfile (empty: this host)
+  std::filesystem::path files;     // case folder to copy and template into the run folder
+  double timeout = 300.0;          // seconds one step may take before it counts as hung
+  YAML::Node options;              // adapter-specific, sent verbatim in Welcome.config_yaml
 
   static const std::vector<KeySpec>& keys();
 };
