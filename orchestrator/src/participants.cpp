@@ -11,6 +11,7 @@
 
 #include "case_files.h"
 #include "cosim/link/errors.h"
+#include "cosim/link/file_transfer.h"
 #include "cosim/link/session.h"
 #include "launchers.h"
 #include "processes.h"
@@ -78,6 +79,10 @@ std::vector<std::string> commandLine(const std::string& name, const ParticipantS
         run_id, std::string("--command-timeout"), std::to_string(command_timeout_s)}) {
     argv.push_back(a);
   }
+  if (!spec.workdir.empty()) {
+    argv.push_back("--workdir");
+    argv.push_back((fs::path(spec.workdir) / run_id / name).string());
+  }
   for (const auto& a : spec.args) argv.push_back(a);
   return argv;
 }
@@ -140,6 +145,9 @@ void Participants::start(const fs::path& run_folder) {
                 " --name " + name + " --run-id " + run_id_ + " --command-timeout " +
                 std::to_string(commandTimeout(sc_.participants)) + " --token-file " +
                 token_file_.string());
+      log_.show("  (on a node that does not see " + run_folder.string() +
+                ": copy the token file there and add --workdir DIR, a folder of its own there; "
+                "its files then travel over the link)");
     }
     peers_[name] = std::move(peer);
   }
@@ -219,7 +227,15 @@ void Participants::checkpoint(const fs::path& folder) {
   for (const auto& [name, p] : peers_) {
     messages[name].mutable_checkpoint()->set_path(fs::absolute(folder / name).string());
   }
-  exchange(std::move(messages), wire::Envelope::kCheckpointWritten);
+  const Replies written = exchange(std::move(messages), wire::Envelope::kCheckpointWritten);
+  // A participant with a folder of its own sent its files; the others wrote them here
+  for (const auto& [name, reply] : written) {
+    try {
+      link::unpackFiles(reply.checkpoint_written().contents(), folder / name);
+    } catch (const std::exception& e) {
+      throw RunFailure(name, std::string("its checkpoint: ") + e.what());
+    }
+  }
 }
 
 std::vector<std::string> Participants::names() const {
@@ -484,11 +500,23 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env,
   wire::Envelope w;
   *w.mutable_welcome() = welcomeFor(sc_, plan_, p.spec, p.workdir,
                                     restart_from_.empty() ? fs::path() : restart_from_ / who);
+  if (h.own_folder()) {
+    // No shared filesystem: the case files and the restart travel with the Welcome
+    try {
+      link::packFolder(p.workdir, *w.mutable_welcome()->mutable_case_files());
+      if (!restart_from_.empty())
+        link::packFolder(restart_from_ / who, *w.mutable_welcome()->mutable_restart_files());
+    } catch (const std::exception& e) {
+      refuse(e.what());
+    }
+  }
   send(who, w);
   p.connected = true;
   p.last_seen = Clock::now();
-  log_.file(who + " connected: adapter " + h.adapter() + ", pid " + std::to_string(h.pid()) +
-            " on " + h.host() + "; sends " + join(p.send) + "; receives " + join(p.receive));
+  log_.file(
+      who + " connected: adapter " + h.adapter() + ", pid " + std::to_string(h.pid()) + " on " +
+      h.host() + "; sends " + join(p.send) + "; receives " + join(p.receive) +
+      (h.own_folder() ? "; a folder of its own: case files and checkpoints over the link" : ""));
 }
 
 void Participants::shutdown(bool clean) {

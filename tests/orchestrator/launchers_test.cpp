@@ -105,4 +105,13 @@ TEST(Launchers, LaunchKeysAreCheckedWithWhatToDo) {
   EXPECT_NE(errorOf("launch: mpirun, hostfile: no-such-hosts, ").find("does not exist"),
             std::string::npos);
   EXPECT_NE(errorOf("hostfile: h, ").find("only used with launch: mpirun"), std::string::npos);
+  EXPECT_NE(errorOf("workdir: scratch, ").find("expected an absolute folder"), std::string::npos);
+  EXPECT_NE(errorOf("launch: external, workdir: /scratch, ").find("--workdir DIR"),
+            std::string::npos);
+}
+
+TEST(Launchers, AFolderOfItsOwnIsPassedAsWorkdirPerRunAndParticipant) {
+  const Scenario sc = parse("launch: slurm, workdir: /scratch/cosim, ");
+  EXPECT_EQ(sc.participants.at("particles").workdir, "/scratch/cosim");
+  EXPECT_TRUE(sc.participants.at("fluid").workdir.empty());
 }

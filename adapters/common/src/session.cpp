@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -14,8 +15,11 @@
 #include "CLI/CLI.hpp"
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/file_transfer.h"
 
 namespace cosim::link {
+
+namespace fs = std::filesystem;
 
 namespace {
 using Clock = std::chrono::steady_clock;
@@ -112,6 +116,9 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   app.add_option("--check-options", o.check_options,
                  "only check a scene's options for this adapter and exit (0: accepted, 2: "
                  "refused, with the reason); FILE is written by `cosim validate`");
+  app.add_option("--workdir", o.workdir,
+                 "a folder of this participant's own on its node, when it does not see the run "
+                 "folder: case files and restarts come over the link, checkpoints go back");
   app.add_option("--ranks", o.check_ranks, "with --check-options: the MPI ranks of the run")
       ->check(CLI::Range(1, 4096));
   try {
@@ -163,6 +170,7 @@ wire::Welcome Session::handshake() {
   char host[256] = {0};
   gethostname(host, sizeof(host) - 1);
   h->set_host(host);
+  h->set_own_folder(!options_.workdir.empty());
 
   // Sent again every second until answered: the orchestrator ignores the copies it gets after
   // its Welcome, and a stranger that held this participant's name at the orchestrator's socket
@@ -224,7 +232,27 @@ wire::Welcome Session::handshake() {
       }
     }
   });
-  return reply->welcome();
+  wire::Welcome welcome = reply->welcome();
+  if (!options_.workdir.empty()) receiveFiles(welcome);
+  return welcome;
+}
+
+// A participant with a folder of its own: the case files and the restart the Welcome carries
+// are written there, and the Welcome then names that folder instead of the run folder's.
+void Session::receiveFiles(wire::Welcome& welcome) const {
+  const fs::path own = fs::absolute(options_.workdir);
+  fs::create_directories(own);
+  unpackFiles(welcome.case_files(), own);
+  welcome.clear_case_files();
+  welcome.set_workdir(own.string());
+  if (!welcome.restart_from().empty()) {
+    const fs::path restart = own / "restart";
+    fs::remove_all(restart);
+    fs::create_directories(restart);
+    unpackFiles(welcome.restart_files(), restart);
+    welcome.set_restart_from(restart.string());
+  }
+  welcome.clear_restart_files();
 }
 
 wire::Envelope Session::nextCommand() {
@@ -370,9 +398,17 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
           break;
         }
         case wire::Envelope::kCheckpoint: {
-          auto files = solver.checkpoint(cmd.checkpoint().path());
           auto* w = out.mutable_checkpoint_written();
-          for (const auto& f : files) w->add_files(f);
+          if (options.workdir.empty()) {
+            for (const auto& f : solver.checkpoint(cmd.checkpoint().path())) w->add_files(f);
+          } else {
+            // A folder of its own: written there, then sent back to the run's checkpoint
+            const fs::path here = fs::absolute(options.workdir) / "checkpoint";
+            fs::remove_all(here);
+            fs::create_directories(here);
+            for (const auto& f : solver.checkpoint(here.string())) w->add_files(f);
+            packFolder(here, *w->mutable_contents());
+          }
           break;
         }
         case wire::Envelope::kShutdown: {

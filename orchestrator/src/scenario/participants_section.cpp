@@ -32,6 +32,9 @@ const std::vector<KeySpec>& ParticipantSpec::keys() {
       {"mpi", "1", "MPI ranks, a whole number in 1 .. 4096 (> 1: run under mpirun, or srun)"},
       {"slurm", "{}", "launch: slurm: nodes, nodelist, args (docs/cluster.md)"},
       {"hostfile", "none", "launch: mpirun: mpirun's host file, relative to the scenario file"},
+      {"workdir", "none",
+       "absolute folder on the participant's node when it does not see the run folder: its "
+       "files travel over the link (docs/cluster.md)"},
       {"files", "none", "case folder, relative to the scenario file, copied and templated"},
       {"timeout", "300", "seconds one step may take before it counts as hung; > 0, <= 1e6"},
       {"options", "{}", "adapter settings, sent to the adapter as they are"},
@@ -140,6 +143,16 @@ ParticipantSpec parseParticipant(const std::string& pname, const YAML::Node& p, 
                "expected a whole number of MPI ranks >= 1, got " + p["mpi"].Scalar());
     }
     ps.mpi = static_cast<int>(n);
+  }
+  if (p["workdir"]) {
+    ps.workdir = ctx.text(p["workdir"], key + ".workdir");
+    if (!fs::path(ps.workdir).is_absolute())
+      ctx.fail(p["workdir"], key + ".workdir",
+               "expected an absolute folder on the participant's node, got '" + ps.workdir + "'");
+    if (ps.launch == "external")
+      ctx.fail(p["workdir"], key + ".workdir",
+               "an external participant is given its folder on its own command line "
+               "(--workdir DIR); remove workdir: here");
   }
   if (p["timeout"]) {
     ps.timeout = ctx.positive(p["timeout"], key + ".timeout", "(seconds one step may take)");

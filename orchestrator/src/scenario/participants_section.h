@@ -32,6 +32,10 @@ struct ParticipantSpec {
   int mpi = 1;                     // ranks; > 1 runs it under mpirun -np (srun with launch: slurm)
   SlurmLaunch slurm;               // launch: slurm
   std::filesystem::path hostfile;  // launch: mpirun: mpirun's --hostfile (empty: this host)
+  // A folder on the participant's node (absolute) when it does not see the run folder: cosim
+  // starts it with --workdir WORKDIR/<run id>/<name> and sends its files over the link
+  // (docs/cluster.md). Empty: the run folder is shared (one machine, or a shared filesystem).
+  std::string workdir;
   std::filesystem::path files;     // case folder to copy and template into the run folder
   double timeout = 300.0;          // seconds one step may take before it counts as hung
   YAML::Node options;              // adapter-specific, sent verbatim in Welcome.config_yaml

@@ -43,12 +43,17 @@ struct ParticipantOptions {
   // --endpoint and --name are then not needed (checkSceneOptions).
   std::string check_options;
   int check_ranks = 1;
+  // --workdir DIR: a folder of the participant's own on its node, for a participant that does
+  // not see the run folder (no shared filesystem, docs/cluster.md). The case files and restart
+  // come in the Welcome and are written here; checkpoints are written here and sent back.
+  // Empty: the Welcome's workdir in the run folder is used, as on one machine.
+  std::string workdir;
   // The adapter's command line, parsed with CLI11: --endpoint, --name, --run-id, --token-file,
-  // --heartbeat-ms, --command-timeout (seconds), --check-options FILE, --ranks N, --help. `--help` prints `about` and the options
-  // to stdout and returns nullopt (the adapter then exits 0). Arguments it does not know are
-  // left in `rest` in their order (e.g. OpenFOAM's -parallel, -case DIR), or ignored when rest is
-  // null. Throws std::runtime_error with the usage when --endpoint or --name is missing, a
-  // value is malformed or the token file cannot be read.
+  // --heartbeat-ms, --command-timeout (seconds), --check-options FILE, --ranks N, --workdir DIR,
+  // --help. `--help` prints `about` and the options to stdout and returns nullopt (the adapter then
+  // exits 0). Arguments it does not know are left in `rest` in their order (e.g. OpenFOAM's
+  // -parallel, -case DIR), or ignored when rest is null. Throws std::runtime_error with the usage
+  // when --endpoint or --name is missing, a value is malformed or the token file cannot be read.
   static std::optional<ParticipantOptions> parse(int argc, char** argv, const std::string& about,
                                                  std::vector<std::string>* rest = nullptr);
 };
@@ -141,6 +146,7 @@ class Session {
 
  private:
   void fillHeader(wire::Header* h) const;
+  void receiveFiles(wire::Welcome& welcome) const;
   ParticipantOptions options_;
   Capabilities caps_;
   std::unique_ptr<Channel> channel_;
