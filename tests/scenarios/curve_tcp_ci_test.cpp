@@ -1,7 +1,8 @@
 // The CI coating bed with the real solvers (OpenFOAM + LIGGGHTS, started by cosim) over tcp://
 // with CurveZMQ, through a relay that reads the wire, while a stranger without keys knocks: the
-// run completes with its precursor balance closed, the stranger is refused, and the parcels'
-// final positions (sent in the last Advanced) are nowhere in the bytes on the wire.
+// run completes with its precursor balance closed and the same numbers, to the bit, as the run
+// over ipc://; the stranger is refused; and the parcels' final positions (sent in the last
+// Advanced) are nowhere in the bytes on the wire.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -63,6 +64,21 @@ TEST(PlasmaCoatingCi, OverTcpWithCurveZmqTheWireIsUnreadableAndTheBalanceCloses)
   stop = true;
   stranger.join();
   ASSERT_EQ(r.exit_code, 0) << r.message;
+
+  // The same scene over ipc:// (the default link): the transport changes no number.
+  RunOptions ipc_o;
+  ipc_o.quiet = true;
+  ipc_o.output = dir / "ipc";
+  RunResult ipc =
+      Coupler(loadScenario(fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml"),
+              ipc_o)
+          .run();
+  ASSERT_EQ(ipc.exit_code, 0) << ipc.message;
+  EXPECT_EQ(r.final_state.ids, ipc.final_state.ids);
+  EXPECT_EQ(r.final_state.get(cosim::field::position), ipc.final_state.get(cosim::field::position));
+  EXPECT_EQ(r.final_state.get(cosim::field::coating_mass),
+            ipc.final_state.get(cosim::field::coating_mass));
+  for (const auto& [name, value] : ipc.totals) EXPECT_EQ(r.totals.at(name), value) << name;
 
   // The run's result: the precursor balance closes as in MassBalanceClosesAndReportIsProduced.
   const double in = r.totals.at("precursor_in_kg");
