@@ -135,6 +135,38 @@ struct Strangers {
   }
 };
 
+// The NUL-separated entries of /proc/PID/<what> (cmdline, environ).
+std::vector<std::string> procEntries(pid_t pid, const std::string& what) {
+  const std::string text = readFile("/proc/" + std::to_string(pid) + "/" + what);
+  std::vector<std::string> out;
+  std::string::size_type at = 0;
+  while (at < text.size()) {
+    const auto end = text.find('\0', at);
+    out.push_back(text.substr(at, end == std::string::npos ? std::string::npos : end - at));
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return out;
+}
+
+// Processes whose parent is `parent`.
+std::vector<pid_t> childrenOf(pid_t parent) {
+  std::vector<pid_t> out;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string stat = readFile(e.path() / "stat");
+    const auto close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(stat.substr(close + 2));
+    char state;
+    pid_t ppid;
+    rest >> state >> ppid;
+    if (ppid == parent) out.push_back(std::stoi(name));
+  }
+  return out;
+}
+
 }  // namespace
 
 // ---- keys and their files --------------------------------------------------------------------
@@ -259,7 +291,8 @@ TEST(CurveHub, LetsInOnlyTheKeysItIssued) {
 // The settling sphere over tcp:// with CurveZMQ, the particles participant external (started
 // here with the key file the run prints), while strangers knock: none gets an answer, each is
 // listed in cosim.log, and the run completes with the undisturbed result. The participant's key
-// file is private while the run lasts and gone after it; no secret is in the run's files.
+// file is private while the run lasts and gone after it; the fluid cosim starts has its keys in
+// its environment, not on its command line (what ps shows); no secret is in the run's files.
 TEST(CurveRun, StrangersAreRefusedAndTheRunCompletes) {
   const fs::path dir = freshFolder("strangers");
   const fs::path key_file = orchestratorKeyFile(dir / "config");
@@ -304,10 +337,24 @@ TEST(CurveRun, StrangersAreRefusedAndTheRunCompletes) {
   Coupler c(std::move(sc), o);
   double t_last = 0.0, vz_last = 0.0;
   std::size_t steps = 0;
+  // The fluid, started by cosim: its keys are in its environment, not on its command line.
+  std::string fluid_secret, fluid_cmdline;
   c.on_step = [&](double t, const link::ParticleData& s) {
     ++steps;
     t_last = t;
     vz_last = s.get(field::velocity)[2];
+    if (steps == 1) {
+      for (pid_t child : childrenOf(getpid())) {
+        const auto argv = procEntries(child, "cmdline");
+        if (argv.empty() || argv[0].find("cosim-analytic-fluid") == std::string::npos) continue;
+        for (const auto& a : argv) fluid_cmdline += a + " ";
+        for (const auto& v : procEntries(child, "environ")) {
+          const std::string var = std::string(link::kCurveKeysVariable) + "=";
+          if (v.rfind(var, 0) == 0)
+            fluid_secret = link::parseCurveKeysVariable(v.substr(var.size())).own.secret_key;
+        }
+      }
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(5));  // let the strangers in meanwhile
   };
   const auto t0 = Clock::now();
@@ -332,11 +379,15 @@ TEST(CurveRun, StrangersAreRefusedAndTheRunCompletes) {
   EXPECT_EQ(key_mode, 0600u) << "the participant's key file must be private";
   ASSERT_EQ(participant_secret.size(), 40u);
   EXPECT_FALSE(fs::exists(o.output / ".cosim-particles.key")) << "the key file outlived the run";
+  ASSERT_EQ(fluid_secret.size(), 40u) << "the fluid's keys are not in its environment";
+  EXPECT_NE(fluid_cmdline.find("--endpoint " + ep), std::string::npos) << fluid_cmdline;
+  EXPECT_EQ(fluid_cmdline.find(fluid_secret), std::string::npos) << "a key on the command line";
+  EXPECT_EQ(fluid_cmdline.find(server.public_key), std::string::npos);
   for (const auto& e : fs::recursive_directory_iterator(r.folder)) {
     if (!e.is_regular_file()) continue;
     const std::string text = readFile(e.path());
-    EXPECT_EQ(text.find(participant_secret), std::string::npos) << e.path();
-    EXPECT_EQ(text.find(server.secret_key), std::string::npos) << e.path();
+    for (const auto& secret : {participant_secret, fluid_secret, server.secret_key})
+      EXPECT_EQ(text.find(secret), std::string::npos) << "a secret key in " << e.path();
   }
   fs::remove_all(dir);
 }
