@@ -254,9 +254,13 @@ void BM_Exchange(benchmark::State& state, const char* transport, Pair pair) {
 }
 
 BENCHMARK_CAPTURE(BM_Exchange, particles_ipc, "ipc", kParticleStep)->Apply(sizes)->UseRealTime();
-BENCHMARK_CAPTURE(BM_Exchange, particles_tcp, "tcp", kParticleStep)->Arg(4000)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Exchange, particles_tcp, "tcp", kParticleStep)
+    ->Arg(4000)
+    ->Arg(65536)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, particles_tcp_curve, "tcp_curve", kParticleStep)
     ->Arg(4000)
+    ->Arg(65536)
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, fluid_sample_ipc, "ipc", kFluidSample)->Apply(sizes)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, fluid_advance_ipc, "ipc", kFluidStep)->Apply(sizes)->UseRealTime();
