@@ -232,7 +232,10 @@ std::string Participants::externalStart(const std::string& name) const {
 
 void Participants::logRefusals() {
   if (!hub_) return;
-  for (const auto& line : hub_->takeRefusals()) log_.file(line);
+  for (const auto& line : hub_->takeRefusals()) {
+    log_.file(line);
+    if (refusal_seen_.empty()) refusal_seen_ = line;
+  }
 }
 
 void Participants::setClock(std::uint64_t step, double time) {
@@ -488,12 +491,19 @@ void Participants::handshake() {
     if (std::chrono::duration<double>(Clock::now() - start).count() >
         sc_.transport.handshake_timeout) {
       const std::string who = *waiting.begin();
-      throw RunFailure(who, "did not connect within " +
-                                std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
-                                " s (transport.handshake_timeout)" + ignoredNote(who) +
-                                (peers_.at(who)->spec.launch == "external"
-                                     ? "; start it with " + externalStart(who)
-                                     : ""));
+      throw RunFailure(
+          who,
+          "did not connect within " +
+              std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
+              " s (transport.handshake_timeout)" + ignoredNote(who) +
+              (refusal_seen_.empty() ? std::string()
+                                     : "; connections were refused at the security handshake "
+                                       "meanwhile ('" +
+                                           refusal_seen_ +
+                                           "' in cosim.log): a participant started with the key "
+                                           "file of another run, or without keys?") +
+              (peers_.at(who)->spec.launch == "external" ? "; start it with " + externalStart(who)
+                                                         : ""));
     }
   }
 }

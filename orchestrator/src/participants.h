@@ -133,6 +133,7 @@ class Participants {
   std::filesystem::path token_file_;  // written for participants of launch: external
   std::string orchestrator_public_;   // CurveZMQ: the server's public key; else empty
   std::map<std::string, std::filesystem::path> key_files_;  // of participants of launch: external
+  std::string refusal_seen_;  // the first connection the hub refused, for the messages
   std::map<std::string, std::string> ignored_;  // names claimed by dropped messages, and why
 };
 

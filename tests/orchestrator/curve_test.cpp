@@ -531,3 +531,56 @@ TEST(CurveRun, ValidateSaysWhetherTheLinkIsEncrypted) {
   EXPECT_NE(readFile(out).find("link: ipc:// in /tmp/cosim-"), std::string::npos) << readFile(out);
   fs::remove_all(dir);
 }
+
+// The run's external participant started with a key file of another run (the right
+// orchestrator, keys it did not issue): the adapter stops at once with the reason, and the run,
+// its participant never joining, says at its handshake timeout that connections were refused.
+TEST(CurveRun, ExternalParticipantWithAnotherRunsKeysStopsAndTheRunSaysWhy) {
+  const fs::path dir = freshFolder("stale");
+  const fs::path key_file = orchestratorKeyFile(dir / "config");
+  const link::CurveKeyPair server = link::readKeyPairFile(key_file);
+  const int port = test::freeLoopbackPort();
+  const std::string ep = "tcp://127.0.0.1:" + std::to_string(port);
+  Scenario sc = loadScenario(
+      kSphere, {"transport.bind=" + ep, "transport.key_file=" + key_file.string(),
+                "transport.handshake_timeout=6", "participants.particles.launch=external"});
+  RunOptions o;
+  o.quiet = true;
+  o.output = dir / "run";
+  int particles_exit = -1;
+  const fs::path particles_out = dir / "particles.out";
+  std::thread starter([&] {
+    const fs::path own = o.output / ".cosim-particles.key";
+    if (!waitFor(10, [&] { return fs::exists(own); })) return;
+    // The file of an earlier run of the same orchestrator: its keys were never issued here.
+    const link::ParticipantKeyFile current = link::readParticipantKeyFile(own);
+    const fs::path stale = dir / "stale.key";
+    link::writeParticipantKeyFile(stale, {server.public_key, link::newCurveKeyPair()}, "",
+                                  "particles");
+    particles_exit = util::runProgram(
+        {std::string(COSIM_BIN_DIR) + "/cosim-free-particles", "--endpoint", ep, "--name",
+         "particles", "--run-id", current.run_id, "--key-file", stale.string()},
+        particles_out);
+  });
+  const auto t0 = Clock::now();
+  RunResult r = Coupler(std::move(sc), o).run();
+  starter.join();
+  EXPECT_EQ(particles_exit, 3) << readFile(particles_out);
+  EXPECT_NE(readFile(particles_out)
+                .find("does not let this participant in: the orchestrator refused this "
+                      "participant's CurveZMQ key (ZAP status 400)"),
+            std::string::npos)
+      << readFile(particles_out);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.message.find("did not connect within 6 s"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("connections were refused at the security handshake meanwhile "
+                           "('refused a connection from 127.0.0.1: its key was not issued for "
+                           "this run' in cosim.log)"),
+            std::string::npos)
+      << r.message;
+  EXPECT_NE(r.message.find("--key-file " + (o.output / ".cosim-particles.key").string()),
+            std::string::npos)
+      << r.message;
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - t0).count(), 20.0);
+  fs::remove_all(dir);
+}
