@@ -233,7 +233,6 @@ void Hub::Impl::serveZap(zmq::socket_t& zap) {
     if (!zap.recv(extra, zmq::recv_flags::dontwait)) break;
     frames.back() = std::move(extra);
   }
-  const std::string version = frames.size() > 0 ? frames[0].to_string() : "";
   const std::string request_id = frames.size() > 1 ? frames[1].to_string() : "";
   const std::string address = frames.size() > 3 ? frames[3].to_string() : "?";
   const std::string mechanism = frames.size() > 5 ? frames[5].to_string() : "";
@@ -254,7 +253,6 @@ void Hub::Impl::serveZap(zmq::socket_t& zap) {
   zap.send(zmq::buffer(text), zmq::send_flags::sndmore);
   zap.send(zmq::buffer(std::string()), zmq::send_flags::sndmore);  // user id
   zap.send(zmq::buffer(std::string()), zmq::send_flags::none);     // metadata
-  (void)version;
 }
 
 // A socket monitor event: 2 bytes event, 4 bytes value, then the peer's address.
