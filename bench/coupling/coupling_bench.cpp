@@ -19,8 +19,8 @@
 #include <unistd.h>
 
 #include <atomic>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <random>
 #include <string>
 #include <thread>
@@ -47,7 +47,7 @@ const Fields kForcing = {field::drag_coefficient, field::fluid_velocity, field::
 // Orchestrator -> fluid (Sample.particles).
 const Fields kSampleAt = {field::position, field::radius, field::velocity};
 // Fluid -> orchestrator (Samples.at_particles).
-const Fields kSamples = {field::fluid_velocity, field::voidage, field::fluid_density,
+const Fields kSamples = {field::fluid_velocity,  field::voidage,           field::fluid_density,
                          field::fluid_viscosity, field::pressure_gradient, field::cell_size};
 // Orchestrator -> fluid (Advance.terms) and fluid -> orchestrator (Advanced.state).
 const Fields kExchange = {field::drag_coefficient, field::transfer_coefficient};
@@ -177,21 +177,29 @@ const Pair kFluidStep{Body::advance, &kExchange, Body::advanced, &kRemoved};
 
 std::string endpointFor(const std::string& transport) {
   static std::atomic<int> counter{0};
-  if (transport == "tcp") return "tcp://127.0.0.1:*";
-  return "ipc:///tmp/cosim-bench-" + std::to_string(::getpid()) + "-" +
-         std::to_string(counter++) + ".ipc";
+  if (transport.rfind("tcp", 0) == 0) return "tcp://127.0.0.1:*";
+  return "ipc:///tmp/cosim-bench-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) +
+         ".ipc";
 }
 
 void BM_Exchange(benchmark::State& state, const char* transport, Pair pair) {
   const auto n = static_cast<std::size_t>(state.range(0));
   const ParticleData request = makeData(n, *pair.request_fields, 1);
   const ParticleData reply = makeData(n, *pair.reply_fields, 2);
-  cosim::link::Hub hub(endpointFor(transport));
+  // "tcp_curve": the link of a tcp:// run, CurveZMQ with one issued client key.
+  cosim::link::HubSecurity security;
+  cosim::link::CurveClientKeys client;
+  if (std::string(transport) == "tcp_curve") {
+    security.server = cosim::link::newCurveKeyPair();
+    client = {security.server.public_key, cosim::link::newCurveKeyPair()};
+    security.clients.insert(client.own.public_key);
+  }
+  cosim::link::Hub hub(endpointFor(transport), security);
   const std::string endpoint = hub.endpoint();
 
   // The participant: unpack each command as the session does, answer with a packed reply.
-  std::thread peer([&endpoint, &reply, &pair] {
-    cosim::link::Channel channel(endpoint, "peer");
+  std::thread peer([&endpoint, &reply, &pair, &client] {
+    cosim::link::Channel channel(endpoint, "peer", client);
     wire::Envelope hello;
     hello.mutable_header()->set_protocol_version(wire::PROTOCOL_VERSION);
     hello.mutable_hello()->set_adapter("bench");
@@ -246,7 +254,14 @@ void BM_Exchange(benchmark::State& state, const char* transport, Pair pair) {
 }
 
 BENCHMARK_CAPTURE(BM_Exchange, particles_ipc, "ipc", kParticleStep)->Apply(sizes)->UseRealTime();
-BENCHMARK_CAPTURE(BM_Exchange, particles_tcp, "tcp", kParticleStep)->Arg(4000)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Exchange, particles_tcp, "tcp", kParticleStep)
+    ->Arg(4000)
+    ->Arg(65536)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_Exchange, particles_tcp_curve, "tcp_curve", kParticleStep)
+    ->Arg(4000)
+    ->Arg(65536)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, fluid_sample_ipc, "ipc", kFluidSample)->Apply(sizes)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, fluid_advance_ipc, "ipc", kFluidStep)->Apply(sizes)->UseRealTime();
 

@@ -13,7 +13,9 @@
 #include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 #include "coupler.h"
+#include "keys_command.h"
 #include "launchers.h"
+#include "link_security.h"
 #include "plan.h"
 #include "scenario.h"
 #include "study.h"
@@ -85,9 +87,16 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
             << (sc.models.mass_transfer ? sc.models.mass_transfer->law : "none")
             << ", coating zone " << (sc.models.coating_zone ? sc.models.coating_zone->law : "none")
             << "\n";
+  std::cout << "  link: " << linkDescription(sc.transport) << "\n";
   for (const auto& [name, spec] : sc.participants) {
     if (name == "fluid" && !p.fluid) continue;
-    std::cout << "  launch " << name << ": " << describeLaunch(spec) << "\n";
+    const bool curve = isTcp(sc.transport.bind) && !sc.transport.insecure;
+    std::cout << "  launch " << name << ": " << describeLaunch(spec)
+              << (!curve                      ? ""
+                  : spec.launch != "external" ? "; its run keys through the environment"
+                                              : "; its run keys in RUN/.cosim-" + name +
+                                                    ".key (--key-file)")
+              << "\n";
   }
   for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
   for (const auto& a : checked) std::cout << "  checked: " << a << "\n";
@@ -194,6 +203,16 @@ int main(int argc, char** argv) {
 
   auto* models = app.add_subcommand("models", "List the coupling models this build knows");
 
+  auto* keys = app.add_subcommand(
+      "keys",
+      "Create the orchestrator's CurveZMQ key file for tcp:// runs if it does not exist (mode "
+      "0600), and show a key file's public keys (never a secret one)");
+  std::string key_file;
+  keys->add_option("file", key_file,
+                   "key file (default: $XDG_CONFIG_HOME/cosim/orchestrator.key, else "
+                   "~/.config/cosim/orchestrator.key); a participant's RUN/.cosim-NAME.key is "
+                   "shown");
+
 #ifdef COSIM_HAVE_REPORT
   cosim::analysis::ReportOptions rep_opt;
   auto* rep = app.add_subcommand(
@@ -245,6 +264,7 @@ int main(int argc, char** argv) {
 
   try {
     if (*val) return validate(scenario, sets, unsets);
+    if (*keys) return keysCommand(key_file, std::cout);
     if (*study) {
       for (const auto& v : vary) sopt.vary.push_back(parseVary(v));
       // Ctrl-C or SIGTERM: the running variant checkpoints and stops, and so does the study

@@ -10,10 +10,12 @@
 #include <thread>
 
 #include "case_files.h"
+#include "cosim/link/curve_keys.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/file_transfer.h"
 #include "cosim/link/session.h"
 #include "launchers.h"
+#include "link_security.h"
 #include "processes.h"
 #include "run_token.h"
 #include "socket_folder.h"
@@ -36,6 +38,7 @@ struct Participants::Peer {
   bool connected = false;
   std::string route;  // ZeroMQ routing id of the socket its Hello came from; empty before
   std::vector<std::string> send, receive;
+  link::CurveKeyPair keys;  // issued for this run when the link is CurveZMQ
   // Step and time of the last message sent to it; its replies must be for that step. A peer
   // that idled (cosim bench runs one solver alone) gets its Shutdown at its own step.
   std::uint64_t step = 0;
@@ -110,10 +113,21 @@ std::string Participants::connectEndpoint() const {
 
 void Participants::start(const fs::path& run_folder) {
   std::string endpoint = sc_.transport.bind;
-  if (endpoint.empty()) endpoint = "ipc://" + (privateSocketFolder() / (run_id_ + ".ipc")).string();
-  hub_ = std::make_unique<link::Hub>(endpoint);
-  const std::string connect = connectEndpoint();
+  std::optional<link::CurveKeyPair> server_keys;
+  try {
+    if (endpoint.empty())
+      endpoint = "ipc://" + (privateSocketFolder() / (run_id_ + ".ipc")).string();
+    else
+      endpoint = bindAddress(endpoint);
+    server_keys = orchestratorKeys(sc_.transport, endpoint);
+  } catch (const RunFailure&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw RunFailure("", e.what());
+  }
 
+  // Every participant's keys for this run, before the hub exists: it accepts these and no other.
+  link::HubSecurity security;
   for (const auto& [name, spec] : sc_.participants) {
     const bool used = name == "particles" || (name == "fluid" && plan_.fluid);
     if (!used) continue;
@@ -121,14 +135,43 @@ void Participants::start(const fs::path& run_folder) {
     peer->spec = spec;
     peer->workdir = run_folder / name;
     peer->log = run_folder / (name + ".log");
+    if (server_keys) {
+      peer->keys = link::newCurveKeyPair();
+      security.clients.insert(peer->keys.public_key);
+    }
+    peers_[name] = std::move(peer);
+  }
+  if (server_keys) {
+    security.server = *server_keys;
+    orchestrator_public_ = server_keys->public_key;
+  } else if (isTcp(endpoint)) {
+    log_.warn("transport.insecure: the link at " + endpoint +
+              " is neither encrypted nor authenticated: anyone who reaches the port can read "
+              "the particle data (and, with the run token, which is sent in the clear, join the "
+              "run); use it only on a network you trust");
+  }
+  try {
+    hub_ = std::make_unique<link::Hub>(endpoint, security);
+  } catch (const std::exception& e) {
+    throw RunFailure("", "cannot bind the orchestrator's socket " + endpoint + ": " + e.what() +
+                             " (transport.bind)");
+  }
+  const std::string connect = connectEndpoint();
+
+  for (auto& [name, peer] : peers_) {
+    const ParticipantSpec& spec = peer->spec;
     const bool resuming = !restart_from_.empty();
     if (resuming && !fs::is_directory(peer->workdir))
       throw RunFailure(name, "cannot resume: its folder " + peer->workdir.string() + " is gone");
     fs::create_directories(peer->workdir);
     if (!resuming && !spec.files.empty()) copyCaseFiles(spec.files, peer->workdir, sc_.parameters);
+    const link::CurveClientKeys keys{orchestrator_public_, peer->keys};
     if (spec.launch != "external") {
       const auto argv = commandLine(name, spec, connect, run_id_, commandTimeout(sc_.participants));
+      // The secrets through the environment, which only the user (and root) can read, never on
+      // the command line, which everyone can (ps).
       std::map<std::string, std::string> env{{link::kRunTokenVariable, token_}};
+      if (!keys.empty()) env[link::kCurveKeysVariable] = link::curveKeysVariableText(keys);
       if (spec.mpi > 1 && geteuid() == 0) {
         env["OMPI_ALLOW_RUN_AS_ROOT"] = "1";
         env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1";
@@ -140,16 +183,29 @@ void Participants::start(const fs::path& run_folder) {
       }
       log_.file("started " + name + " (" + describeLaunch(spec) + "): " + join(argv));
     } else {
-      if (token_file_.empty()) token_file_ = writeRunTokenFile(run_folder, token_);
-      log_.show("waiting for " + name + " (launch: external): start it with --endpoint " + connect +
-                " --name " + name + " --run-id " + run_id_ + " --command-timeout " +
-                std::to_string(commandTimeout(sc_.participants)) + " --token-file " +
-                token_file_.string());
+      try {
+        if (token_file_.empty()) token_file_ = writeRunTokenFile(run_folder, token_);
+        if (!keys.empty()) {
+          const fs::path file = participantKeyFile(run_folder, name);
+          link::writeParticipantKeyFile(file, keys, run_id_, name);
+          key_files_[name] = file;
+        }
+      } catch (const std::exception& e) {
+        throw RunFailure(name, e.what());
+      }
+      log_.show("waiting for " + name + " (launch: external): start it with " +
+                externalStart(name));
       log_.show("  (on a node that does not see " + run_folder.string() +
-                ": copy the token file there and add --workdir DIR, a folder of its own there; "
-                "its files then travel over the link)");
+                ": add --workdir DIR, a folder of its own there; its files then travel over the "
+                "link)");
+      if (!keys.empty()) {
+        log_.show("  " + name + "'s CurveZMQ keys for this run are in " +
+                  key_files_[name].string() +
+                  " (mode 0600): on a node that does not share the run folder, copy it and " +
+                  token_file_.filename().string() +
+                  " there (scp -p) and give their paths to --key-file and --token-file");
+      }
     }
-    peers_[name] = std::move(peer);
   }
   log_.console("run folder " + run_folder.string());
   for (const auto& n : plan_.notes) log_.console("note: " + n);
@@ -160,7 +216,28 @@ void Participants::start(const fs::path& run_folder) {
            (p->spec.launch == "slurm" || p->spec.launch == "mpirun" ? ", " + p->spec.launch : "") +
            ")";
   }
-  log_.console("orchestrator at " + connect + "; participants: " + who);
+  log_.show("orchestrator at " + connect +
+            (server_keys       ? " (CurveZMQ)"
+             : isTcp(endpoint) ? " (NOT encrypted: transport.insecure)"
+                               : "") +
+            "; participants: " + who);
+}
+
+std::string Participants::externalStart(const std::string& name) const {
+  std::string s = "--endpoint " + connectEndpoint() + " --name " + name + " --run-id " + run_id_ +
+                  " --command-timeout " + std::to_string(commandTimeout(sc_.participants)) +
+                  " --token-file " + token_file_.string();
+  if (auto it = key_files_.find(name); it != key_files_.end())
+    s += " --key-file " + it->second.string();
+  return s;
+}
+
+void Participants::logRefusals() {
+  if (!hub_) return;
+  for (const auto& line : hub_->takeRefusals()) {
+    log_.file(line);
+    if (refusal_seen_.empty()) refusal_seen_ = line;
+  }
 }
 
 void Participants::setClock(std::uint64_t step, double time) {
@@ -268,6 +345,7 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
     if (auto in = hub_->receive(link::Millis(100))) {
       if (const auto who = admit(*in)) take(*who, *in->envelope, expected, got);
     }
+    logRefusals();
     // On every wake-up, message or not: no stream of messages may hide a dead or silent peer.
     checkAlive(expected, got, start, timeout);
   }
@@ -410,6 +488,7 @@ void Participants::handshake() {
         }
       }
     }
+    logRefusals();
     // On every wake-up, message or not: no stream of messages may hide a dead participant.
     for (const auto& n : waiting) {
       Peer& p = *peers_.at(n);
@@ -423,15 +502,18 @@ void Participants::handshake() {
         sc_.transport.handshake_timeout) {
       const std::string who = *waiting.begin();
       throw RunFailure(
-          who, "did not connect within " +
-                   std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
-                   " s (transport.handshake_timeout)" + ignoredNote(who) +
-                   (peers_.at(who)->spec.launch == "external"
-                        ? "; start it with --endpoint " + connectEndpoint() + " --name " + who +
-                              " --run-id " + run_id_ + " --command-timeout " +
-                              std::to_string(commandTimeout(sc_.participants)) + " --token-file " +
-                              token_file_.string()
-                        : ""));
+          who,
+          "did not connect within " +
+              std::to_string(static_cast<int>(sc_.transport.handshake_timeout)) +
+              " s (transport.handshake_timeout)" + ignoredNote(who) +
+              (refusal_seen_.empty() ? std::string()
+                                     : "; connections were refused at the security handshake "
+                                       "meanwhile ('" +
+                                           refusal_seen_ +
+                                           "' in cosim.log): a participant started with the key "
+                                           "file of another run, or without keys?") +
+              (peers_.at(who)->spec.launch == "external" ? "; start it with " + externalStart(who)
+                                                         : ""));
     }
   }
 }
@@ -550,12 +632,18 @@ void Participants::shutdown(bool clean) {
     compute_[n] += 0.0;  // every participant appears in the summary's timings
   }
   peers_.clear();
+  logRefusals();
   hub_.reset();  // the hub removes the ipc:// socket file it created
   if (!token_file_.empty()) {
     std::error_code ec;
     fs::remove(token_file_, ec);
     token_file_.clear();
   }
+  for (const auto& [name, file] : key_files_) {
+    std::error_code ec;
+    fs::remove(file, ec);
+  }
+  key_files_.clear();
 }
 
 }  // namespace cosim::orchestrator

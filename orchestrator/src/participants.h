@@ -113,6 +113,10 @@ class Participants {
   void checkAlive(const std::map<std::string, wire::Envelope::BodyCase>& expected,
                   const Replies& got, std::chrono::steady_clock::time_point start, double timeout);
   std::string connectEndpoint() const;
+  // The hub's refused connections (no keys of this run, garbage) into cosim.log.
+  void logRefusals();
+  // How a participant of launch: external is started, for the messages.
+  std::string externalStart(const std::string& name) const;
 
   const Scenario& sc_;
   const Plan& plan_;
@@ -125,8 +129,11 @@ class Participants {
   double time_ = 0.0;
   std::filesystem::path restart_from_;
   bool stop_noted_ = false;
-  std::string token_;                           // this run's secret (run_token.h)
-  std::filesystem::path token_file_;            // written for participants of launch: external
+  std::string token_;                 // this run's secret (run_token.h)
+  std::filesystem::path token_file_;  // written for participants of launch: external
+  std::string orchestrator_public_;   // CurveZMQ: the server's public key; else empty
+  std::map<std::string, std::filesystem::path> key_files_;  // of participants of launch: external
+  std::string refusal_seen_;  // the first connection the hub refused, for the messages
   std::map<std::string, std::string> ignored_;  // names claimed by dropped messages, and why
 };
 

@@ -284,7 +284,7 @@ Scenario parseTree(YAML::Node root, const fs::path& origin, const std::vector<st
   reading = "checkpoint";
   sc.checkpoint = parseCheckpoint(root["checkpoint"], ctx);
   reading = "transport";
-  sc.transport = parseTransport(root["transport"], ctx);
+  sc.transport = parseTransport(root["transport"], ctx, sc.dir);
   reading = "checks";
   sc.checks = parseChecks(root["checks"], ctx);
   reading = "observables";

@@ -108,6 +108,12 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
                  "file holding the run's token (RUN/.cosim-run-token; otherwise the environment "
                  "variable " +
                      std::string(kRunTokenVariable) + ")");
+  std::string key_file;
+  app.add_option("--key-file", key_file,
+                 "file holding this participant's CurveZMQ keys for a tcp:// run (cosim writes it "
+                 "to RUN/.cosim-NAME.key for participants of launch: external; otherwise the "
+                 "environment variable " +
+                     std::string(kCurveKeysVariable) + ")");
   app.add_option("--heartbeat-ms", o.heartbeat_ms, "heartbeat interval [ms]")
       ->capture_default_str();
   app.add_option("--command-timeout", command_timeout_s,
@@ -138,11 +144,29 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   } else if (const char* t = std::getenv(kRunTokenVariable)) {
     o.token = t;
   }
+  if (!key_file.empty()) {
+    const ParticipantKeyFile f = readParticipantKeyFile(key_file);
+    if (!f.participant.empty() && f.participant != o.name) {
+      throw std::runtime_error("--key-file " + key_file + " holds the keys of participant '" +
+                               f.participant + "', not of '" + o.name +
+                               "': give this participant its own key file");
+    }
+    if (!o.run_id.empty() && !f.run_id.empty() && f.run_id != o.run_id) {
+      throw std::runtime_error("--key-file " + key_file + " holds the keys of run " + f.run_id +
+                               ", not of run " + o.run_id +
+                               ": every run issues new keys; copy this run's key file");
+    }
+    o.curve = f.keys;
+  } else if (const char* k = std::getenv(kCurveKeysVariable)) {
+    o.curve = parseCurveKeysVariable(k);
+  }
   return o;
 }
 
 Session::Session(const ParticipantOptions& options, const Capabilities& caps)
-    : options_(options), caps_(caps), channel_(std::make_unique<Channel>(options.endpoint)) {}
+    : options_(options),
+      caps_(caps),
+      channel_(std::make_unique<Channel>(options.endpoint, "", options.curve)) {}
 
 Session::~Session() {
   stop_heartbeat_ = true;
@@ -178,12 +202,24 @@ wire::Welcome Session::handshake() {
   const auto deadline = Clock::now() + Millis(options_.handshake_timeout_ms);
   std::optional<wire::Envelope> reply;
   while (!reply && Clock::now() < deadline) {
-    channel_->send(hello);
+    try {
+      channel_->send(hello);
+    } catch (const PeerError& e) {
+      throw PeerError("the orchestrator at " + options_.endpoint +
+                      " does not let this participant in: " + e.what());
+    }
     reply = channel_->receive(std::min(kHelloResend, until(deadline)));
   }
   if (!reply) {
-    throw TimeoutError("no answer from the orchestrator at " + options_.endpoint + " within " +
-                       std::to_string(options_.handshake_timeout_ms / 1000) + " s");
+    const std::string failure = channel_->handshakeFailure();
+    throw TimeoutError(
+        "no answer from the orchestrator at " + options_.endpoint + " within " +
+        std::to_string(options_.handshake_timeout_ms / 1000) + " s" +
+        (failure.empty() ? std::string() : ": " + failure) +
+        (failure.empty() && options_.curve.empty() && options_.endpoint.rfind("tcp://", 0) == 0
+             ? std::string(" (this participant has no CurveZMQ keys: over tcp:// the "
+                           "orchestrator accepts only the keys it issued, --key-file)")
+             : std::string()));
   }
   if (reply->has_refused()) {
     throw PeerError("the orchestrator refused this participant: " + reply->refused().reason());
@@ -201,7 +237,7 @@ wire::Welcome Session::handshake() {
   // Heartbeats from a socket of their own (ZeroMQ sockets belong to one thread). Its connection
   // also tells whether the orchestrator is still there.
   heartbeat_ = std::thread([this] {
-    Channel hb(options_.endpoint);
+    Channel hb(options_.endpoint, "", options_.curve);
     std::uint64_t seq = 0;
     Clock::time_point gone_at;
     while (!stop_heartbeat_) {

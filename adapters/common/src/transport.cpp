@@ -4,7 +4,10 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <mutex>
+#include <thread>
 #include <zmq.hpp>
 
 #include "cosim/link/errors.h"
@@ -63,11 +66,32 @@ class ConnectionWatch : public zmq::monitor_t {
  public:
   bool up = false;
   std::chrono::steady_clock::time_point down_since = std::chrono::steady_clock::now();
+  std::string handshake_failure;
 
   void on_event_connected(const zmq_event_t&, const char*) override { up = true; }
   void on_event_disconnected(const zmq_event_t&, const char*) override {
     up = false;
     down_since = std::chrono::steady_clock::now();
+  }
+  void on_event_handshake_failed_auth(const zmq_event_t& e, const char*) override {
+    handshake_failure = "the orchestrator refused this participant's CurveZMQ key (ZAP status " +
+                        std::to_string(e.value) +
+                        "): the key is not one it issued for this run (a key file of another "
+                        "run?)";
+  }
+  void on_event_handshake_failed_protocol(const zmq_event_t&, const char*) override {
+    handshake_failure =
+        "the security handshake with the orchestrator failed: one side uses CurveZMQ and the "
+        "other not, or the orchestrator's public key is not the one in this participant's keys "
+        "(--key-file of this run, or transport.insecure on both sides)";
+  }
+  void on_event_handshake_failed_no_detail(const zmq_event_t&, const char*) override {
+    handshake_failure =
+        "the security handshake with the orchestrator failed (is the orchestrator's public key "
+        "in this participant's keys the one of this run?)";
+  }
+  void on_event_handshake_succeeded(const zmq_event_t&, const char*) override {
+    handshake_failure.clear();
   }
 };
 
@@ -82,14 +106,29 @@ struct Channel::Impl {
   ConnectionWatch watch;  // declared after the socket: stops monitoring before it closes
 };
 
-Channel::Channel(const std::string& endpoint, const std::string& identity)
+Channel::Channel(const std::string& endpoint, const std::string& identity,
+                 const CurveClientKeys& curve)
     : impl_(std::make_unique<Impl>()) {
   silenceProtobufLog();
   configure(impl_->socket);
   if (!identity.empty()) impl_->socket.set(zmq::sockopt::routing_id, identity);
+  if (!curve.empty()) {
+    requireCurve();
+    impl_->socket.set(zmq::sockopt::curve_serverkey, curve.orchestrator_public);
+    impl_->socket.set(zmq::sockopt::curve_publickey, curve.own.public_key);
+    impl_->socket.set(zmq::sockopt::curve_secretkey, curve.own.secret_key);
+  }
   impl_->watch.init(impl_->socket, uniqueMonitorAddress(),
-                    ZMQ_EVENT_CONNECTED | ZMQ_EVENT_DISCONNECTED);
+                    ZMQ_EVENT_CONNECTED | ZMQ_EVENT_DISCONNECTED |
+                        ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL | ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL |
+                        ZMQ_EVENT_HANDSHAKE_FAILED_AUTH | ZMQ_EVENT_HANDSHAKE_SUCCEEDED);
   impl_->socket.connect(endpoint);
+}
+
+std::string Channel::handshakeFailure() {
+  while (impl_->watch.check_event(0)) {
+  }
+  return impl_->watch.handshake_failure;
 }
 
 Millis Channel::timeWithoutConnection() {
@@ -120,7 +159,19 @@ Channel::~Channel() = default;
 void Channel::send(const wire::Envelope& env) { sendRaw(serialize(env)); }
 
 void Channel::sendRaw(const std::string& bytes) {
-  impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::none);
+  // Waits while the message cannot be queued (no connection yet, or a full queue), as a blocking
+  // send would, but not for a connection the orchestrator refused at its security handshake:
+  // ZeroMQ then drops the connection and a blocking send would wait for ever.
+  for (;;) {
+    if (impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::dontwait)) return;
+    if (const std::string failure = handshakeFailure(); !failure.empty()) throw PeerError(failure);
+    zmq::pollitem_t item{impl_->socket.handle(), 0, ZMQ_POLLOUT, 0};
+    try {
+      zmq::poll(&item, 1, Millis(100));
+    } catch (const zmq::error_t& e) {
+      if (e.num() != EINTR) throw;
+    }
+  }
 }
 
 std::optional<wire::Envelope> Channel::receive(Millis timeout) {
@@ -132,13 +183,109 @@ std::optional<wire::Envelope> Channel::receive(Millis timeout) {
 
 // ---- Hub -------------------------------------------------------------------------------------
 
+namespace {
+// At most this many refused connections are described (takeRefusals), whatever a stranger does.
+constexpr std::size_t kMaxRefusalLines = 20;
+constexpr const char* kZapEndpoint = "inproc://zeromq.zap.01";
+constexpr const char* kHubMonitor = "inproc://cosim-hub-monitor";
+}  // namespace
+
+// The hub has a ZeroMQ context of its own: ZeroMQ asks the ZAP handler bound at
+// inproc://zeromq.zap.01 in the socket's context, one per context, so that every hub (tests make
+// several in one process) has its own.
 struct Hub::Impl {
-  zmq::socket_t socket{context(), zmq::socket_type::router};
+  zmq::context_t ctx{1};
+  zmq::socket_t socket{ctx, zmq::socket_type::router};
   std::string endpoint;
   std::string ipc_file;  // the socket file this hub created, removed with it
+
+  // CurveZMQ: the ZAP handler and the watch of failed handshakes, in a thread of their own.
+  HubSecurity security;
+  std::thread guard;
+  std::atomic<bool> stop{false};
+  std::mutex refusals_mutex;
+  std::vector<std::string> refusals;
+  std::size_t refusals_described = 0;
+
+  void refused(const std::string& line) {
+    std::lock_guard<std::mutex> lock(refusals_mutex);
+    if (refusals_described > kMaxRefusalLines) return;
+    ++refusals_described;
+    refusals.push_back(refusals_described > kMaxRefusalLines
+                           ? "further refused connections are not listed"
+                           : line);
+  }
+  void serveZap(zmq::socket_t& zap);
+  void noteHandshakeEvent(zmq::socket_t& monitor);
+  void runGuard(zmq::socket_t zap, zmq::socket_t monitor);
 };
 
-Hub::Hub(const std::string& endpoint) : impl_(std::make_unique<Impl>()) {
+// One ZAP request (RFC 27): version, request id, domain, address, routing id, mechanism,
+// credentials; answered 200 for a client key of this run, 400 for any other.
+void Hub::Impl::serveZap(zmq::socket_t& zap) {
+  std::vector<zmq::message_t> frames;
+  do {
+    frames.emplace_back();
+    if (!zap.recv(frames.back(), zmq::recv_flags::dontwait)) return;
+  } while (frames.back().more() && frames.size() < 16);
+  while (frames.back().more()) {  // drain what no ZAP request has
+    zmq::message_t extra;
+    if (!zap.recv(extra, zmq::recv_flags::dontwait)) break;
+    frames.back() = std::move(extra);
+  }
+  const std::string request_id = frames.size() > 1 ? frames[1].to_string() : "";
+  const std::string address = frames.size() > 3 ? frames[3].to_string() : "?";
+  const std::string mechanism = frames.size() > 5 ? frames[5].to_string() : "";
+  bool ok = false;
+  std::string why = "it does not use CurveZMQ";
+  if (mechanism == "CURVE" && frames.size() > 6 && frames[6].size() == 32) {
+    char z85[41] = {0};
+    zmq_z85_encode(z85, static_cast<const std::uint8_t*>(frames[6].data()), 32);
+    ok = security.clients.count(z85) > 0;
+    why = "its key was not issued for this run";
+  }
+  if (!ok) refused("refused a connection from " + address + ": " + why);
+  const std::string status = ok ? "200" : "400";
+  const std::string text = ok ? "OK" : "key not issued for this run";
+  zap.send(zmq::buffer(std::string("1.0")), zmq::send_flags::sndmore);
+  zap.send(zmq::buffer(request_id), zmq::send_flags::sndmore);
+  zap.send(zmq::buffer(status), zmq::send_flags::sndmore);
+  zap.send(zmq::buffer(text), zmq::send_flags::sndmore);
+  zap.send(zmq::buffer(std::string()), zmq::send_flags::sndmore);  // user id
+  zap.send(zmq::buffer(std::string()), zmq::send_flags::none);     // metadata
+}
+
+// A socket monitor event: 2 bytes event, 4 bytes value, then the peer's address.
+void Hub::Impl::noteHandshakeEvent(zmq::socket_t& monitor) {
+  zmq::message_t head, address;
+  if (!monitor.recv(head, zmq::recv_flags::dontwait)) return;
+  if (head.more()) (void)monitor.recv(address, zmq::recv_flags::dontwait);
+  if (head.size() < 2) return;
+  std::uint16_t event = 0;
+  std::memcpy(&event, head.data(), sizeof event);
+  if (event == ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL || event == ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL)
+    refused("refused a connection from " + address.to_string() +
+            ": its security handshake failed (no CurveZMQ keys, a wrong orchestrator key, or "
+            "bytes that are not ZeroMQ)");
+}
+
+void Hub::Impl::runGuard(zmq::socket_t zap, zmq::socket_t monitor) {
+  while (!stop) {
+    zmq::pollitem_t items[] = {{zap.handle(), 0, ZMQ_POLLIN, 0},
+                               {monitor.handle(), 0, ZMQ_POLLIN, 0}};
+    try {
+      zmq::poll(items, 2, Millis(100));
+      if (items[0].revents & ZMQ_POLLIN) serveZap(zap);
+      if (items[1].revents & ZMQ_POLLIN) noteHandshakeEvent(monitor);
+    } catch (const zmq::error_t& e) {
+      if (e.num() == ETERM) return;
+      // EINTR and the like: poll again.
+    }
+  }
+}
+
+Hub::Hub(const std::string& endpoint, const HubSecurity& security)
+    : impl_(std::make_unique<Impl>()) {
   silenceProtobufLog();
   // ZeroMQ unlinks whatever file an ipc:// endpoint names before it binds: never bind a path
   // that exists, so that no address can make cosim delete a file it did not create.
@@ -151,24 +298,61 @@ Hub::Hub(const std::string& endpoint) : impl_(std::make_unique<Impl>()) {
                       "': the file exists (ZeroMQ would delete it); give an ipc path that does "
                       "not exist");
     }
-    impl_->ipc_file = path;
   }
   configure(impl_->socket);
   // Fail loudly when sending to a peer that is not (or no longer) connected.
   impl_->socket.set(zmq::sockopt::router_mandatory, true);
-  impl_->socket.bind(endpoint);
+  if (security.enabled()) {
+    requireCurve();
+    impl_->security = security;
+    // The handler is bound before the hub's socket: no connection is ever let in unasked.
+    zmq::socket_t zap(impl_->ctx, zmq::socket_type::rep);
+    zap.set(zmq::sockopt::linger, 0);
+    zap.bind(kZapEndpoint);
+    if (zmq_socket_monitor(
+            impl_->socket.handle(), kHubMonitor,
+            ZMQ_EVENT_HANDSHAKE_FAILED_PROTOCOL | ZMQ_EVENT_HANDSHAKE_FAILED_NO_DETAIL) != 0)
+      throw PeerError(std::string("cannot watch the hub's handshakes: ") +
+                      zmq_strerror(zmq_errno()));
+    zmq::socket_t monitor(impl_->ctx, zmq::socket_type::pair);
+    monitor.set(zmq::sockopt::linger, 0);
+    monitor.connect(kHubMonitor);
+    impl_->socket.set(zmq::sockopt::curve_server, true);
+    impl_->socket.set(zmq::sockopt::curve_secretkey, security.server.secret_key);
+    impl_->socket.set(zmq::sockopt::zap_domain, "cosim");
+    Impl* impl = impl_.get();
+    impl_->guard = std::thread([impl, z = std::move(zap), m = std::move(monitor)]() mutable {
+      impl->runGuard(std::move(z), std::move(m));
+    });
+  }
+  try {
+    impl_->socket.bind(endpoint);
+  } catch (...) {
+    impl_->stop = true;
+    if (impl_->guard.joinable()) impl_->guard.join();
+    throw;
+  }
+  if (endpoint.rfind("ipc://", 0) == 0) impl_->ipc_file = endpoint.substr(6);
   impl_->endpoint = impl_->socket.get(zmq::sockopt::last_endpoint);
 }
 
 Hub::~Hub() {
-  if (!impl_ || impl_->ipc_file.empty()) return;
+  if (!impl_) return;
+  impl_->stop = true;
+  if (impl_->guard.joinable()) impl_->guard.join();
   impl_->socket.close();
+  if (impl_->ipc_file.empty()) return;
   // Only the socket this hub bound: a socket file, at the path nothing existed at before.
   std::error_code ec;
   if (std::filesystem::symlink_status(impl_->ipc_file, ec).type() ==
       std::filesystem::file_type::socket) {
     std::filesystem::remove(impl_->ipc_file, ec);
   }
+}
+
+std::vector<std::string> Hub::takeRefusals() {
+  std::lock_guard<std::mutex> lock(impl_->refusals_mutex);
+  return std::exchange(impl_->refusals, {});
 }
 
 const std::string& Hub::endpoint() const { return impl_->endpoint; }

@@ -1,5 +1,6 @@
 #include "scenario/transport_section.h"
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "scenario/limits.h"
@@ -8,12 +9,22 @@ namespace cosim::orchestrator {
 
 const std::vector<KeySpec>& TransportSection::keys() {
   static const std::vector<KeySpec> k = {
-      {"bind", "ipc:///tmp/cosim-RUN.ipc",
+      {"bind", "ipc:///tmp/cosim-UID/RUN.ipc",
        "the orchestrator's socket: ipc://PATH (a file that does not exist yet) or "
-       "tcp://HOST:PORT (port 1 .. 65535 or *)"},
+       "tcp://HOST:PORT (port 1 .. 65535 or *; HOST an address, host name or interface that "
+       "participants reach, not * (every interface); tcp://:PORT binds the address of this "
+       "host's name). tcp:// is encrypted with CurveZMQ unless insecure is true"},
       {"connect", "bind", "the address participants connect to, if not the bind address"},
       {"heartbeat_timeout", "10", "seconds without a sign of life from a participant; > 0"},
       {"handshake_timeout", "60", "seconds for every participant to connect and say Hello; > 0"},
+      {"insecure", "false",
+       "true: a tcp:// link without CurveZMQ, neither encrypted nor authenticated (anyone who "
+       "reaches the port can read the particle data); every run then warns. Only for a network "
+       "you trust, or a libzmq without CurveZMQ"},
+      {"key_file",
+       "$XDG_CONFIG_HOME/cosim/orchestrator.key (else ~/.config/cosim/orchestrator.key)",
+       "the orchestrator's long-term CurveZMQ key pair for tcp:// (mode 0600; `cosim keys` "
+       "creates it); relative to the scenario's folder, ~/ for the home folder"},
   };
   return k;
 }
@@ -34,9 +45,16 @@ std::string endpointProblem(const std::string& ep, bool binding) {
   if (ep.rfind("tcp://", 0) == 0) {
     const std::string rest = ep.substr(6);
     const auto colon = rest.rfind(':');
-    if (colon == std::string::npos || colon == 0)
-      return "expected tcp://HOST:PORT, e.g. tcp://127.0.0.1:5555";
+    if (colon == std::string::npos) return "expected tcp://HOST:PORT, e.g. tcp://127.0.0.1:5555";
     const std::string port = rest.substr(colon + 1);
+    const std::string host = rest.substr(0, colon);
+    if (host.empty() && !binding)
+      return "has no host; give the host participants connect to, e.g. tcp://node01:5555";
+    if (binding && (host == "*" || host == "0.0.0.0" || host == "[::]" || host == "::")) {
+      return "binds every interface of this host; name the one participants reach "
+             "(tcp://HOST:PORT with an address, a host name or an interface such as eth0), or "
+             "leave HOST out (tcp://:PORT) for the address of this host's name";
+    }
     if (port == "*") {
       if (binding) return "";
       return "a participant cannot connect to port '*'; give the port the orchestrator binds";
@@ -52,7 +70,8 @@ std::string endpointProblem(const std::string& ep, bool binding) {
   return "must start with ipc:// or tcp://";
 }
 
-TransportSection parseTransport(const YAML::Node& t, const Context& ctx) {
+TransportSection parseTransport(const YAML::Node& t, const Context& ctx,
+                                const std::filesystem::path& dir) {
   TransportSection out;
   if (!ctx.section(t, "transport", "{ bind: ..., connect: ..., heartbeat_timeout: ... }"))
     return out;
@@ -72,6 +91,21 @@ TransportSection parseTransport(const YAML::Node& t, const Context& ctx) {
   if (t["handshake_timeout"])
     out.handshake_timeout = ctx.inRange(t["handshake_timeout"], "transport.handshake_timeout", 1e-3,
                                         limits::kMaxTimeout, "seconds");
+  if (t["insecure"]) {
+    const std::string v = ctx.text(t["insecure"], "transport.insecure");
+    if (v != "true" && v != "false")
+      ctx.fail(t["insecure"], "transport.insecure", "expected true or false, got '" + v + "'");
+    out.insecure = v == "true";
+  }
+  if (t["key_file"]) {
+    const std::string f = ctx.text(t["key_file"], "transport.key_file");
+    if (f.empty()) ctx.fail(t["key_file"], "transport.key_file", "expected a file name");
+    const char* home = std::getenv("HOME");
+    if (f.rfind("~/", 0) == 0 && home != nullptr)
+      out.key_file = std::filesystem::path(home) / f.substr(2);
+    else
+      out.key_file = std::filesystem::path(f).is_absolute() ? std::filesystem::path(f) : dir / f;
+  }
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cosim.pb.h"
+#include "cosim/link/curve_keys.h"
 #include "cosim/link/particle_data.h"
 #include "cosim/link/transport.h"
 
@@ -31,6 +32,9 @@ struct ParticipantOptions {
   // The run's secret, carried by every message: read from --token-file, else from the
   // environment variable COSIM_RUN_TOKEN (set by cosim for the participants it starts).
   std::string token;
+  // CurveZMQ keys for a tcp:// link: read from --key-file, else from the environment variable
+  // COSIM_CURVE_KEYS (set by cosim for the participants it starts); empty: no encryption.
+  CurveClientKeys curve;
   int heartbeat_ms = 500;
   int handshake_timeout_ms = 30000;
   int command_timeout_ms = 600000;  // orchestrator silent this long: give up
@@ -49,7 +53,8 @@ struct ParticipantOptions {
   // Empty: the Welcome's workdir in the run folder is used, as on one machine.
   std::string workdir;
   // The adapter's command line, parsed with CLI11: --endpoint, --name, --run-id, --token-file,
-  // --heartbeat-ms, --command-timeout (seconds), --check-options FILE, --ranks N, --workdir DIR,
+  // --key-file, --heartbeat-ms, --command-timeout (seconds), --check-options FILE, --ranks N,
+  // --workdir DIR,
   // --help. `--help` prints `about` and the options to stdout and returns nullopt (the adapter then
   // exits 0). Arguments it does not know are left in `rest` in their order (e.g. OpenFOAM's
   // -parallel, -case DIR), or ignored when rest is null. Throws std::runtime_error with the usage

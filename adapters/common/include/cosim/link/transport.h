@@ -1,16 +1,20 @@
 // Transport: ZeroMQ sockets carrying wire::Envelope messages. The orchestrator binds one Hub
 // (ROUTER) at one address; each participant connects a Channel (DEALER); the hub tells its
 // peers apart by their ZeroMQ routing ids. ipc:// locally, tcp:// across nodes, same code.
-// Every receive is bounded.
+// Every receive is bounded. Over tcp:// the link is CurveZMQ (encrypted, and only the client
+// keys the hub was given may connect: curve_keys.h) unless the scene says transport.insecure.
 #pragma once
 
 #include <chrono>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "cosim.pb.h"
+#include "cosim/link/curve_keys.h"
 
 namespace cosim::link {
 
@@ -26,7 +30,9 @@ class Channel {
   // identity: the ZeroMQ routing id the hub sees as the peer; empty: one ZeroMQ makes up for
   // each connection (what participants use: a name a stranger could take first is no name to
   // rely on, so the orchestrator knows a participant by its Hello, not by its routing id).
-  Channel(const std::string& endpoint, const std::string& identity = "");
+  // curve: this participant's keys and the orchestrator's public key (empty: no encryption).
+  Channel(const std::string& endpoint, const std::string& identity = "",
+          const CurveClientKeys& curve = {});
   ~Channel();
   Channel(const Channel&) = delete;
   Channel& operator=(const Channel&) = delete;
@@ -43,16 +49,30 @@ class Channel {
   // while one that is gone (nothing accepts at the address: killed, or its host unreachable
   // once ZeroMQ's heartbeat closes the connection) leaves it disconnected.
   Millis timeWithoutConnection();
+  // Why the last security handshake with the orchestrator failed (e.g. its keys were refused),
+  // empty if none did.
+  std::string handshakeFailure();
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
+// The hub's CurveZMQ side: its key pair and the only client public keys it accepts.
+struct HubSecurity {
+  CurveKeyPair server;
+  std::set<std::string> clients;  // Z85 public keys
+  bool enabled() const { return !server.secret_key.empty(); }
+};
+
 // Orchestrator side.
 class Hub {
  public:
-  explicit Hub(const std::string& endpoint);
+  // security enabled: every connection is CurveZMQ; a ZAP handler (ZeroMQ's authentication
+  // protocol, in a thread of the hub) lets in the clients whose public key is in
+  // security.clients and refuses any other; a peer that does not speak CurveZMQ fails the
+  // handshake. Neither reaches receive().
+  explicit Hub(const std::string& endpoint, const HubSecurity& security = {});
   ~Hub();
   Hub(const Hub&) = delete;
   Hub& operator=(const Hub&) = delete;
@@ -68,6 +88,10 @@ class Hub {
   };
   // nullopt on timeout.
   std::optional<Incoming> receive(Millis timeout);
+
+  // Lines saying which connections were refused since the last call (no keys in them): at most
+  // 20 in the hub's life, then one saying that further ones are not listed.
+  std::vector<std::string> takeRefusals();
 
  private:
   struct Impl;
