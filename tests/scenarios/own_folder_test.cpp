@@ -28,10 +28,13 @@ namespace {
 
 const fs::path kScene = fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml";
 
-// A wrapper that starts `real` with `hidden` covered by an empty tmpfs, from `/`.
-fs::path hidingWrapper(const fs::path& at, const fs::path& hidden, const fs::path& real) {
+// A wrapper that starts `real` with `hidden` covered by an empty tmpfs, from `/` (and, given a
+// network namespace, inside it).
+fs::path hidingWrapper(const fs::path& at, const fs::path& hidden, const fs::path& real,
+                       const std::string& netns = "") {
   std::ofstream(at) << "#!/bin/sh\n"
-                    << "exec unshare --mount --propagation private /bin/sh -c "
+                    << "exec " << (netns.empty() ? "" : "ip netns exec " + netns + " ")
+                    << "unshare --mount --propagation private /bin/sh -c "
                     << "'mount -t tmpfs -o size=1m cosim-hidden \"$0\" && cd / && exec \"$@\"' '"
                     << hidden.string() << "' '" << real.string() << "' \"$@\"\n";
   fs::permissions(at, fs::perms::owner_all);
@@ -45,6 +48,42 @@ RunResult run(const fs::path& out, std::vector<std::string> sets, const fs::path
   o.resume = resume;
   return Coupler(loadScenario(kScene, sets), o).run();
 }
+
+int shell(const std::string& command) { return std::system(command.c_str()); }
+
+// A network namespace with a private link to this one: this side HOST, the other side PEER
+// (10.213.N.1 and .2 of a /30). Removed again when the test ends.
+struct PrivateLink {
+  std::string ns, host, peer, veth;
+  std::string why;  // why it could not be made; empty when it was
+  explicit PrivateLink(int n) {
+    ns = "cosim-t" + std::to_string(getpid());
+    veth = "cosv" + std::to_string(getpid() % 100000);
+    host = "10.213." + std::to_string(n % 250) + ".1";
+    peer = "10.213." + std::to_string(n % 250) + ".2";
+    const std::string err = fs::temp_directory_path() / ("cosim-netns-" + std::to_string(getpid()));
+    const std::string steps =
+        "ip netns add " + ns + " && ip link add " + veth + "a type veth peer name " + veth +
+        "b && ip link set " + veth + "b netns " + ns + " && ip addr add " + host + "/30 dev " +
+        veth + "a && ip link set " + veth + "a up && ip netns exec " + ns + " ip addr add " + peer +
+        "/30 dev " + veth + "b && ip netns exec " + ns + " ip link set " + veth +
+        "b up && ip netns exec " + ns + " ip link set lo up";
+    if (shell("(" + steps + ") 2>" + err) != 0) {
+      why = "cannot make a network namespace with a private link (needs root and iproute2): " +
+            text(err);
+    }
+    fs::remove(err);
+  }
+  ~PrivateLink() {
+    shell("ip link del " + veth + "a 2>/dev/null; ip netns del " + ns + " 2>/dev/null");
+  }
+  static std::string text(const fs::path& f) {
+    std::ifstream in(f);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }
+};
 
 std::string text(const fs::path& f) {
   std::ifstream in(f);
@@ -130,5 +169,50 @@ TEST(OwnFolder, ParticipantsThatDoNotSeeTheRunFolderGiveTheSameRunAndResume) {
   const double coated = apart.totals.at("coating_credited_kg");
   EXPECT_NEAR(resumed.totals.at("coating_credited_kg"), coated, 2e-6 * coated);
   EXPECT_NE(text(base / "runs/cut/cosim.log").find("a folder of its own"), std::string::npos);
+  fs::remove_all(base);
+}
+
+// As a cluster without a shared filesystem: both solvers in a network namespace of their own,
+// reaching the orchestrator only over tcp:// on a private link, encrypted with the run's keys,
+// and without the run folder. The run is the one on one machine, to the bit.
+TEST(OwnFolder, SolversOnAnotherNetworkOverEncryptedTcpWithoutTheRunFolder) {
+  const fs::path base = fs::temp_directory_path() / ("cosim-netns-run-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base / "runs");
+  PrivateLink link(getpid());
+  ASSERT_TRUE(link.why.empty()) << link.why;
+  const fs::path bin = COSIM_BINARY_DIR;
+  ASSERT_EQ(shell((bin / "cosim").string() + " keys " + (base / "orchestrator.key").string() +
+                  " > /dev/null"),
+            0);
+  const std::string endpoint =
+      "tcp://" + link.host + ":" + std::to_string(20000 + getpid() % 20000);
+  std::vector<std::string> apart = {"coupling.end_time=0.01", "transport.bind=" + endpoint,
+                                    "transport.key_file=" + (base / "orchestrator.key").string()};
+  for (const char* name : {"fluid", "particles"}) {
+    const fs::path real = bin / (std::string(name) == "fluid" ? "cosimFoam" : "cosim-liggghts");
+    apart.push_back(
+        std::string("participants.") + name + ".command=" +
+        hidingWrapper(base / (std::string(name) + ".sh"), base / "runs", real, link.ns).string());
+    apart.push_back(std::string("participants.") + name + ".workdir=" + (base / "node").string());
+  }
+  const RunResult remote = run(base / "runs/apart", apart);
+  ASSERT_EQ(remote.exit_code, 0) << remote.message;
+  const RunResult here = run(base / "here", {"coupling.end_time=0.01"});
+  ASSERT_EQ(here.exit_code, 0) << here.message;
+
+  // Both had folders of their own (the wrapper put them in the other network namespace)
+  const std::string log = text(base / "runs/apart/cosim.log");
+  EXPECT_NE(log.find("a folder of its own"), std::string::npos) << log;
+  const auto a = cosim::analysis::readTimeSeries(base / "here/timeseries.csv");
+  const auto b = cosim::analysis::readTimeSeries(base / "runs/apart/timeseries.csv");
+  ASSERT_EQ(a.rows(), b.rows());
+  for (const char* column :
+       {"particle_count", "precursor_in", "precursor_removed", "coated_mass", "pressure_drop"}) {
+    for (std::size_t r = 0; r < a.rows(); ++r) {
+      const double x = a.at(column)[r], y = b.at(column)[r];
+      if (!(std::isnan(x) && std::isnan(y))) ASSERT_EQ(x, y) << column << " row " << r;
+    }
+  }
   fs::remove_all(base);
 }
