@@ -11,5 +11,7 @@ echo "== build"; scripts/build.sh
 # leaves its input in build-fuzz/artifacts/ (docs/when-things-go-wrong.md, "Fuzzing")
 echo "== fuzz"; scripts/fuzz.sh "${COSIM_FUZZ_SECONDS:-20}"
 echo "== tests"
-cd build
-ctest --output-on-failure --timeout 900 "$@"
+# The Slurm tests start a one-node cluster (scripts/local-slurm.sh) and leave it running for each
+# other; it is stopped when the suite ends, whatever its outcome.
+trap 'scripts/local-slurm.sh stop > /dev/null 2>&1 || true' EXIT
+(cd build && ctest --output-on-failure --timeout 900 "$@")

@@ -92,10 +92,10 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
     if (name == "fluid" && !p.fluid) continue;
     const bool curve = isTcp(sc.transport.bind) && !sc.transport.insecure;
     std::cout << "  launch " << name << ": " << describeLaunch(spec)
-              << (!curve                      ? ""
-                  : spec.launch != "external" ? "; its run keys through the environment"
-                                              : "; its run keys in RUN/.cosim-" + name +
-                                                    ".key (--key-file)")
+              << (!curve ? ""
+                  : spec.launch != "external"
+                      ? "; its run keys through the environment"
+                      : "; its run keys in RUN/.cosim-" + name + ".key (--key-file)")
               << "\n";
   }
   for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
