@@ -62,8 +62,8 @@ Json toJson(const CoupledState& s) {
                         {"open", open}};
   }
   if (s.wake) {
-    Json parcels = Json::array();  // [id, anchor (3), y (3 per mode)]
-    for (const auto& [id, p] : *s.wake) parcels.push_back({id, p.anchor, p.y});
+    Json parcels = Json::array();  // [id, anchor (3), y (3 per mode), K, v (3), dt]
+    for (const auto& [id, p] : *s.wake) parcels.push_back({id, p.anchor, p.y, p.K, p.v, p.dt});
     j["wake"] = {{"modes", models::WakeKernel::kModes}, {"parcels", parcels}};
   }
   return j;
@@ -123,6 +123,9 @@ CoupledState fromJson(const Json& j) {
       auto& p = wake[e.at(0).get<std::int64_t>()];
       p.anchor = e.at(1).get<std::array<double, 3>>();
       p.y = e.at(2).get<std::array<double, 3 * models::WakeKernel::kModes>>();
+      p.K = e.at(3).get<double>();
+      p.v = e.at(4).get<std::array<double, 3>>();
+      p.dt = e.at(5).get<double>();
     }
     s.wake = std::move(wake);
   }

@@ -28,14 +28,14 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan, const models
     // the part of each parcel's past force its cell's gas has answered (transient estimate)
     std::vector<double> built_up;
     if (m.wake) {
-      built_up = m.wake->startInterval(state.ids, b);
+      built_up = m.wake->startInterval(state.ids, b, c);
       b.built_up_force = built_up.data();
     }
     m.drag->coefficients(b, c, K.data());
     for (std::size_t i = 0; i < n; ++i) {
       if (lost[i]) K[i] = 0.0;
     }
-    if (m.wake) m.wake->advance(state.ids, b, c, K.data(), dt);
+    if (m.wake) m.wake->recordInterval(state.ids, b, K.data(), dt);
     t.forcing.field(field::fluid_velocity) = samples.get(field::fluid_velocity);
     t.exchange.field(field::drag_coefficient) = K;
   }

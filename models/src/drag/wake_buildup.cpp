@@ -49,8 +49,29 @@ double WakeKernel::buildupImplicit(int m, double tau_s) {
   return 1.0 - rest;
 }
 
+namespace {
+// y_i <- (y_i + r_i dt w~_i F) / (1 + r_i dt) over one interval (see the header)
+void advanceModes(WakeBuildup::Parcel& s, const double* F, const double* u, double eps, double mu,
+                  double rho, double Delta, double dt) {
+  const auto& modes = WakeKernel::modes();
+  const double nu = 0.5 * (1.0 + eps) * mu / (eps * rho);
+  const double viscous = nu / (Delta * Delta);                                      // [1/s]
+  const double sweep = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / Delta;  // [1/s]
+  double norm = 0.0;
+  for (const auto& m : modes) norm += m.weight * m.lambda * viscous / (m.lambda * viscous + sweep);
+  for (std::size_t k = 0; k < WakeKernel::kModes; ++k) {
+    const double r = modes[k].lambda * viscous + sweep;
+    const double target = modes[k].weight * (modes[k].lambda * viscous / r) / norm;
+    for (int j = 0; j < 3; ++j) {
+      double& y = s.y[3 * k + j];
+      y = (y + r * dt * target * F[j]) / (1.0 + r * dt);
+    }
+  }
+}
+}  // namespace
+
 std::vector<double> WakeBuildup::startInterval(const std::vector<std::int64_t>& ids,
-                                               const ParcelBatch& p) {
+                                               const ParcelBatch& p, const SceneConstants& c) {
   std::vector<double> H(3 * p.n, 0.0);
   State kept;
   for (std::size_t i = 0; i < p.n; ++i) {
@@ -65,6 +86,13 @@ std::vector<double> WakeBuildup::startInterval(const std::vector<std::int64_t>& 
     }
     Parcel s = it->second;
     const double Delta = p.cell_size[i];
+    if (s.dt > 0.0) {  // the last interval, with the force the gas got: K (u_f,new - v)
+      const double* u = p.fluid_velocity + 3 * i;
+      const double F[3] = {s.K * (u[0] - s.v[0]), s.K * (u[1] - s.v[1]), s.K * (u[2] - s.v[2])};
+      advanceModes(s, F, u, clampVoidage(p.voidage[i], c), p.fluid_viscosity[i], p.fluid_density[i],
+                   Delta, s.dt);
+      s.dt = 0.0;
+    }
     int steps = 0;
     for (int j = 0; j < 3; ++j) {
       const double cells = std::round((x[j] - s.anchor[j]) / Delta);
@@ -84,32 +112,15 @@ std::vector<double> WakeBuildup::startInterval(const std::vector<std::int64_t>& 
   return H;
 }
 
-void WakeBuildup::advance(const std::vector<std::int64_t>& ids, const ParcelBatch& p,
-                          const SceneConstants& c, const double* K, double dt) {
-  const auto& modes = WakeKernel::modes();
+void WakeBuildup::recordInterval(const std::vector<std::int64_t>& ids, const ParcelBatch& p,
+                                 const double* K, double dt) {
   for (std::size_t i = 0; i < p.n; ++i) {
     auto it = parcels_.find(ids[i]);
     if (p.isLost(i) || it == parcels_.end()) continue;
     Parcel& s = it->second;
-    const double* u = p.fluid_velocity + 3 * i;
-    const double* v = p.velocity + 3 * i;
-    const double F[3] = {K[i] * (u[0] - v[0]), K[i] * (u[1] - v[1]), K[i] * (u[2] - v[2])};
-    const double eps = clampVoidage(p.voidage[i], c);
-    const double nu = 0.5 * (1.0 + eps) * p.fluid_viscosity[i] / (eps * p.fluid_density[i]);
-    const double Delta = p.cell_size[i];
-    const double viscous = nu / (Delta * Delta);                                      // [1/s]
-    const double sweep = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / Delta;  // [1/s]
-    double norm = 0.0;
-    for (const auto& m : modes)
-      norm += m.weight * m.lambda * viscous / (m.lambda * viscous + sweep);
-    for (std::size_t k = 0; k < WakeKernel::kModes; ++k) {
-      const double r = modes[k].lambda * viscous + sweep;
-      const double target = modes[k].weight * (modes[k].lambda * viscous / r) / norm;
-      for (int j = 0; j < 3; ++j) {
-        double& y = s.y[3 * k + j];
-        y = (y + r * dt * target * F[j]) / (1.0 + r * dt);
-      }
-    }
+    s.K = K[i];
+    for (int j = 0; j < 3; ++j) s.v[j] = p.velocity[3 * i + j];
+    s.dt = dt;
   }
 }
 

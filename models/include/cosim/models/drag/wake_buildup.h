@@ -28,8 +28,13 @@
 //   y_i <- (y_i + r_i dt w~_i F) / (1 + r_i dt)
 //
 // which is the lattice's implicit-Euler response mode by mode (checked against the exact one in
-// kernel.py: within 3e-4 after one step). F is the force of the interval, K (u_f - v) at its
-// start.
+// kernel.py: within 3e-4 after one step). F is the force the gas got over the interval: the gas
+// solver takes the drag implicitly, K (U_new - v) with its own new velocity U_new and the
+// parcel's velocity v at the start of the interval (adapters/openfoam/gas/UEqn.H), which is
+// less than K (u_f - v) at the start while the wake builds up (by 1 / (1 + K G S_1), 40 % in
+// cells of 2 diameters). So each interval's K and v are kept, and the modes are advanced at the
+// start of the next interval, when the gas's new velocity at the parcel has been sampled:
+// F = K (u_f,new - v). (The sample is the cell's velocity when the parcel lies in one cell.)
 //
 // Cell identity: the parcel's cell is not known to the coupler (cell_size is its size only), so
 // each parcel keeps an anchor, the position where its history started, moved by whole cells of
@@ -76,20 +81,26 @@ class WakeBuildup {
   struct Parcel {
     std::array<double, 3> anchor{};                  // [m] where its cell is taken to be
     std::array<double, 3 * WakeKernel::kModes> y{};  // [N] y_i, mode by mode, x y z
+    // The interval not yet in y (dt = 0: none): its drag coefficient and parcel velocity
+    double K = 0.0;             // [kg/s]
+    std::array<double, 3> v{};  // [m/s]
+    double dt = 0.0;            // [s]
   };
   using State = std::map<std::int64_t, Parcel>;
 
   // The built-up force H of every parcel (3n, [N]) at the start of this interval, for
-  // ParcelBatch::built_up_force. Keeps the history of exactly the parcels `ids` (n of them, the
-  // batch's order): new ids start empty, absent ids are dropped, lost parcels are dropped and get
-  // 0; a parcel that changed cell keeps the old cell's share (see above). Reads position and
-  // cell_size.
-  std::vector<double> startInterval(const std::vector<std::int64_t>& ids, const ParcelBatch& p);
-  // Advances every parcel's modes over the interval dt [s] under the force K (u_f - v) it gets
-  // for it (K: the drag coefficients sent to the solvers). Reads fluid_velocity, velocity,
-  // voidage, fluid_density, fluid_viscosity, cell_size. Call after startInterval, same batch.
-  void advance(const std::vector<std::int64_t>& ids, const ParcelBatch& p, const SceneConstants& c,
-               const double* K, double dt);
+  // ParcelBatch::built_up_force. First advances each parcel's modes over the last interval
+  // with the force its gas got, K (u_f - v) from the recorded K and v and the sampled u_f (the
+  // rates from this sample), then moves the history to the parcel's cell. Keeps exactly the
+  // parcels `ids` (n of them, the batch's order): new ids start empty, absent ids are dropped,
+  // lost parcels are dropped and get 0; a parcel that changed cell keeps the old cell's share.
+  // Reads position, cell_size, fluid_velocity, voidage, fluid_density, fluid_viscosity.
+  std::vector<double> startInterval(const std::vector<std::int64_t>& ids, const ParcelBatch& p,
+                                    const SceneConstants& c);
+  // Records the interval dt [s] that starts now: the drag coefficients K sent to the solvers
+  // and the parcels' velocities. Call after startInterval, same batch, once per interval.
+  void recordInterval(const std::vector<std::int64_t>& ids, const ParcelBatch& p, const double* K,
+                      double dt);
 
   // The per-parcel history, for checkpoints (restored bit for bit).
   const State& state() const { return parcels_; }
