@@ -100,10 +100,11 @@ TEST(WakeBuildup, ViscousBuildUpFollowsTheLatticeImplicitEulerResponse) {
 }
 
 TEST(WakeBuildup, AdvectiveLimitIsTheUpwindOutflow) {
-  // no viscosity (1e-15): the flow sweeps the cell's momentum out at |u| / Delta, implicit:
+  // no viscosity (1e-20): the flow sweeps the cell's momentum out at |u| / Delta, implicit:
   // H / F = 1 - (1 + |u| dt / Delta)^-m = 1 - 1.5^-3 after 3 steps of |u| dt / Delta = 0.5
+  // (the drift walk's rate (sqrt(1 + Re) - 1)^2 nu / Delta^2 is |u| / Delta to 2 sqrt(1/Re) = 2e-8)
   Scene s;
-  s.add(1, 0.0, 0.1, 0.0, 1e-3, 1e-15);
+  s.add(1, 0.0, 0.1, 0.0, 1e-3, 1e-20);
   WakeBuildup w;
   const double F = 1e-9 * 0.1;
   for (int m = 1; m <= 3; ++m) {
@@ -111,6 +112,23 @@ TEST(WakeBuildup, AdvectiveLimitIsTheUpwindOutflow) {
     w.recordInterval(s.ids, s.view(), s.K.data(), 5e-3);
   }
   EXPECT_NEAR(builtUp(w, s, 0) / F, 1.0 - std::pow(1.5, -3), 1e-7);
+}
+
+TEST(WakeBuildup, AtLowCellReynoldsNumberTheFlowCutsOnlyTheTail) {
+  // Re = |u| Delta / nu = 0.05: the flow cuts the diffusion tail at |u|^2 / (4 nu) (c = Re^2/4 =
+  // 6.2e-4 in nu / Delta^2), so the first steps are the viscous ones (kernel.py: 0.76711071 after
+  // one step of tau_s = 2) and the end is still the whole force
+  const double Delta = 40e-6, nu = 1.8e-5 / 1.2, u = 0.05 * nu / Delta,
+               dt = 2.0 * Delta * Delta / nu;
+  Scene s;
+  s.add(2, 0.0, u, 0.0, Delta);
+  WakeBuildup w;
+  builtUp(w, s, 0);
+  w.recordInterval(s.ids, s.view(), s.K.data(), dt);
+  // (the modes slower than c, 0.6 % of the weight, are renormalised onto the others: 0.7729)
+  EXPECT_NEAR(builtUp(w, s, 0) / (1e-9 * u), 0.76711071, 8e-3);
+  w.recordInterval(s.ids, s.view(), s.K.data(), 1e9);
+  EXPECT_NEAR(builtUp(w, s, 0) / (1e-9 * u), 1.0, 1e-9);
 }
 
 // A parcel whose own disturbance has fully built up (one implicit step of 1e9 s: r dt > 2e6 for the

@@ -55,8 +55,12 @@ void advanceModes(WakeBuildup::Parcel& s, const double* F, const double* u, doub
                   double rho, double Delta, double dt) {
   const auto& modes = WakeKernel::modes();
   const double nu = 0.5 * (1.0 + eps) * mu / (eps * rho);
-  const double viscous = nu / (Delta * Delta);                                      // [1/s]
-  const double sweep = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) / Delta;  // [1/s]
+  const double viscous = nu / (Delta * Delta);  // [1/s]
+  // the flow carries the disturbance away (see the header): c nu / Delta^2, c = (sqrt(1 + Re) -
+  // 1)^2, Re = |u| Delta / nu: |u|^2 / (4 nu) at low Re, -> |u| / Delta at high Re
+  const double Re = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * Delta / nu;
+  const double root = std::sqrt(1.0 + Re) - 1.0;
+  const double sweep = viscous * root * root;  // [1/s]
   double norm = 0.0;
   for (const auto& m : modes) norm += m.weight * m.lambda * viscous / (m.lambda * viscous + sweep);
   for (std::size_t k = 0; k < WakeKernel::kModes; ++k) {

@@ -15,15 +15,19 @@
 // 1/C(inf); fitted by scenarios/verify-wake/kernel.py, error < 1.1e-3 in S over all tau, < 1.2e-4
 // for tau >= 1), so H = sum_i y_i with one 3-vector y_i per mode and parcel:
 //
-//   dy_i/dt = r_i (w~_i F - y_i),   r_i = lambda_i nu_f / Delta^2 + |u_f| / Delta,
-//   w~_i = w_i q_i / sum_j w_j q_j,  q_i = lambda_i / (lambda_i + |u_f| Delta / nu_f)
+//   dy_i/dt = r_i (w~_i F - y_i),   r_i = (lambda_i + c) nu_f / Delta^2,
+//   w~_i = w_i q_i / sum_j w_j q_j,  q_i = lambda_i / (lambda_i + c),   c = (sqrt(1 + Re) - 1)^2
 //
-// nu_f = eps_f mu / (eps rho) (the viscous flux through the faces, as in the steady G). The
-// |u_f| / Delta term is the momentum the flow sweeps out of the cell (first-order upwind outflow,
-// whose own build-up is 1 - e^-(|u_f| t / Delta)); it shortens every mode and moves the weight
-// to the fast ones: exact in the two limits (no flow: S; no viscosity: the upwind outflow), an
-// approximation between them. Steady: H = F, the steady estimate. The gas solver's step is
-// implicit Euler, one CFD step per coupling interval, so the modes are advanced the same way:
+// nu_f = eps_f mu / (eps rho) (the viscous flux through the faces, as in the steady G), Re =
+// |u_f| Delta / nu_f the cell Reynolds number. c is the flow carrying the disturbance away: the
+// late decay rate (in nu / Delta^2) of the on-site kernel of the lattice walk with an upwind
+// drift, exp(-(a + b) t) I0(2 sqrt(a b) t) along the flow (a = nu/Delta^2, b = a + |u|/Delta):
+// Re^2 / 4, i.e. |u|^2 / (4 nu), at low Re (the Oseen cut-off of the diffusion tail) and
+// -> |u| / Delta at high Re (the upwind outflow, whose own build-up is 1 - e^-(|u| t / Delta)).
+// It shortens every mode and moves the weight to the fast ones: exact in the two limits (no
+// flow: S; no viscosity: the upwind outflow) and for the tail at low Re, an approximation between.
+// Steady: H = F, the steady estimate. The gas solver's step is implicit Euler, one CFD step per
+// coupling interval, so the modes are advanced the same way:
 //
 //   y_i <- (y_i + r_i dt w~_i F) / (1 + r_i dt)
 //
