@@ -9,7 +9,8 @@
 //   none                         as sampled (asserted to be far off: what the others correct)
 //   self_disturbance             the steady estimate
 //   self_disturbance_transient   the estimate built up in time (wake_buildup.h)
-// Tolerances: 1.5-3 x what each reaches (docs/verification.md section 4 has the table).
+// Tolerances: 1.5-3 x what each reaches (docs/verification.md section 4 has the table). About
+// 60-70 s per test on a loaded 2-core machine (three runs of 23^3 cells).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -60,23 +61,22 @@ Errors errors(const char* scene, const char* tag) {
 
 TEST(Wake, SphereInCellsOfTwoDiameters) {
   const Errors e = errors("verify-wake/scenario.yaml", "cells-2d");
-  // steady: -2.86 %, it over-corrects while the wake builds up (the sphere is pushed up)
-  EXPECT_NEAR(e.steady, 0.0, 0.045);
-  // built up in time: -0.03 % (the 0.5 % requirement is met)
-  EXPECT_NEAR(e.transient, 0.0, 0.001);
+  // steady: -3.05 %, it over-corrects while the wake builds up (the sphere is pushed up)
+  EXPECT_NEAR(e.steady, 0.0, 0.046);
+  // built up in time: +0.17 % (the 0.5 % requirement is met)
+  EXPECT_NEAR(e.transient, 0.0, 0.005);
 }
 
 TEST(Wake, SphereInCellsOfThreeDiameters) {
   const Errors e = errors("verify-wake/cells3.yaml", "cells-3d");
-  EXPECT_NEAR(e.steady, 0.0, 0.001);      // +0.02 %
-  EXPECT_NEAR(e.transient, 0.0, 0.0025);  // +0.09 % (met)
+  EXPECT_NEAR(e.steady, 0.0, 0.007);      // -0.46 %
+  EXPECT_NEAR(e.transient, 0.0, 0.0065);  // +0.45 % (met, by a small margin)
 }
 
 TEST(Wake, SphereInCellsOfFiveDiameters) {
   const Errors e = errors("verify-wake/cells5.yaml", "cells-5d");
-  EXPECT_NEAR(e.steady, 0.0, 0.011);     // -0.71 %
-  EXPECT_NEAR(e.transient, 0.0, 0.009);  // -0.65 %: not within 0.5 % (the gas solver's own
-                                         // response builds up more slowly than the lattice's)
+  EXPECT_NEAR(e.steady, 0.0, 0.014);     // -0.95 %
+  EXPECT_NEAR(e.transient, 0.0, 0.004);  // -0.15 % (met)
 }
 
 // The wake history is the coupler's state: the checkpoint holds it (per parcel id, with the
