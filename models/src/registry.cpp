@@ -1,10 +1,10 @@
 #include "cosim/models/registry.h"
 
-#include "cosim/models/drag/undisturbed_velocity.h"
-
 #include <dlfcn.h>
 
 #include <sstream>
+
+#include "cosim/models/drag/undisturbed_velocity.h"
 
 namespace cosim::models {
 
@@ -52,10 +52,16 @@ std::unique_ptr<DragLaw> Registry::makeDrag(const std::string& n, const Paramete
   const std::string choice = p.text(key);
   auto law = make<DragLaw>(drag_, "drag law", n, p.without(key, p.owner()));
   if (choice == "none") return law;
-  if (choice == "self_disturbance") return std::make_unique<UndisturbedVelocityDrag>(std::move(law));
+  if (choice == "self_disturbance")
+    return std::make_unique<UndisturbedVelocityDrag>(std::move(law));
+  if (choice == "self_disturbance_transient") {
+    return std::make_unique<UndisturbedVelocityDrag>(std::move(law),
+                                                     UndisturbedVelocityDrag::Estimate::transient);
+  }
   std::string known;
   for (const auto& k : undisturbedVelocityNames()) known += (known.empty() ? "" : ", ") + k;
-  throw ModelError(p.owner() + ": " + key + " '" + choice + "' is not known (known: " + known + ")");
+  throw ModelError(p.owner() + ": " + key + " '" + choice + "' is not known (known: " + known +
+                   ")");
 }
 std::unique_ptr<ForceModel> Registry::makeForce(const std::string& n, const Parameters& p) const {
   return make<ForceModel>(force_, "force model", n, p);

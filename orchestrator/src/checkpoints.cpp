@@ -61,6 +61,11 @@ Json toJson(const CoupledState& s) {
                         {"coating_outside", s.zone_passes->coating_outside},
                         {"open", open}};
   }
+  if (s.wake) {
+    Json parcels = Json::array();  // [id, anchor (3), y (3 per mode), K, v (3), dt]
+    for (const auto& [id, p] : *s.wake) parcels.push_back({id, p.anchor, p.y, p.K, p.v, p.dt});
+    j["wake"] = {{"modes", models::WakeKernel::kModes}, {"parcels", parcels}};
+  }
   return j;
 }
 
@@ -105,6 +110,25 @@ CoupledState fromJson(const Json& j) {
     }
     s.zone_passes = std::move(zp);
   }
+  if (j.contains("wake")) {
+    const Json& w = j.at("wake");
+    if (w.at("modes").get<std::size_t>() != models::WakeKernel::kModes) {
+      throw std::runtime_error(fmt::format(
+          "its wake history has {} modes per parcel, this cosim keeps {} (written by another "
+          "version of undisturbed_velocity 'self_disturbance_transient'): start a new run",
+          w.at("modes").get<std::size_t>(), models::WakeKernel::kModes));
+    }
+    models::WakeBuildup::State wake;
+    for (const auto& e : w.at("parcels")) {
+      auto& p = wake[e.at(0).get<std::int64_t>()];
+      p.anchor = e.at(1).get<std::array<double, 3>>();
+      p.y = e.at(2).get<std::array<double, 3 * models::WakeKernel::kModes>>();
+      p.K = e.at(3).get<double>();
+      p.v = e.at(4).get<std::array<double, 3>>();
+      p.dt = e.at(5).get<double>();
+    }
+    s.wake = std::move(wake);
+  }
   return s;
 }
 
@@ -133,8 +157,8 @@ bool under(const std::string& key, const std::string& prefix) {
 bool mayChange(const std::string& key) {
   // coupling.scheme: the saved state is the same under either (the first interval after a
   // resume samples between the intervals anyway)
-  for (const char* p : {"coupling.end_time", "coupling.scheme", "output", "checkpoint",
-                        "transport", "checks", "observables", "description"}) {
+  for (const char* p : {"coupling.end_time", "coupling.scheme", "output", "checkpoint", "transport",
+                        "checks", "observables", "description"}) {
     if (under(key, p)) return true;
   }
   // participants.<name>.timeout

@@ -16,6 +16,7 @@
 
 #include "coating_ledger.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/models/drag/wake_buildup.h"
 #include "stability.h"
 #include "zone_passes.h"
 
@@ -42,6 +43,9 @@ struct CoupledState {
   // Scenes with a coating zone: the open passes and the rows of zone_passes.csv. Absent in a
   // checkpoint written without pass recording (an older cosim, or a scene without a zone).
   std::optional<ZonePassRecorder::State> zone_passes;
+  // Scenes with undisturbed_velocity 'self_disturbance_transient': every parcel's force history
+  // (cosim/models/drag/wake_buildup.h), so that a resumed run continues it bit for bit.
+  std::optional<models::WakeBuildup::State> wake;
 };
 
 // FNV-1a digests of the particle state, one per field (and "ids"), over the values' bytes in

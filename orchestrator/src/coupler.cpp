@@ -181,6 +181,12 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
         "observables and timeouts may change; start a new run for anything else)";
     throw RunFailure("", msg);
   }
+  if (models_.wake && !saved.wake) {
+    throw RunFailure("", "cannot resume from " + checkpoint->string() +
+                             ": it holds no wake history, which models.drag.undisturbed_velocity "
+                             "'self_disturbance_transient' needs (each parcel's force history); "
+                             "start a new run");
+  }
   if (saved.step >= nsteps_) {
     throw RunFailure("", "the run in " + record_.folder().string() +
                              " already reached t = " + analysis::formatShortest(saved.time) +
@@ -218,6 +224,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
                                       "docs/restarts.md");
   }
   ledger_.restore(saved.balance, saved.pending);
+  if (models_.wake) models_.wake->restore(*saved.wake);
   totals_ = saved.totals;
   monitor_.restore(saved.monitor);
   initial_count_ = saved.initial_count;
@@ -258,6 +265,7 @@ void Coupler::writeCheckpoint() {
   s.scene = em.c_str();
   s.particle_digest = particleDigest(state_);
   if (passes_) s.zone_passes = passes_->state();
+  if (models_.wake) s.wake = models_.wake->state();
   const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint.keep);
   next_checkpoint_ = time_ + sc_.checkpoint.interval;
   log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());
@@ -329,7 +337,8 @@ link::ParticleData Coupler::samplesOf(const wire::Samples& sm, std::vector<char>
 // Step 3: the models over all parcels; the coating owed since the last step joins the forcing.
 CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
                                       const std::vector<char>& lost) {
-  CouplingTerms terms = evaluateTerms(models_, plan_, sc_.constants, state_, samples, lost);
+  CouplingTerms terms =
+      evaluateTerms(models_, plan_, sc_.constants, state_, samples, lost, sc_.coupling.dt);
   check(terms.forcing, "models (forcing)");
   if (step_ == 1) refuseOrWarn(checkFirstStep(sc_, state_, samples, terms.forcing));
   if (plan_.coating) ledger_.pay(terms.forcing);

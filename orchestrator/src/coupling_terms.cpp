@@ -10,9 +10,9 @@ const double* ptr(const link::ParticleData& d, const char* name) {
 }
 }  // namespace
 
-CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan,
-                            const models::SceneConstants& c, const link::ParticleData& state,
-                            const link::ParticleData& samples, const std::vector<char>& lost) {
+CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan, const models::SceneConstants& c,
+                            const link::ParticleData& state, const link::ParticleData& samples,
+                            const std::vector<char>& lost, double dt) {
   CouplingTerms t;
   const std::size_t n = state.size();
   t.forcing.ids = state.ids;
@@ -25,10 +25,17 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan,
 
   if (m.drag) {
     auto& K = t.forcing.field(field::drag_coefficient);
+    // the part of each parcel's past force its cell's gas has answered (transient estimate)
+    std::vector<double> built_up;
+    if (m.wake) {
+      built_up = m.wake->startInterval(state.ids, b, c);
+      b.built_up_force = built_up.data();
+    }
     m.drag->coefficients(b, c, K.data());
     for (std::size_t i = 0; i < n; ++i) {
       if (lost[i]) K[i] = 0.0;
     }
+    if (m.wake) m.wake->recordInterval(state.ids, b, K.data(), dt);
     t.forcing.field(field::fluid_velocity) = samples.get(field::fluid_velocity);
     t.exchange.field(field::drag_coefficient) = K;
   }

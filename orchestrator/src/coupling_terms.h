@@ -21,9 +21,12 @@ struct CouplingTerms {
 };
 
 // `lost` marks particles the fluid found in no cell: they get no fluid force and no coating.
+// `dt`: the coupling interval the terms are for [s]. With models.wake (a drag with
+// undisturbed_velocity 'self_disturbance_transient') every call advances each parcel's force
+// history over the last interval and records this one: call it once per interval.
 CouplingTerms evaluateTerms(const SceneModels& models, const Plan& plan,
                             const models::SceneConstants& constants,
                             const link::ParticleData& state, const link::ParticleData& samples,
-                            const std::vector<char>& lost);
+                            const std::vector<char>& lost, double dt);
 
 }  // namespace cosim::orchestrator

@@ -6,6 +6,7 @@
 
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
+#include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 
 namespace cosim::orchestrator {
@@ -14,6 +15,10 @@ SceneModels makeModels(const Scenario& sc) {
   auto& r = models::Registry::instance();
   SceneModels m;
   if (sc.models.drag) m.drag = r.makeDrag(sc.models.drag->law, sc.models.drag->params);
+  if (const auto* u = dynamic_cast<const models::UndisturbedVelocityDrag*>(m.drag.get());
+      u != nullptr && u->transient()) {
+    m.wake = std::make_unique<models::WakeBuildup>();
+  }
   for (const auto& f : sc.models.forces) m.forces.push_back(r.makeForce(f.law, f.params));
   if (sc.models.mass_transfer)
     m.mass_transfer =

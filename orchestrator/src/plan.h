@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/models/drag/wake_buildup.h"
 #include "cosim/models/model.h"
 #include "scenario.h"
 
@@ -35,6 +36,9 @@ struct SceneModels {
   std::vector<std::unique_ptr<models::ForceModel>> forces;
   std::unique_ptr<models::MassTransferLaw> mass_transfer;
   std::unique_ptr<models::CoatingZone> zone;
+  // With undisturbed_velocity 'self_disturbance_transient': every parcel's force history, kept
+  // by the coupler between steps (and in checkpoints); null otherwise.
+  std::unique_ptr<models::WakeBuildup> wake;
 };
 
 SceneModels makeModels(const Scenario& sc);

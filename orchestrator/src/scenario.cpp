@@ -273,11 +273,12 @@ Scenario parseTree(YAML::Node root, const fs::path& origin, const std::vector<st
   // wake to take out of its samples.
   if (sc.models.drag && sc.participants.count("fluid") &&
       sc.participants.at("fluid").adapter == "analytic-fluid" &&
-      sc.models.drag->params.text("undisturbed_velocity", "none") == "self_disturbance") {
+      sc.models.drag->params.text("undisturbed_velocity", "none") != "none") {
     ctx.fail(root["models"]["drag"], "models.drag.undisturbed_velocity",
-             "self_disturbance removes the particle's own disturbance of the gas it samples, but "
-             "the analytic-fluid's prescribed flow carries none (it is not two-way coupled); use "
-             "'none'");
+             sc.models.drag->params.text("undisturbed_velocity") +
+                 " removes the particle's own disturbance of the gas it samples, but the "
+                 "analytic-fluid's prescribed flow carries none (it is not two-way coupled); use "
+                 "'none'");
   }
   reading = "output";
   sc.output = parseOutput(root["output"], ctx, sc.name);

@@ -4,6 +4,8 @@
 //   G = 1 / (eps_f mu Delta / c_v + eps rho |u_f| Delta^2 / c_a), eps_f = (1 + eps)/2,
 //   c_v = (2/3) 0.2527310, c_a = 1
 //   w = min(1, V_parcel / ((1 - eps) Delta^3)),  K_eff = K(u_und) / (1 - w K G)
+#include "cosim/models/drag/undisturbed_velocity.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 #include "support.h"
 
@@ -40,7 +41,8 @@ TEST(UndisturbedVelocity, ResponseCoefficientsAreTheLatticeGreensFunction) {
   // c_v = (2/3) x Watson's simple-cubic Green's function at the origin, 1.516386/6 = 0.2527310
   EXPECT_NEAR(SelfDisturbance::kViscous, 2.0 / 3.0 * 0.2527310, 1e-6);
   // viscous limit |u_f| = 0: G = c_v / (eps_f mu Delta)
-  EXPECT_NEAR(SelfDisturbance::response(1.0, 1e-3, 1000.0, 0.0, 0.01), 0.168487 / 1e-5, 1e-6 / 1e-5);
+  EXPECT_NEAR(SelfDisturbance::response(1.0, 1e-3, 1000.0, 0.0, 0.01), 0.168487 / 1e-5,
+              1e-6 / 1e-5);
   // advective limit: G -> c_a / (eps rho |u| Delta^2)
   EXPECT_NEAR(SelfDisturbance::response(1.0, 1e-12, 1.0, 2.0, 0.1) * 2.0 * 0.01, 1.0, 1e-9);
 }
@@ -66,7 +68,9 @@ TEST(UndisturbedVelocity, SchillerNaumannIsEvaluatedAtTheUndisturbedSlip) {
   const double eps = 1.0 - kPi / 6.0 * std::pow(d / Delta, 3);
   Batch b = lone(d, Delta, eps, 0.86, 0.01);
   double K = 0.0, K_plain = 0.0;
-  Registry::instance().makeDrag("schiller_naumann", Parameters("d"))->coefficients(b.view(), constants(1.0), &K_plain);
+  Registry::instance()
+      .makeDrag("schiller_naumann", Parameters("d"))
+      ->coefficients(b.view(), constants(1.0), &K_plain);
   EXPECT_NEAR(K_plain, 5.17877114061519e-08, 1e-11 * 5.2e-8);
   corrected("schiller_naumann")->coefficients(b.view(), constants(1.0), &K);
   EXPECT_NEAR(K, 6.52862791997789e-08, 1e-11 * 6.5e-8);
@@ -113,8 +117,12 @@ TEST(UndisturbedVelocity, NoneIsTheLawItselfAndLostParcelsGetNoDrag) {
   Parameters none("models.drag");
   none.setText("undisturbed_velocity", "none");
   double K_none = 0.0, K_plain = 0.0;
-  Registry::instance().makeDrag("schiller_naumann", none)->coefficients(b.view(), constants(1.0), &K_none);
-  Registry::instance().makeDrag("schiller_naumann", Parameters("d"))->coefficients(b.view(), constants(1.0), &K_plain);
+  Registry::instance()
+      .makeDrag("schiller_naumann", none)
+      ->coefficients(b.view(), constants(1.0), &K_none);
+  Registry::instance()
+      .makeDrag("schiller_naumann", Parameters("d"))
+      ->coefficients(b.view(), constants(1.0), &K_plain);
   EXPECT_EQ(K_none, K_plain);
 
   const std::vector<char> lost = {1};
@@ -138,13 +146,80 @@ TEST(UndisturbedVelocity, DeclaresCellSizeAndRejectsUnknownChoices) {
     Registry::instance().makeDrag("beetstra", bad);
     FAIL() << "expected an error";
   } catch (const ModelError& e) {
-    EXPECT_NE(std::string(e.what()).find("known: none, self_disturbance"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("known: none, self_disturbance"), std::string::npos)
+        << e.what();
   }
   // the law's own parameters are still checked (the key is removed before the law sees it)
   Parameters typo("models.drag");
   typo.setText("undisturbed_velocity", "self_disturbance");
   typo.set("swich_voidage", 0.8);
   EXPECT_THROW(Registry::instance().makeDrag("gidaspow", typo), ModelError);
+}
+
+// self_disturbance_transient: K_eff = K (1 + x), x = G H . (u_s - v) / |u_s - v|^2 for a lone
+// parcel, H the built-up force the coupler keeps (wake_buildup_test.cpp). The Stokes sphere of
+// StokesSphereAloneInACellOfTwoDiameters: K = 3 pi mu d = 3.39292006587698e-09,
+// G = 240951001.031883, steady K_eff = 1.85941432875076e-08, steady force F* = K_eff 0.01.
+std::unique_ptr<DragLaw> transient(const std::string& law) {
+  Parameters p("models.drag");
+  p.setText("undisturbed_velocity", "self_disturbance_transient");
+  return Registry::instance().makeDrag(law, p);
+}
+
+double transientK(double Hx, double Hz) {
+  const double d = 20e-6, Delta = 40e-6;
+  const double eps = 1.0 - kPi / 6.0 * std::pow(d / Delta, 3);
+  Batch b = lone(d, Delta, eps, 0.01, 0.0);
+  const double H[3] = {Hx, 0.0, Hz};
+  ParcelBatch v = b.view();
+  v.built_up_force = H;
+  double K = 0.0;
+  transient("stokes")->coefficients(v, constants(1.0), &K);
+  return K;
+}
+
+TEST(UndisturbedVelocity, TransientFollowsTheBuiltUpForce) {
+  const double K = 3.39292006587698e-09, Fs = 1.85941432875076e-08 * 0.01;
+  // nothing built up yet (a new parcel): the law itself
+  EXPECT_NEAR(transientK(0.0, 0.0), K, 1e-12 * K);
+  // fully built up (H = F*): the steady estimate
+  EXPECT_NEAR(transientK(0.0, Fs), 1.85941432875076e-08, 1e-9 * 1.86e-8);
+  // half of it: x = G F* / 2 / 0.01 = 2.240138719227612, K (1 + x) = 1.0993531676692302e-08
+  EXPECT_NEAR(transientK(0.0, 0.5 * Fs), 1.0993531676692302e-08, 1e-9 * 1.1e-8);
+  // across the slip it is not applied (the factor acts along the sampled slip)
+  EXPECT_NEAR(transientK(Fs, 0.0), K, 1e-12 * K);
+  // bounds: K_eff in [0.1 K, 10 K] (an old wake far larger than the slip, either way)
+  EXPECT_NEAR(transientK(0.0, 100 * Fs), 10 * K, 1e-12 * K);
+  EXPECT_NEAR(transientK(0.0, -100 * Fs), 0.1 * K, 1e-12 * K);
+}
+
+TEST(UndisturbedVelocity, TransientNeedsTheBuiltUpForceAndThePosition) {
+  auto law = transient("stokes");
+  const auto f = law->requiredFields();
+  EXPECT_NE(std::find(f.begin(), f.end(), "position"), f.end());
+  Batch b = lone(20e-6, 40e-6, 0.93, 0.01, 0.0);
+  double K = 0.0;
+  try {
+    law->coefficients(b.view(), constants(1.0), &K);
+    FAIL() << "expected an error";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("self_disturbance_transient"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("built-up force"), std::string::npos) << e.what();
+  }
+}
+
+TEST(UndisturbedVelocity, TransientFadesInAPackedCellAsTheSteadyOne) {
+  // fully built up (H = the steady force) in a packed cell: the same K_eff as the steady estimate
+  Batch b;
+  b.add(0.4, 0.02, 1.5e-3, 1.0, kRho, kMu, 4e-3);
+  double steady = 0.0, K = 0.0;
+  corrected("beetstra")->coefficients(b.view(), constants(1.0), &steady);
+  std::vector<double> H(3);
+  for (int j = 0; j < 3; ++j) H[j] = steady * (b.fluid_velocity[j] - b.velocity[j]);
+  ParcelBatch v = b.view();
+  v.built_up_force = H.data();
+  transient("beetstra")->coefficients(v, constants(1.0), &K);
+  EXPECT_NEAR(K, steady, 1e-9 * steady);
 }
 
 }  // namespace

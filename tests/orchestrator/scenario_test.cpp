@@ -201,6 +201,9 @@ TEST(ScenarioErrors, UnknownDragLaw) {
 TEST(ScenarioErrors, UndisturbedVelocityWithAPrescribedFlow) {
   expectError(mutate("law: stokes", "law: stokes, undisturbed_velocity: self_disturbance"),
               {"models.drag.undisturbed_velocity", "analytic-fluid", "not two-way coupled"});
+  expectError(
+      mutate("law: stokes", "law: stokes, undisturbed_velocity: self_disturbance_transient"),
+      {"models.drag.undisturbed_velocity", "self_disturbance_transient", "not two-way coupled"});
   expectError(mutate("law: stokes", "law: stokes, undisturbed_velocity: selfdisturbance"),
               {"models.drag", "known: none, self_disturbance"});
 }

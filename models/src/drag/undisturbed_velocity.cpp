@@ -21,13 +21,15 @@ double SelfDisturbance::coupling(double K, double G, double w) {
 
 double SelfDisturbance::share(double parcel_radius, double voidage, double Delta) {
   const double solid = (1.0 - voidage) * Delta * Delta * Delta;
-  const double parcel = 4.0 / 3.0 * std::numbers::pi * parcel_radius * parcel_radius * parcel_radius;
-  if (!(solid > parcel)) return 1.0;  // no other solid in the cell (or round-off): the full correction
+  const double parcel =
+      4.0 / 3.0 * std::numbers::pi * parcel_radius * parcel_radius * parcel_radius;
+  if (!(solid > parcel))
+    return 1.0;  // no other solid in the cell (or round-off): the full correction
   return parcel / solid;
 }
 
-UndisturbedVelocityDrag::UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner)
-    : inner_(std::move(inner)) {}
+UndisturbedVelocityDrag::UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner, Estimate estimate)
+    : inner_(std::move(inner)), estimate_(estimate) {}
 
 std::vector<std::string> UndisturbedVelocityDrag::requiredFields() const {
   std::vector<std::string> f = inner_->requiredFields();
@@ -35,12 +37,17 @@ std::vector<std::string> UndisturbedVelocityDrag::requiredFields() const {
                         "fluid_viscosity", "cell_size"}) {
     if (std::find(f.begin(), f.end(), x) == f.end()) f.push_back(x);
   }
+  // the transient history follows the parcel from cell to cell
+  if (transient() && std::find(f.begin(), f.end(), "position") == f.end()) f.push_back("position");
   return f;
 }
 
 void UndisturbedVelocityDrag::coefficients(const ParcelBatch& p, const SceneConstants& c,
                                            double* K) const {
-  const std::string owner = "undisturbed_velocity 'self_disturbance' of " + dragOwner(name());
+  const std::string owner =
+      "undisturbed_velocity '" +
+      std::string(transient() ? "self_disturbance_transient" : "self_disturbance") + "' of " +
+      dragOwner(name());
   validateConstants(owner, c);
   checkInputs(owner, requiredFields(), p, c);
 
@@ -55,8 +62,18 @@ void UndisturbedVelocityDrag::coefficients(const ParcelBatch& p, const SceneCons
                                      p.cell_size[i]);
     w[i] = SelfDisturbance::share(p.radius[i], p.voidage[i], p.cell_size[i]);
   }
+  if (transient()) {
+    transientCoefficients(owner, p, c, G.data(), w.data(), K);
+  } else {
+    steadyCoefficients(p, c, G.data(), w.data(), K);
+  }
+  checkOutputs(owner, "drag coefficient K", K, p.n);
+}
 
-  // Fixed point K = K(u_und), u_und - v = (u_s - v) / (1 - a)
+// Fixed point K = K(u_und), u_und - v = (u_s - v) / (1 - a)
+void UndisturbedVelocityDrag::steadyCoefficients(const ParcelBatch& p, const SceneConstants& c,
+                                                 const double* G, const double* w,
+                                                 double* K) const {
   inner_->coefficients(p, c, K);
   std::vector<double> u_und(3 * p.n);
   ParcelBatch q = p;
@@ -82,9 +99,53 @@ void UndisturbedVelocityDrag::coefficients(const ParcelBatch& p, const SceneCons
     if (converged) break;
   }
   for (std::size_t i = 0; i < p.n; ++i) K[i] /= 1.0 - coupling(i);
-  checkOutputs(owner, "drag coefficient K", K, p.n);
 }
 
-std::vector<std::string> undisturbedVelocityNames() { return {"none", "self_disturbance"}; }
+// u_und = u_s + w G_eff(K) H, K = K(u_und) (fixed point through G_eff only), then the factor
+// K_eff / K = 1 + x that gives K (u_und - v) along the sampled slip.
+void UndisturbedVelocityDrag::transientCoefficients(const std::string& owner, const ParcelBatch& p,
+                                                    const SceneConstants& c, const double* G,
+                                                    const double* w, double* K) const {
+  if (p.built_up_force == nullptr) {
+    throw ModelError(owner +
+                     ": needs the built-up force of every parcel (ParcelBatch::built_up_force), "
+                     "which the coupler keeps per parcel id; this caller does not provide it: use "
+                     "'self_disturbance' (steady) here");
+  }
+  inner_->coefficients(p, c, K);
+  std::vector<double> u_und(3 * p.n);
+  ParcelBatch q = p;
+  q.fluid_velocity = u_und.data();
+  std::vector<double> previous(p.n);
+  for (int pass = 1; pass < SelfDisturbance::kMaxPasses; ++pass) {
+    for (std::size_t i = 0; i < p.n; ++i) {
+      previous[i] = K[i];
+      const double scale = p.isLost(i) ? 0.0 : w[i] / (1.0 / G[i] + K[i] * (1.0 - w[i]) / w[i]);
+      for (int j = 0; j < 3; ++j) {
+        u_und[3 * i + j] = p.fluid_velocity[3 * i + j] + scale * p.built_up_force[3 * i + j];
+      }
+    }
+    inner_->coefficients(q, c, K);
+    bool converged = true;
+    for (std::size_t i = 0; i < p.n && converged; ++i) {
+      converged = std::abs(K[i] - previous[i]) <= SelfDisturbance::kTolerance * std::abs(K[i]);
+    }
+    if (converged) break;
+  }
+  for (std::size_t i = 0; i < p.n; ++i) {
+    double along = 0.0, slip2 = 0.0;
+    for (int j = 0; j < 3; ++j) {
+      const double slip = p.fluid_velocity[3 * i + j] - p.velocity[3 * i + j];
+      along += (u_und[3 * i + j] - p.fluid_velocity[3 * i + j]) * slip;
+      slip2 += slip * slip;
+    }
+    const double x = slip2 > 0.0 ? along / slip2 : 0.0;
+    K[i] *= 1.0 + std::clamp(x, TransientBounds::kMinGain, TransientBounds::kMaxGain);
+  }
+}
+
+std::vector<std::string> undisturbedVelocityNames() {
+  return {"none", "self_disturbance", "self_disturbance_transient"};
+}
 
 }  // namespace cosim::models

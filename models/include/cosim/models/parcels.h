@@ -8,10 +8,10 @@ namespace cosim::models {
 
 // Scene-wide constants every law may use.
 struct SceneConstants {
-  double cg = 1.0;             // coarse-graining factor: parcel diameter = cg * real diameter
-  double min_voidage = 0.35;   // voidage is clamped to [min_voidage, 1] before any law sees it
+  double cg = 1.0;            // coarse-graining factor: parcel diameter = cg * real diameter
+  double min_voidage = 0.35;  // voidage is clamped to [min_voidage, 1] before any law sees it
   double gravity[3] = {0.0, 0.0, -9.81};
-  double schmidt = 1.0;        // Sc = mu / (rho D)
+  double schmidt = 1.0;  // Sc = mu / (rho D)
 };
 
 // Per-parcel inputs. Vectors are interleaved x,y,z (3n doubles). A pointer is null when the
@@ -32,6 +32,10 @@ struct ParcelBatch {
   // lost_ids and sent zero samples). Laws give it 0 (no drag, no force, no transfer) and do
   // not check its fluid samples. Null = no parcel is lost.
   const char* lost = nullptr;
+  // Optional, 3n [N]: the part of each parcel's own force its cell's gas has answered so far
+  // (WakeBuildup, cosim/models/drag/wake_buildup.h); read by undisturbed_velocity
+  // 'self_disturbance_transient' only. Not a wire field: the coupler fills it.
+  const double* built_up_force = nullptr;
 
   bool isLost(std::size_t i) const { return lost != nullptr && lost[i] != 0; }
 };

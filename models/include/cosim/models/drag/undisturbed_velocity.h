@@ -42,9 +42,23 @@
 //
 // A lone parcel gets the full correction (a = K G); in a packed cell (K G >> 1) a -> w^2/(1-w).
 //
-// The estimate is steady: it assumes the disturbance has built up (viscous time
+// `self_disturbance` is steady: it assumes the disturbance has built up (viscous time
 // rho Delta^2 / mu with a t^-1/2 tail, advective Delta / |u_f|); until then it over-corrects
-// (measured in docs/verification.md, section 5). No per-parcel memory is kept.
+// (measured in docs/verification.md, section 4). It keeps no per-parcel memory.
+//
+// `self_disturbance_transient` uses the disturbance built up so far instead: the coupler keeps
+// each parcel's force history (WakeBuildup, wake_buildup.h) and passes H, the part of its force
+// the cell's gas has answered (ParcelBatch::built_up_force; H = F once built up). Then
+//
+//   u_und = u_s + w G_eff H                      (explicit: H holds past forces only)
+//   K     = K(u_und)                             (fixed point only through G_eff's K)
+//   K_eff = K (1 + x),  x = (u_und - u_s) . (u_s - v) / |u_s - v|^2,  x in [-0.9, 9]
+//
+// K_eff (u_s - v) is K (u_und - v) along the sampled slip (exact when H is parallel to it, as
+// for a settling or dragged parcel; the part of H across the slip is not applied). Still a pure
+// factor on K, applied by both solvers: momentum stays conserved and the drag stays implicit.
+// Bounds: K_eff in [0.1 K, 10 K], as the steady cap (a <= 0.9); x < 0 when the parcel's old
+// wake runs against its slip (a reversal). Built up (H = F) it is the steady estimate.
 #pragma once
 
 #include <memory>
@@ -57,10 +71,10 @@ namespace cosim::models {
 
 struct SelfDisturbance {
   static constexpr double kViscous = 2.0 / 3.0 * 0.2527310;  // c_v = 0.168487
-  static constexpr double kAdvective = 1.0;           // c_a
-  static constexpr double kMaxSelfCoupling = 0.9;     // bound on a
-  static constexpr int kMaxPasses = 50;               // fixed-point passes for K(u_und) ...
-  static constexpr double kTolerance = 1e-13;         // ... until K changes less than this
+  static constexpr double kAdvective = 1.0;                  // c_a
+  static constexpr double kMaxSelfCoupling = 0.9;            // bound on a
+  static constexpr int kMaxPasses = 50;                      // fixed-point passes for K(u_und) ...
+  static constexpr double kTolerance = 1e-13;                // ... until K changes less than this
 
   // G [s/kg]: cell-average gas velocity per unit force spread over a cubic cell of side Delta.
   // eps: the cell's voidage. The viscous flux leaves through the faces with the face voidage,
@@ -69,7 +83,8 @@ struct SelfDisturbance {
   // The advective flux is the superficial mass flux eps rho |u_f| Delta^2 (u_f interstitial).
   static double response(double eps, double mu, double rho, double speed, double Delta) {
     const double eps_face = 0.5 * (1.0 + eps);
-    return 1.0 / (eps_face * mu * Delta / kViscous + eps * rho * speed * Delta * Delta / kAdvective);
+    return 1.0 /
+           (eps_face * mu * Delta / kViscous + eps * rho * speed * Delta * Delta / kAdvective);
   }
   // a = w K G_eff, G_eff = 1 / (1/G + K (1 - w) / w) (unbounded; the caller caps it).
   static double coupling(double K, double G, double w);
@@ -80,14 +95,31 @@ struct SelfDisturbance {
 // Wraps a drag law: K_eff = K(u_und) / (1 - a) (see above).
 class UndisturbedVelocityDrag final : public DragLaw {
  public:
-  explicit UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner);
+  enum class Estimate { steady, transient };
+  explicit UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner,
+                                   Estimate estimate = Estimate::steady);
   std::string name() const override { return inner_->name(); }
   std::vector<std::string> requiredFields() const override;
   void coefficients(const ParcelBatch& p, const SceneConstants& c, double* K) const override;
   const DragLaw& inner() const { return *inner_; }
+  // Transient: the caller keeps a WakeBuildup and fills ParcelBatch::built_up_force.
+  bool transient() const { return estimate_ == Estimate::transient; }
 
  private:
+  void steadyCoefficients(const ParcelBatch& p, const SceneConstants& c, const double* G,
+                          const double* w, double* K) const;
+  void transientCoefficients(const std::string& owner, const ParcelBatch& p,
+                             const SceneConstants& c, const double* G, const double* w,
+                             double* K) const;
+
   std::unique_ptr<DragLaw> inner_;
+  Estimate estimate_;
+};
+
+// The cap on x of the transient estimate: K_eff / K in [1 + kMinGain, 1 + kMaxGain].
+struct TransientBounds {
+  static constexpr double kMinGain = -0.9;
+  static constexpr double kMaxGain = 9.0;
 };
 
 // Names accepted by models.drag.undisturbed_velocity.
