@@ -301,10 +301,19 @@ TEST(Restart, AnInterruptedStudyResumesItsVariantFromTheCheckpoint) {
   ASSERT_EQ(finish(whole), 0) << text(w.dir / "whole.out");
 
   auto cut = start(w, args("cut"), "cut.out");
-  for (int i = 0; i < 5000 && cut.running() && !fs::exists(w.dir / "cut/variant-01/timeseries.csv");
-       ++i)
+  // Ctrl-C once the second variant has recorded a few steps (not after a fixed delay: on a
+  // loaded machine the first variant alone can take longer than any delay chosen here)
+  const auto lines = [&] {
+    std::ifstream in(w.dir / "cut/variant-01/timeseries.csv");
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) ++n;
+    return n;
+  };
+  for (int i = 0; i < 60000 && cut.running() && lines() < 4; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  ASSERT_TRUE(cut.running()) << "the study ended before it could be interrupted: "
+                             << text(w.dir / "cut.out");
   ::kill(cut.pid(), SIGINT);
   EXPECT_EQ(finish(cut), 130) << text(w.dir / "cut.out");
   EXPECT_NE(text(w.dir / "cut.out").find("run the same cosim study command again"),
