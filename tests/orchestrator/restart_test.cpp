@@ -189,9 +189,18 @@ TEST(Restart, CtrlCStopsWithACheckpointAndSaysHowToResume) {
   auto cut =
       start(w, {"run", "scene.yaml", "-o", "cut", "--quiet", "--set", "checkpoint.interval=0"},
             "cut.out");
-  for (int i = 0; i < 2000 && cut.running() && !fs::exists(w.dir / "cut/timeseries.csv"); ++i)
+  // Ctrl-C once the run has recorded a few steps (a fixed delay is too short on a loaded machine)
+  const auto lines = [&] {
+    std::ifstream in(w.dir / "cut/timeseries.csv");
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) ++n;
+    return n;
+  };
+  for (int i = 0; i < 60000 && cut.running() && lines() < 3; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_TRUE(cut.running()) << "the run ended before it could be interrupted: "
+                             << text(w.dir / "cut.out");
   ::kill(cut.pid(), SIGINT);
   EXPECT_EQ(finish(cut), 130) << text(w.dir / "cut.out");
   const auto summary = analysis::readJsonFile(w.dir / "cut/summary.json");
