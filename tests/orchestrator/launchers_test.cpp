@@ -92,7 +92,7 @@ TEST(Launchers, MpirunTakesTheHostFileRelativeToTheScenario) {
   fs::remove(hosts);
 }
 
-TEST(Launchers, LaunchKeysAreCheckedWithWhatToDo) {
+TEST(Launchers, LaunchKeysAreCheckedAndErrorsGiveTheRemedy) {
   EXPECT_NE(errorOf("launch: cluster, ").find("'slurm' (with srun"), std::string::npos);
   EXPECT_NE(errorOf("slurm: { nodes: 2 }, ").find("only used with launch: slurm"),
             std::string::npos);

@@ -144,6 +144,15 @@ pid_t childNamed(pid_t parent, const std::string& name) {
 
 }  // namespace
 
+// Lines of a file so far (0 while it does not exist): how far a run has recorded.
+static int lineCount(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) ++n;
+  return n;
+}
+
 TEST(Restart, KilledAtARandomMomentAndResumedIsTheUninterruptedRun) {
   Workspace w;
   auto full = start(w, {"run", "scene.yaml", "-o", "full", "--quiet"}, "full.out");
@@ -190,14 +199,7 @@ TEST(Restart, CtrlCStopsWithACheckpointAndSaysHowToResume) {
       start(w, {"run", "scene.yaml", "-o", "cut", "--quiet", "--set", "checkpoint.interval=0"},
             "cut.out");
   // Ctrl-C once the run has recorded a few steps (a fixed delay is too short on a loaded machine)
-  const auto lines = [&] {
-    std::ifstream in(w.dir / "cut/timeseries.csv");
-    std::string line;
-    int n = 0;
-    while (std::getline(in, line)) ++n;
-    return n;
-  };
-  for (int i = 0; i < 60000 && cut.running() && lines() < 3; ++i)
+  for (int i = 0; i < 60000 && cut.running() && lineCount(w.dir / "cut/timeseries.csv") < 3; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ASSERT_TRUE(cut.running()) << "the run ended before it could be interrupted: "
                              << text(w.dir / "cut.out");
@@ -312,14 +314,8 @@ TEST(Restart, AnInterruptedStudyResumesItsVariantFromTheCheckpoint) {
   auto cut = start(w, args("cut"), "cut.out");
   // Ctrl-C once the second variant has recorded a few steps (not after a fixed delay: on a
   // loaded machine the first variant alone can take longer than any delay chosen here)
-  const auto lines = [&] {
-    std::ifstream in(w.dir / "cut/variant-01/timeseries.csv");
-    std::string line;
-    int n = 0;
-    while (std::getline(in, line)) ++n;
-    return n;
-  };
-  for (int i = 0; i < 60000 && cut.running() && lines() < 4; ++i)
+  for (int i = 0;
+       i < 60000 && cut.running() && lineCount(w.dir / "cut/variant-01/timeseries.csv") < 4; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ASSERT_TRUE(cut.running()) << "the study ended before it could be interrupted: "
                              << text(w.dir / "cut.out");
