@@ -63,6 +63,7 @@ TEST(Ft4RheometerTiny, BladeRowsAreZeroAboveTheBedResistingInItAndTheEnergyIsThe
 
   const auto rows = readRows(out / "particles" / "ft4_blade.csv");
   const double interval = param(probe, "output_interval");
+  const double dem_dt = param(probe, "cfd_dt") / param(probe, "dem_steps");
   ASSERT_EQ(rows.size(), static_cast<std::size_t>(std::floor(end_time / interval + 1e-9)));
   double sum_f_in = 0, sum_m_in = 0;
   int in_bed = 0;
@@ -74,7 +75,9 @@ TEST(Ft4RheometerTiny, BladeRowsAreZeroAboveTheBedResistingInItAndTheEnergyIsThe
     const double mean_travel =
         (moving > 0 ? (moving * (std::max(t0, aeration) - aeration) + 0.5 * moving * moving) : 0) /
         interval;
-    EXPECT_NEAR(x.h, start - vz * mean_travel, 2e-7) << "t = " << x.t;
+    // within 4 DEM steps of travel: the movers start, and ave/time samples, at whole steps
+    // (measured: 1.5 steps, 2.6e-7 m)
+    EXPECT_NEAR(x.h, start - vz * mean_travel, 4 * vz * dem_dt) << "t = " << x.t;
     if (x.t <= aeration + 1e-9) {
       // waiting 3 mm above the bed: exactly no contact
       EXPECT_EQ(x.f, 0.0) << "t = " << x.t;
