@@ -13,6 +13,7 @@
 #include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 #include "coupler.h"
+#include "ft4_command.h"
 #include "keys_command.h"
 #include "launchers.h"
 #include "link_security.h"
@@ -115,7 +116,8 @@ int main(int argc, char** argv) {
       "  cosim validate scenarios/settling-sphere\n"
       "  cosim run scenarios/settling-sphere --set coupling.end_time=0.2\n"
       "  cosim run scenarios/plasma-coating-bed --set flow_lpm=50\n"
-      "  cosim report runs/plasma-coating-bed\n"};
+      "  cosim report runs/plasma-coating-bed\n"
+      "  cosim ft4 energy runs/ft4-rheometer\n"};
   app.require_subcommand(1);
   std::vector<std::string> sets, unsets;
   std::string scenario;
@@ -213,6 +215,9 @@ int main(int argc, char** argv) {
                    "~/.config/cosim/orchestrator.key); a participant's RUN/.cosim-NAME.key is "
                    "shown");
 
+  Ft4Options ft4_opt;
+  auto* ft4 = addFt4Command(app, ft4_opt);
+
 #ifdef COSIM_HAVE_REPORT
   cosim::analysis::ReportOptions rep_opt;
   auto* rep = app.add_subcommand(
@@ -265,6 +270,7 @@ int main(int argc, char** argv) {
   try {
     if (*val) return validate(scenario, sets, unsets);
     if (*keys) return keysCommand(key_file, std::cout);
+    if (*ft4) return runFt4Command(*ft4, ft4_opt, std::cout, std::cerr);
     if (*study) {
       for (const auto& v : vary) sopt.vary.push_back(parseVary(v));
       // Ctrl-C or SIGTERM: the running variant checkpoints and stops, and so does the study

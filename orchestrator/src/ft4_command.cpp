@@ -1,0 +1,73 @@
+#include "ft4_command.h"
+
+#include <fmt/format.h>
+
+#include <ostream>
+
+#include "cosim/analysis/files.h"
+#include "cosim/analysis/ft4_calibration.h"
+#include "cosim/analysis/ft4_energy.h"
+
+namespace cosim::orchestrator {
+
+CLI::App* addFt4Command(CLI::App& app, Ft4Options& o) {
+  auto* ft4 = app.add_subcommand(
+      "ft4",
+      "FT4 rheometer (scenarios/ft4-rheometer): flow energy of a run, calibration of the "
+      "friction coefficient against a measurement");
+  ft4->require_subcommand(1);
+  auto* energy = ft4->add_subcommand(
+      "energy",
+      "Flow energy W = integral of (M / (R tan alpha) + F) dH of a run (the paper's Eq. 11), "
+      "total and as a profile against the blade's height");
+  energy->add_option("run", o.run, "run folder of scenarios/ft4-rheometer")->required();
+  energy->add_option("-o,--output", o.output,
+                     "profile CSV (height_m, force_N, torque_Nm, gradient_J_per_m, energy_J; "
+                     "default RUN/ft4_energy.csv, rewritten from the run's rows each time)");
+  auto* cal = ft4->add_subcommand(
+      "calibrate",
+      "The value of a parameter (default mu_fric) that reproduces a measured flow energy: a "
+      "line fitted to the runs' energies, inverted, with its uncertainty from the runs' spread "
+      "and the measurement's replicates");
+  cal->add_option("measured", o.measured,
+                  "measured CSV: energy_mJ (or energy_J) per replicate, or height_mm (height_m) "
+                  "with one cumulative energy_mJ... column per replicate")
+      ->required();
+  cal->add_option("runs", o.runs, "study folders (cosim study -o) or run folders")->required();
+  cal->add_option("--parameter", o.parameter,
+                  "the scene parameter varied by the study (default mu_fric)");
+  return ft4;
+}
+
+int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, std::ostream& err) {
+  namespace a = cosim::analysis;
+  try {
+    if (ft4.got_subcommand("energy")) {
+      const auto profile = a::runFlowEnergy(o.run);
+      const auto file = o.output.empty() ? std::filesystem::path(o.run) / "ft4_energy.csv"
+                                         : std::filesystem::path(o.output);
+      a::writeFileAtomically(file, a::energyProfileCsv(profile));
+      out << fmt::format(
+          "flow energy {:.6g} mJ over the blade's descent from {:.4g} to {:.4g} mm (R = {:.4g} "
+          "mm, helix {:.4g} deg)\nprofile: {}\n",
+          profile.total_J() * 1e3, profile.highest_m() * 1e3, profile.lowest_m() * 1e3,
+          profile.blade_radius_m * 1e3, profile.helix_deg, file.string());
+      return 0;
+    }
+    const auto measured = a::readMeasuredEnergy(o.measured);
+    std::vector<std::filesystem::path> folders(o.runs.begin(), o.runs.end());
+    const auto runs = a::ft4Runs(folders);
+    const auto points = a::calibrationPoints(runs, o.parameter, measured);
+    const auto c = a::calibrate(points, measured.mean_J(), measured.standard_error_J());
+    if (measured.height_low_m)
+      out << fmt::format("energies over the measured heights {:.4g} .. {:.4g} mm\n",
+                         *measured.height_low_m * 1e3, *measured.height_high_m * 1e3);
+    out << a::calibrationText(c, o.parameter);
+    return 0;
+  } catch (const std::exception& e) {
+    err << "cosim ft4: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,206 @@
+// The FT4 analyses on synthetic data of known answer: the flow energy of Eq. 11 against hand
+// calculations, the blade file of a resumed run, the measured CSV forms, and the calibration's
+// line fit, inversion and uncertainty against closed-form least squares; end to end through
+// run folders made here (no solvers).
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <string>
+
+#include "cosim/analysis/ft4_calibration.h"
+#include "cosim/analysis/ft4_energy.h"
+
+using namespace cosim::analysis;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path tempDir(const std::string& name) {
+  const auto d = fs::temp_directory_path() / ("cosim-ft4-" + name + "-" + std::to_string(getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+void write(const fs::path& f, const std::string& text) {
+  fs::create_directories(f.parent_path());
+  std::ofstream(f) << text;
+}
+
+// A run folder of the FT4 scene as far as the analyses read it: the resolved parameters, a
+// completed summary and the blade rows F = force, M = torque while the blade falls from 0.04 m
+// to 0.01 m in steps of 1 mm (after three rows at rest at 0.04 m).
+fs::path fakeRun(const fs::path& dir, double mu, double force, double torque) {
+  write(dir / "scenario.resolved.yaml",
+        "# x as run\nname: ft4\nparameters:\n  mu_fric: " + std::to_string(mu) +
+            "\n  blade_radius: 0.024\n  helix_deg: 5\n");
+  write(dir / "summary.json", "{\"status\": \"completed\"}\n");
+  std::string csv = "time_s,height_m,force_N,torque_Nm\n";
+  for (int i = 1; i <= 3; ++i) csv += std::to_string(0.01 * i) + ",0.04,0,-0\n";
+  for (int k = 1; k <= 30; ++k)
+    csv += std::to_string(0.03 + 0.1 * k) + "," + std::to_string(0.04 - 0.001 * k) + "," +
+           std::to_string(force) + "," + std::to_string(torque) + "\n";
+  write(dir / "particles" / "ft4_blade.csv", csv);
+  return dir;
+}
+
+const double kLever = 0.024 * std::tan(5 * std::numbers::pi / 180);  // R tan(alpha)
+
+}  // namespace
+
+TEST(Ft4Energy, ConstantForceAndTorqueGiveTheirWorkExactly) {
+  // F = 2 N, M = 0.01 N m over 30 mm: W = (M / (R tan a) + F) x 0.03 m
+  std::vector<BladeRow> rows{{0.0, 0.04, 0, 0}, {0.1, 0.04, 0, 0}};
+  for (int k = 0; k <= 30; ++k) rows.push_back({0.2 + 0.1 * k, 0.04 - 0.001 * k, 2.0, 0.01});
+  const auto p = flowEnergy(rows, 0.024, 5);
+  // the first step into the powder is a trapezoid from 0 to the full gradient over 0 mm: the
+  // rows at 0.04 m with F = 0 and F = 2 share the height, so they add nothing
+  const double g = 0.01 / kLever + 2.0;
+  EXPECT_NEAR(p.total_J(), g * 0.03, 1e-12 * g);
+  EXPECT_NEAR(p.points.back().gradient_J_per_m, g, 1e-12 * g);
+  EXPECT_NEAR(p.between(0.015, 0.035), g * 0.02, 1e-12 * g);
+  EXPECT_DOUBLE_EQ(p.highest_m(), 0.04);
+  EXPECT_NEAR(p.lowest_m(), 0.01, 1e-15);
+  EXPECT_THROW((void)p.between(0.005, 0.035), std::invalid_argument);
+}
+
+TEST(Ft4Energy, LinearGradientIsIntegratedExactlyByTheTrapezoids) {
+  // F rising linearly with depth d = 0.04 - H: F = 100 d, M = 0 -> W = 50 d^2
+  std::vector<BladeRow> rows;
+  for (int k = 0; k <= 40; ++k) {
+    const double d = 0.00075 * k;
+    rows.push_back({0.1 * k, 0.04 - d, 100 * d, 0.0});
+  }
+  const auto p = flowEnergy(rows, 0.024, 5);
+  EXPECT_NEAR(p.total_J(), 50 * 0.03 * 0.03, 1e-13);
+}
+
+TEST(Ft4Energy, RefusesARisingBladeAndBadParameters) {
+  std::vector<BladeRow> rows{{0.1, 0.02, 1, 0}, {0.2, 0.021, 1, 0}};
+  EXPECT_THROW((void)flowEnergy(rows, 0.024, 5), std::invalid_argument);
+  EXPECT_THROW((void)flowEnergy({}, 0.0, 5), std::invalid_argument);
+  EXPECT_THROW((void)flowEnergy({}, 0.024, 90), std::invalid_argument);
+}
+
+TEST(Ft4Energy, ResumedRunRowsReplaceTheStoppedRunsFromTheCheckpoint) {
+  const auto d = tempDir("resume");
+  // the stopped run wrote up to t = 0.4; the resumed one restarts at its checkpoint t = 0.2
+  write(d / "ft4_blade.csv",
+        "time_s,height_m,force_N,torque_Nm\n0.1,0.04,0,0\n0.2,0.039,1,0\n0.3,0.038,9,0\n"
+        "0.4,0.037,9,0\ntime_s,height_m,force_N,torque_Nm\n0.3,0.038,2,0\n0.4,0.037,3,0\n");
+  const auto rows = readBladeRows(d / "ft4_blade.csv");
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_DOUBLE_EQ(rows[2].force_N, 2);
+  EXPECT_DOUBLE_EQ(rows[3].force_N, 3);
+  write(d / "bad.csv", "time_s,height_m,force_N,torque_Nm\n0.1,0.04,x,0\n");
+  try {
+    (void)readBladeRows(d / "bad.csv");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:2: column force_N"), std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(d);
+}
+
+TEST(Ft4Calibration, LineFitInversionAndUncertaintyAgainstClosedForm) {
+  // mu 0.3, 0.5, 0.7 with W 1.0, 2.1, 3.0 J: by hand, b = Sxy/Sxx = 0.4/0.08 = 5,
+  // a = 2.0333.. - 2.5, s^2 = SSE/(n-2) = 0.0066667; measured 2.5 J:
+  // mu = (2.5 - a)/b = 0.593333.., sigma_study = s sqrt(1/3 + (mu - 0.5)^2/0.08)/5
+  std::vector<CalibrationPoint> pts{{"a", 0.3, 1.0}, {"b", 0.5, 2.1}, {"c", 0.7, 3.0}};
+  const auto c = calibrate(pts, 2.5, 0.05);
+  EXPECT_NEAR(c.slope_J, 5.0, 1e-12);
+  EXPECT_NEAR(c.intercept_J, 6.1 / 3 - 2.5, 1e-12);
+  const double s2 = (1.0 / 900 + 4.0 / 900 + 1.0 / 900) / 1;  // residuals -1/30, 2/30, -1/30
+  EXPECT_NEAR(c.residual_sd_J, std::sqrt(s2), 1e-12);
+  const double mu = (2.5 - (6.1 / 3 - 2.5)) / 5;
+  EXPECT_NEAR(c.parameter, mu, 1e-12);
+  const double study = std::sqrt(s2 * (1.0 / 3 + (mu - 0.5) * (mu - 0.5) / 0.08)) / 5;
+  EXPECT_NEAR(c.sigma_study, study, 1e-12);
+  EXPECT_NEAR(c.sigma_measurement, 0.05 / 5, 1e-12);
+  EXPECT_NEAR(c.sigma, std::hypot(study, 0.01), 1e-12);
+  EXPECT_FALSE(c.extrapolated);
+  EXPECT_TRUE(calibrate(pts, 3.5, 0).extrapolated);
+}
+
+TEST(Ft4Calibration, ExactLineGivesBackTheKnownValueWithTheMeasurementsUncertaintyOnly) {
+  std::vector<CalibrationPoint> pts;
+  for (double mu : {0.2, 0.35, 0.5, 0.65, 0.8}) pts.push_back({"", mu, 0.004 + 0.012 * mu});
+  const auto c = calibrate(pts, 0.004 + 0.012 * 0.52, 0.0003);
+  EXPECT_NEAR(c.parameter, 0.52, 1e-12);
+  EXPECT_NEAR(c.sigma_study, 0.0, 1e-9);
+  EXPECT_NEAR(c.sigma, 0.0003 / 0.012, 1e-9);
+}
+
+TEST(Ft4Calibration, RefusesTooFewRunsAndAFlatResponse) {
+  EXPECT_THROW((void)calibrate({{"", 0.3, 1}, {"", 0.5, 2}}, 1.5, 0), std::invalid_argument);
+  EXPECT_THROW((void)calibrate({{"", 0.5, 1}, {"", 0.5, 2}, {"", 0.5, 3}}, 1.5, 0),
+               std::invalid_argument);
+  // noise only: no slope
+  EXPECT_THROW(
+      (void)calibrate({{"", 0.3, 1.0}, {"", 0.5, 1.2}, {"", 0.7, 0.9}, {"", 0.9, 1.1}}, 1.0, 0),
+      std::invalid_argument);
+}
+
+TEST(Ft4Calibration, MeasuredTotalsAndProfilesInEitherUnit) {
+  const auto d = tempDir("measured");
+  write(d / "totals.csv", "energy_mJ\n10\n12\n14\n");
+  const auto t = readMeasuredEnergy(d / "totals.csv");
+  EXPECT_NEAR(t.mean_J(), 0.012, 1e-15);
+  EXPECT_NEAR(t.standard_error_J(), 0.002 / std::sqrt(3.0), 1e-15);  // std 2 mJ over sqrt(3)
+  EXPECT_FALSE(t.height_low_m);
+  // a profile from 40 mm down to 10 mm, two replicates, cumulative from the top
+  write(d / "profile.csv", "height_mm,energy_mJ_1,energy_mJ_2\n40,0,0\n30,2,3\n20,5,6\n10,9,11\n");
+  const auto p = readMeasuredEnergy(d / "profile.csv");
+  ASSERT_EQ(p.replicates_J.size(), 2u);
+  EXPECT_NEAR(p.replicates_J[0], 0.009, 1e-15);
+  EXPECT_NEAR(p.replicates_J[1], 0.011, 1e-15);
+  EXPECT_NEAR(*p.height_low_m, 0.010, 1e-15);
+  EXPECT_NEAR(*p.height_high_m, 0.040, 1e-15);
+  write(d / "bad.csv", "height_mm,work\n1,2\n");
+  try {
+    (void)readMeasuredEnergy(d / "bad.csv");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown column 'work'"), std::string::npos) << e.what();
+  }
+  fs::remove_all(d);
+}
+
+TEST(Ft4Calibration, StudyFolderEndToEndRecoversTheFrictionOfASyntheticMeasurement) {
+  // runs whose force grows linearly with mu: F = 4 mu N, M = 0.02 mu N m over 30 mm of descent
+  // -> gradient g(mu) = 0.02 mu / (R tan a) + 4 mu from 39 mm down, and the step from the rest
+  // row at 40 mm (g = 0) a trapezoid of half of it: W(mu) = g(mu) x 0.0295 m; a measurement
+  // made at mu = 0.52
+  const auto study = tempDir("study");
+  int i = 0;
+  for (double mu : {0.3, 0.45, 0.6, 0.75})
+    fakeRun(study / ("variant-0" + std::to_string(i++)), mu, 4 * mu, 0.02 * mu);
+  fakeRun(study / "variant-00.previous-1", 0.1, 100, 0);  // a replaced variant: not counted
+  const double g = 0.02 * 0.52 / kLever + 4 * 0.52;
+  const double w = g * 0.0295;
+  write(study / "measured.csv",
+        "energy_J\n" + std::to_string(w * 0.98) + "\n" + std::to_string(w * 1.02) + "\n");
+  const auto measured = readMeasuredEnergy(study / "measured.csv");
+  const auto runs = ft4Runs({study});
+  ASSERT_EQ(runs.size(), 4u);
+  const auto c = calibrate(calibrationPoints(runs, "mu_fric", measured), measured.mean_J(),
+                           measured.standard_error_J());
+  // the CSV holds 6 digits: mu back to 1e-5
+  EXPECT_NEAR(c.parameter, 0.52, 1e-5);
+  // the two replicates +-2 %: standard error 0.02 w, over the slope w / 0.52
+  EXPECT_NEAR(c.sigma_measurement, 0.02 * 0.52, 1e-5);
+  EXPECT_LT(c.sigma_study, 1e-5);
+  // a measured profile over 35 .. 15 mm: the runs' energies over the same heights
+  write(study / "profile.csv",
+        "height_m,energy_J\n0.035,0\n0.015," + std::to_string(g * 0.020) + "\n");
+  const auto prof = readMeasuredEnergy(study / "profile.csv");
+  const auto cp = calibrate(calibrationPoints(runs, "mu_fric", prof), prof.mean_J(), 0);
+  EXPECT_NEAR(cp.parameter, 0.52, 1e-5);
+  EXPECT_THROW((void)ft4Runs({study / "nothing"}), std::runtime_error);
+  fs::remove_all(study);
+}
