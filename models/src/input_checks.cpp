@@ -10,8 +10,8 @@ namespace {
 
 std::string num(double v) { return fmt::format("{:.6g}", v); }
 
-[[noreturn]] void fail(const std::string& owner, const std::string& field, std::size_t i,
-                       double v, const std::string& expected) {
+[[noreturn]] void fail(const std::string& owner, const std::string& field, std::size_t i, double v,
+                       const std::string& expected) {
   throw ModelError(owner + ": field '" + field + "' of parcel " + std::to_string(i) + " is " +
                    num(v) + "; expected " + expected +
                    " (the value came from the adapter that provides this field: check its "
@@ -46,12 +46,16 @@ constexpr double kVoidageRoundOff = 1e-9;
 
 void validateConstants(const std::string& owner, const SceneConstants& c) {
   if (!(std::isfinite(c.cg) && c.cg >= 1.0)) {
-    throw ModelError(owner + ": constant 'cg' (coarse-graining factor, constants.cg in the "
-                     "scenario) is " + num(c.cg) + "; expected a finite number >= 1");
+    throw ModelError(owner +
+                     ": constant 'cg' (coarse-graining factor, constants.cg in the "
+                     "scenario) is " +
+                     num(c.cg) + "; expected a finite number >= 1");
   }
   if (!(c.min_voidage > 0.0 && c.min_voidage <= 1.0)) {
-    throw ModelError(owner + ": constant 'min_voidage' (constants.min_voidage in the scenario) "
-                     "is " + num(c.min_voidage) + "; expected a number in (0, 1], typically 0.1 to 0.4");
+    throw ModelError(owner +
+                     ": constant 'min_voidage' (constants.min_voidage in the scenario) "
+                     "is " +
+                     num(c.min_voidage) + "; expected a number in (0, 1], typically 0.1 to 0.4");
   }
   if (!(std::isfinite(c.schmidt) && c.schmidt > 0.0)) {
     throw ModelError(owner + ": constant 'schmidt' (constants.schmidt in the scenario) is " +
@@ -59,7 +63,8 @@ void validateConstants(const std::string& owner, const SceneConstants& c) {
   }
   for (double g : c.gravity) {
     if (!std::isfinite(g)) {
-      throw ModelError(owner + ": constant 'gravity' (constants.gravity in the scenario) has a "
+      throw ModelError(owner +
+                       ": constant 'gravity' (constants.gravity in the scenario) has a "
                        "non-finite component; expected 3 finite numbers [m/s2]");
     }
   }
@@ -82,25 +87,30 @@ void checkInputs(const std::string& owner, const std::vector<std::string>& field
                        "' but the batch does not carry it (the orchestrator must request every "
                        "field in requiredFields() from the adapters)");
     }
-    const std::size_t m = p.n * rule->components;
-    for (std::size_t j = 0; j < m; ++j) {
-      const double x = v[j];
-      const std::size_t i = j / rule->components;
-      if (p.isLost(i)) continue;
-      switch (rule->rule) {
-        case Rule::finite:
-          if (!std::isfinite(x)) fail(owner, f, i, x, "a finite number");
-          break;
-        case Rule::positive:
-          if (!(std::isfinite(x) && x > 0.0)) fail(owner, f, i, x, "a finite number > 0");
-          break;
-        case Rule::voidage:
-          if (!(x > 0.0 && x <= 1.0 + kVoidageRoundOff)) fail(owner, f, i, x, "a voidage in (0, 1]");
-          break;
-        case Rule::fraction:
-          if (!(x >= 0.0 && x <= 1.0)) fail(owner, f, i, x, "a mass fraction in [0, 1]");
-          break;
+    // One pass per rule, parcel by parcel (the rule chosen once, not per value)
+    const std::size_t k = rule->components;
+    auto scan = [&](auto ok, const char* expected) {
+      for (std::size_t i = 0; i < p.n; ++i) {
+        if (p.isLost(i)) continue;
+        for (std::size_t j = 0; j < k; ++j) {
+          if (!ok(v[i * k + j])) fail(owner, f, i, v[i * k + j], expected);
+        }
       }
+    };
+    switch (rule->rule) {
+      case Rule::finite:
+        scan([](double x) { return std::isfinite(x); }, "a finite number");
+        break;
+      case Rule::positive:
+        scan([](double x) { return std::isfinite(x) && x > 0.0; }, "a finite number > 0");
+        break;
+      case Rule::voidage:
+        scan([](double x) { return x > 0.0 && x <= 1.0 + kVoidageRoundOff; },
+             "a voidage in (0, 1]");
+        break;
+      case Rule::fraction:
+        scan([](double x) { return x >= 0.0 && x <= 1.0; }, "a mass fraction in [0, 1]");
+        break;
     }
   }
 }

@@ -312,7 +312,7 @@ link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
   if (!plan_.fluid) return {};
   if (auto ahead = scheme_->samplesAhead(state_)) return samplesOf(*ahead, lost);
   wire::Envelope e;
-  state_.select(plan_.sample_state).toWire(*e.mutable_sample()->mutable_particles());
+  state_.toWire(*e.mutable_sample()->mutable_particles(), plan_.sample_state);
   const auto r = participants_.request("fluid", std::move(e), wire::Envelope::kSamples);
   participants_.addComputeSeconds("fluid_sample", r.samples().wall_seconds());
   return samplesOf(r.samples(), lost);

@@ -14,7 +14,7 @@ wire::Envelope particleAdvance(const Scenario& sc, const Plan& plan, const Coupl
   auto* a = e.mutable_advance();
   a->set_dt(sc.coupling.dt);
   a->set_substeps(sc.coupling.dem_steps);
-  terms.forcing.select(plan.particles_receive).toWire(*a->mutable_terms());
+  terms.forcing.toWire(*a->mutable_terms(), plan.particles_receive);
   return e;
 }
 
@@ -23,7 +23,7 @@ wire::Envelope fluidAdvance(const Scenario& sc, const Plan& plan, const Coupling
   auto* a = e.mutable_advance();
   a->set_dt(sc.coupling.dt);
   a->set_substeps(1);
-  terms.exchange.select(plan.fluid_advance_terms).toWire(*a->mutable_terms());
+  terms.exchange.toWire(*a->mutable_terms(), plan.fluid_advance_terms);
   return e;
 }
 
@@ -57,8 +57,8 @@ AdvanceReplies ParallelScheme::advance(Participants& participants,
   if (plan_.fluid) messages["fluid"] = fluidAdvance(sc_, plan_, terms);
   auto replies = participants.exchange(std::move(messages), wire::Envelope::kAdvanced);
   AdvanceReplies r;
-  r.particles = replies.at("particles").advanced();
-  if (plan_.fluid) r.fluid = replies.at("fluid").advanced();
+  r.particles = std::move(*replies.at("particles").mutable_advanced());
+  if (plan_.fluid) r.fluid = std::move(*replies.at("fluid").mutable_advanced());
   return r;
 }
 
@@ -69,17 +69,17 @@ AdvanceReplies OverlappedScheme::advance(Participants& participants,
   messages["particles"] = particleAdvance(sc_, plan_, terms);
   if (plan_.fluid) {
     auto fluid = fluidAdvance(sc_, plan_, terms);
-    state.select(plan_.sample_state).toWire(*fluid.mutable_advance()->mutable_sample_ahead());
+    state.toWire(*fluid.mutable_advance()->mutable_sample_ahead(), plan_.sample_state);
     messages["fluid"] = std::move(fluid);
   }
   auto replies = participants.exchange(std::move(messages), wire::Envelope::kAdvanced);
   AdvanceReplies r;
-  r.particles = replies.at("particles").advanced();
+  r.particles = std::move(*replies.at("particles").mutable_advanced());
   ahead_.reset();
   if (plan_.fluid) {
-    r.fluid = replies.at("fluid").advanced();
+    r.fluid = std::move(*replies.at("fluid").mutable_advanced());
     if (r.fluid->has_ahead()) {
-      ahead_ = r.fluid->ahead();
+      ahead_ = std::move(*r.fluid->mutable_ahead());
       participants.addComputeSeconds("fluid_sample_ahead", ahead_->wall_seconds());
     }
   }
@@ -119,14 +119,13 @@ AdvanceReplies FrozenScheme::advance(Participants& participants,
   }
   AdvanceReplies r;
   if (alone_ == Alone::particles) {
-    r.particles =
-        participants
-            .request("particles", particleAdvance(sc_, plan_, terms), wire::Envelope::kAdvanced)
-            .advanced();
+    auto reply = participants.request("particles", particleAdvance(sc_, plan_, terms),
+                                      wire::Envelope::kAdvanced);
+    r.particles = std::move(*reply.mutable_advanced());
   } else if (plan_.fluid) {
-    r.fluid =
-        participants.request("fluid", fluidAdvance(sc_, plan_, terms), wire::Envelope::kAdvanced)
-            .advanced();
+    auto reply =
+        participants.request("fluid", fluidAdvance(sc_, plan_, terms), wire::Envelope::kAdvanced);
+    r.fluid = std::move(*reply.mutable_advanced());
   }
   return r;
 }

@@ -296,7 +296,8 @@ Replies Participants::exchange(std::map<std::string, wire::Envelope> messages,
 
 wire::Envelope Participants::request(const std::string& name, wire::Envelope message,
                                      wire::Envelope::BodyCase reply) {
-  return exchange({{name, std::move(message)}}, reply).at(name);
+  Replies replies = exchange({{name, std::move(message)}}, reply);
+  return std::move(replies.at(name));
 }
 
 void Participants::checkpoint(const fs::path& folder) {
@@ -352,7 +353,7 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
   return got;
 }
 
-void Participants::take(const std::string& who, const wire::Envelope& env,
+void Participants::take(const std::string& who, wire::Envelope& env,
                         const std::map<std::string, wire::Envelope::BodyCase>& expected,
                         Replies& got) {
   if (env.has_heartbeat()) return;
@@ -386,7 +387,7 @@ void Participants::take(const std::string& who, const wire::Envelope& env,
                               " while the run is at step " + std::to_string(at) +
                               " (out-of-order step)");
   }
-  got[who] = env;
+  got[who] = std::move(env);
 }
 
 std::optional<std::string> Participants::admit(const link::Hub::Incoming& in) {

@@ -104,7 +104,7 @@ class Participants {
   // A message of a participant of this run while the replies in `expected` are awaited: put
   // into `got` if it is one of them; heartbeats and copies of a Hello are passed over; anything
   // else is a RunFailure saying what is wrong with it.
-  void take(const std::string& who, const wire::Envelope& env,
+  void take(const std::string& who, wire::Envelope& env,
             const std::map<std::string, wire::Envelope::BodyCase>& expected, Replies& got);
   // Why a participant's name was dropped, for the message when it never connects.
   std::string ignoredNote(const std::string& name) const;

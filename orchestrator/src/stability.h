@@ -89,6 +89,7 @@ class StepMonitor {
  private:
   const Scenario& sc_;
   bool courant_warned_ = false;
+  bool ledger_checked_ = false;  // the full id check ran once (later steps may take the fast path)
   std::optional<std::array<double, 4>> baseline_;
 };
 

@@ -1,5 +1,7 @@
 #include "cosim/link/particle_data.h"
 
+#include <algorithm>
+
 #include "cosim.pb.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
@@ -59,6 +61,18 @@ void ParticleData::toWire(wire::FieldSet& out) const {
   out.Clear();
   out.mutable_ids()->Assign(ids.begin(), ids.end());
   for (const auto& [name, v] : fields_) {
+    auto* f = out.add_fields();
+    f->set_name(name);
+    f->set_components(componentsOrOne(name));
+    f->mutable_values()->Assign(v.begin(), v.end());
+  }
+}
+
+void ParticleData::toWire(wire::FieldSet& out, const std::vector<std::string>& names) const {
+  out.Clear();
+  out.mutable_ids()->Assign(ids.begin(), ids.end());
+  for (const auto& [name, v] : fields_) {  // in the map's order, as select() then toWire()
+    if (std::find(names.begin(), names.end(), name) == names.end()) continue;
     auto* f = out.add_fields();
     f->set_name(name);
     f->set_components(componentsOrOne(name));

@@ -1,6 +1,7 @@
 #include "cosim/models/mass/gunn.h"
 
 #include <cmath>
+#include <limits>
 
 #include "cosim/models/mass/sherwood_transfer.h"
 
@@ -8,8 +9,10 @@ namespace cosim::models {
 
 namespace {
 double sherwood(double eps, double Re, double sc13) {
-  return (7.0 - 10.0 * eps + 5.0 * eps * eps) * (1.0 + 0.7 * std::pow(Re, 0.2) * sc13) +
-         (1.33 - 2.4 * eps + 1.2 * eps * eps) * std::pow(Re, 0.7) * sc13;
+  // Re^0.2 and Re^0.7 from one logarithm
+  const double lnRe = Re > 0.0 ? std::log(Re) : -std::numeric_limits<double>::infinity();
+  return (7.0 - 10.0 * eps + 5.0 * eps * eps) * (1.0 + 0.7 * std::exp(0.2 * lnRe) * sc13) +
+         (1.33 - 2.4 * eps + 1.2 * eps * eps) * std::exp(0.7 * lnRe) * sc13;
 }
 }  // namespace
 

@@ -37,6 +37,8 @@ class ParticleData {
   std::map<std::int64_t, std::size_t> index() const;
 
   void toWire(wire::FieldSet& out) const;
+  // Only the named fields (those it holds), as select(names).toWire(out) but without the copy.
+  void toWire(wire::FieldSet& out, const std::vector<std::string>& names) const;
   // Validates lengths and component counts; throws ProtocolError with the field name.
   static ParticleData fromWire(const wire::FieldSet& in);
 
