@@ -254,7 +254,8 @@ wire::Welcome Session::handshake() {
           gone_message_ = "the orchestrator at " + options_.endpoint +
                           " is gone: no connection to it for " +
                           std::to_string(lost.count() / 1000) +
-                          " s (cosim was killed, or its host is unreachable); stopping";
+                          " s (cosim was killed, its host is down, or the network to it is cut); "
+                          "stopping";
           gone_at = Clock::now();
           orchestrator_gone_ = true;
         }
