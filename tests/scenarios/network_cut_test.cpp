@@ -280,6 +280,47 @@ TEST(NetworkCut, ALastingCutStopsBothSidesEachWithinItsTimeoutAndTheRunResumes) 
   fs::remove_all(base);
 }
 
+// A run with both solvers on the other side of `link`, started by cosim through a wrapper, whose
+// link is cut after step kCutStep for `cut` seconds; when each thing happened.
+struct CutRun {
+  RunResult result;
+  std::string cut_error = "not cut", restore_error = "not restored";
+  int steps_while_cut = -1;
+  Clock::time_point cut_at, restored_at, next_step_at, ended_at;
+};
+CutRun cutFor(double cut, const cosim::test::PrivateLink& link, const fs::path& base) {
+  std::vector<std::string> sets = overTheLink(link, base);
+  for (const char* name : {"fluid", "particles"}) {
+    const fs::path real = kBin / (std::string(name) == "fluid" ? "cosimFoam" : "cosim-liggghts");
+    const fs::path wrapper = base / (std::string(name) + ".sh");
+    std::ofstream(wrapper) << "#!/bin/sh\nexec ip netns exec " << link.ns << " " << real.string()
+                           << " \"$@\"\n";
+    fs::permissions(wrapper, fs::perms::owner_all);
+    sets.push_back(std::string("participants.") + name + ".command=" + wrapper.string());
+  }
+  CutRun c;
+  std::atomic<int> steps{0};
+  std::thread restorer;
+  c.result = run(sets, base / "run", [&] {
+    const int k = ++steps;
+    if (k == kCutStep) {
+      c.cut_error = link.cut();
+      c.cut_at = Clock::now();
+      restorer = std::thread([&] {
+        std::this_thread::sleep_for(std::chrono::duration<double>(cut));
+        c.steps_while_cut = steps.load();
+        c.restore_error = link.restore();
+        c.restored_at = Clock::now();
+      });
+    } else if (k == kCutStep + 1) {
+      c.next_step_at = Clock::now();
+    }
+  });
+  c.ended_at = Clock::now();
+  if (restorer.joinable()) restorer.join();
+  return c;
+}
+
 // A cut of 1 s: the run waits while it lasts and then goes on; nothing is lost, nothing is
 // received twice, and the result is the uncut run's to the bit.
 TEST(NetworkCut, AOneSecondCutDelaysTheRunAndLeavesItsResultToTheBit) {
@@ -291,50 +332,21 @@ TEST(NetworkCut, AOneSecondCutDelaysTheRunAndLeavesItsResultToTheBit) {
   fs::create_directories(base);
   const RunResult& uncut = reference().result;
   ASSERT_EQ(uncut.exit_code, 0) << uncut.message;
-  std::vector<std::string> sets = overTheLink(link, base);
-  // Both solvers on the other side of the link, started by cosim through a wrapper.
-  for (const char* name : {"fluid", "particles"}) {
-    const fs::path real = kBin / (std::string(name) == "fluid" ? "cosimFoam" : "cosim-liggghts");
-    const fs::path wrapper = base / (std::string(name) + ".sh");
-    std::ofstream(wrapper) << "#!/bin/sh\nexec ip netns exec " << link.ns << " " << real.string()
-                           << " \"$@\"\n";
-    fs::permissions(wrapper, fs::perms::owner_all);
-    sets.push_back(std::string("participants.") + name + ".command=" + wrapper.string());
-  }
-
-  std::atomic<int> steps{0};
-  std::atomic<int> steps_while_cut{-1};
-  Clock::time_point cut_at, restored_at, next_step_at;
-  std::string cut_error = "not cut", restore_error = "not restored";
-  std::thread restorer;
-  const RunResult r = run(sets, base / "run", [&] {
-    const int k = ++steps;
-    if (k == kCutStep) {
-      cut_error = link.cut();
-      cut_at = Clock::now();
-      restorer = std::thread([&] {
-        std::this_thread::sleep_for(std::chrono::seconds(1));
-        steps_while_cut = steps.load();
-        restore_error = link.restore();
-        restored_at = Clock::now();
-      });
-    } else if (k == kCutStep + 1) {
-      next_step_at = Clock::now();
-    }
-  });
-  if (restorer.joinable()) restorer.join();
-  ASSERT_EQ(cut_error, "");
-  ASSERT_EQ(restore_error, "");
+  const CutRun c = cutFor(1.0, link, base);
+  const RunResult& r = c.result;
+  ASSERT_EQ(c.cut_error, "");
+  ASSERT_EQ(c.restore_error, "");
   ASSERT_EQ(r.exit_code, 0) << r.message;
-  const double stall = seconds(cut_at, next_step_at);
+  const double stall = seconds(c.cut_at, c.next_step_at);
   std::printf(
       "cut for %.2f s after step %d: the next step came %.2f s after the cut, %.2f s "
       "after the link was back\n",
-      seconds(cut_at, restored_at), kCutStep, stall, seconds(restored_at, next_step_at));
+      seconds(c.cut_at, c.restored_at), kCutStep, stall, seconds(c.restored_at, c.next_step_at));
 
   // The cut did stop the run while it lasted, and TCP's retransmission (its timer doubling from
-  // 0.2 s: 0.2, 0.6, 1.4 s after a loss) brought it back soon after the link
-  EXPECT_EQ(steps_while_cut.load(), kCutStep);
+  // 0.2 s: 0.2, 0.6, 1.4 s after a loss) brought it back soon after the link (measured: the next
+  // step 1.5 to 1.7 s after the cut)
+  EXPECT_EQ(c.steps_while_cut, kCutStep);
   EXPECT_GE(stall, 1.0);
   EXPECT_LE(stall, 3.5);
   EXPECT_EQ(r.steps, uncut.steps);
@@ -349,5 +361,41 @@ TEST(NetworkCut, AOneSecondCutDelaysTheRunAndLeavesItsResultToTheBit) {
     EXPECT_EQ(r.final_state.get(field), uncut.final_state.get(field)) << field;
   EXPECT_EQ(r.totals, uncut.totals);
   EXPECT_EQ(cosim::analysis::readJsonFile(base / "run/summary.json").at("status"), "completed");
+  fs::remove_all(base);
+}
+
+// A cut of 7 s: longer than ZeroMQ's heartbeat (5 s), which closes the connections, shorter than
+// the 3 s more after which a participant counts the orchestrator as gone, and than the
+// orchestrator's 10 s heartbeat timeout. ZeroMQ connects again once the link is back, but what
+// was in flight on the closed connections is lost: each participant stops then (exit code 3)
+// saying so, and the orchestrator sees it exit at once. (Before, the run waited for a reply that
+// never came until participants.NAME.timeout, 300 s by default, and blamed a slow step.)
+TEST(NetworkCut, ACutLongerThanZeroMQsHeartbeatStopsTheRunOnceTheLinkIsBack) {
+  cosim::test::PrivateLink link(getpid() + 3);
+  if (!link.why.empty()) GTEST_SKIP() << link.why;
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-netcut-middle-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const CutRun c = cutFor(7.0, link, base);
+  const RunResult& r = c.result;
+  ASSERT_EQ(c.cut_error, "");
+  ASSERT_EQ(c.restore_error, "");
+  const double after_cut = seconds(c.cut_at, c.ended_at);
+  std::printf("cut for %.2f s after step %d: the run failed %.2f s after the cut\n",
+              seconds(c.cut_at, c.restored_at), kCutStep, after_cut);
+  EXPECT_EQ(r.exit_code, 2) << r.message;
+  EXPECT_EQ(r.steps, static_cast<std::size_t>(kCutStep));
+  EXPECT_GE(after_cut, 7.0);
+  EXPECT_LE(after_cut, 12.0);
+  // A participant exited with code 3 saying why: connected again (or, had it not connected
+  // again within 3 s of losing the connection, the orchestrator gone)
+  EXPECT_NE(r.message.find("process (openfoam) exited with code 3 at step 31"), std::string::npos)
+      << r.message;
+  EXPECT_TRUE(r.message.find("was lost and made again (the network between them was cut for "
+                             "longer than ZeroMQ's 5 s heartbeat)") != std::string::npos ||
+              r.message.find("is gone: no connection to it for 3 s") != std::string::npos)
+      << r.message;
+  EXPECT_TRUE(fs::exists(base / "run/checkpoints/0.002/orchestrator.json"));
   fs::remove_all(base);
 }
