@@ -152,6 +152,14 @@ RunResult Coupler::run() {
   if (!result.message.empty()) {
     log_.file(result.message);
     result.message += "\n  everything recorded so far is in " + record_.folder().string();
+    // A run stopped before its end by a failure continues from its newest checkpoint
+    if (status == "failed" && result.steps < nsteps_ && (opt_.resume.empty() || resume_accepted_)) {
+      if (const auto newest = checkpoints_->newest()) {
+        result.message += "; its newest checkpoint is t = " + newest->filename().string() +
+                          " s: once the cause is fixed, continue with\n  cosim resume " +
+                          record_.folder().string();
+      }
+    }
   }
   return result;
 }

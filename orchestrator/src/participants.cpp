@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "case_files.h"
+#include "cosim/analysis/files.h"
 #include "cosim/link/curve_keys.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/file_transfer.h"
@@ -134,7 +135,9 @@ void Participants::start(const fs::path& run_folder) {
     auto peer = std::make_unique<Peer>();
     peer->spec = spec;
     peer->workdir = run_folder / name;
-    peer->log = run_folder / (name + ".log");
+    // Only the processes cosim starts write there; an external one's output stays where it
+    // was started.
+    if (spec.launch != "external") peer->log = run_folder / (name + ".log");
     if (server_keys) {
       peer->keys = link::newCurveKeyPair();
       security.clients.insert(peer->keys.public_key);
@@ -455,7 +458,11 @@ void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCa
       const double silent = std::chrono::duration<double>(now - p.last_seen).count();
       if (p.connected && silent > sc_.transport.heartbeat_timeout) {
         throw RunFailure(name, "silent for " + std::to_string(static_cast<int>(silent)) +
-                                   " s (no heartbeat; hung, or its host is gone)");
+                                   " s at step " + std::to_string(step_) +
+                                   ": not even a heartbeat (transport.heartbeat_timeout " +
+                                   analysis::formatShortest(sc_.transport.heartbeat_timeout) +
+                                   " s); its process hung, its host went down, or the network "
+                                   "between it and the orchestrator is cut");
       }
       if (std::chrono::duration<double>(now - start).count() > timeout) {
         throw RunFailure(name, "did not answer within " +

@@ -19,6 +19,7 @@
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/time_series.h"
 #include "coupler.h"
+#include "private_link.h"
 #include "scenario.h"
 
 using namespace cosim::orchestrator;
@@ -50,40 +51,6 @@ RunResult run(const fs::path& out, std::vector<std::string> sets, const fs::path
 }
 
 int shell(const std::string& command) { return std::system(command.c_str()); }
-
-// A network namespace with a private link to this one: this side HOST, the other side PEER
-// (10.213.N.1 and .2 of a /30). Removed again when the test ends.
-struct PrivateLink {
-  std::string ns, host, peer, veth;
-  std::string why;  // why it could not be made; empty when it was
-  explicit PrivateLink(int n) {
-    ns = "cosim-t" + std::to_string(getpid());
-    veth = "cosv" + std::to_string(getpid() % 100000);
-    host = "10.213." + std::to_string(n % 250) + ".1";
-    peer = "10.213." + std::to_string(n % 250) + ".2";
-    const std::string err = fs::temp_directory_path() / ("cosim-netns-" + std::to_string(getpid()));
-    const std::string steps =
-        "ip netns add " + ns + " && ip link add " + veth + "a type veth peer name " + veth +
-        "b && ip link set " + veth + "b netns " + ns + " && ip addr add " + host + "/30 dev " +
-        veth + "a && ip link set " + veth + "a up && ip netns exec " + ns + " ip addr add " + peer +
-        "/30 dev " + veth + "b && ip netns exec " + ns + " ip link set " + veth +
-        "b up && ip netns exec " + ns + " ip link set lo up";
-    if (shell("(" + steps + ") 2>" + err) != 0) {
-      why = "cannot make a network namespace with a private link (needs root and iproute2): " +
-            text(err);
-    }
-    fs::remove(err);
-  }
-  ~PrivateLink() {
-    shell("ip link del " + veth + "a 2>/dev/null; ip netns del " + ns + " 2>/dev/null");
-  }
-  static std::string text(const fs::path& f) {
-    std::ifstream in(f);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }
-};
 
 std::string text(const fs::path& f) {
   std::ifstream in(f);
@@ -179,7 +146,7 @@ TEST(OwnFolder, SolversOnAnotherNetworkOverEncryptedTcpWithoutTheRunFolder) {
   const fs::path base = fs::temp_directory_path() / ("cosim-netns-run-" + std::to_string(getpid()));
   fs::remove_all(base);
   fs::create_directories(base / "runs");
-  PrivateLink link(getpid());
+  cosim::test::PrivateLink link(getpid());
   ASSERT_TRUE(link.why.empty()) << link.why;
   const fs::path bin = COSIM_BINARY_DIR;
   ASSERT_EQ(shell((bin / "cosim").string() + " keys " + (base / "orchestrator.key").string() +

@@ -32,6 +32,15 @@ constexpr Millis kCommandSlice{200};
 // heartbeat thread ends the process (exitProcessWhenOrphaned).
 constexpr Millis kOrphanGrace{5000};
 
+// Why a participant whose connection to the orchestrator was lost and made again stops.
+std::string reconnectedMessage(const std::string& endpoint) {
+  return "the connection to the orchestrator at " + endpoint +
+         " was lost and made again (the network between them was cut for longer than ZeroMQ's "
+         "5 s heartbeat): messages in flight may have been lost, so this participant cannot go "
+         "on with the run; stopping (the orchestrator stops the run too; continue it with "
+         "cosim resume)";
+}
+
 Millis until(Clock::time_point deadline) {
   return std::max(Millis(0), std::chrono::duration_cast<Millis>(deadline - Clock::now()));
 }
@@ -233,6 +242,7 @@ wire::Welcome Session::handshake() {
                         "' but the orchestrator runs '" + reply->header().run_id() + "'");
   }
   run_id_ = reply->header().run_id();
+  reconnections_at_welcome_ = channel_->reconnections();
 
   // Heartbeats from a socket of their own (ZeroMQ sockets belong to one thread). Its connection
   // also tells whether the orchestrator is still there.
@@ -241,6 +251,13 @@ wire::Welcome Session::handshake() {
     std::uint64_t seq = 0;
     Clock::time_point gone_at;
     while (!stop_heartbeat_) {
+      // Connected again after a loss: the command channel will have lost its connection too,
+      // and no more heartbeats must make the orchestrator wait for this participant.
+      if (!orchestrator_gone_ && hb.reconnections() > 0) {
+        gone_message_ = reconnectedMessage(options_.endpoint);
+        gone_at = Clock::now();
+        orchestrator_gone_ = true;
+      }
       if (!orchestrator_gone_) {
         wire::Envelope e;
         fillHeader(e.mutable_header());
@@ -254,7 +271,8 @@ wire::Welcome Session::handshake() {
           gone_message_ = "the orchestrator at " + options_.endpoint +
                           " is gone: no connection to it for " +
                           std::to_string(lost.count() / 1000) +
-                          " s (cosim was killed, or its host is unreachable); stopping";
+                          " s (cosim was killed, its host is down, or the network to it is cut); "
+                          "stopping";
           gone_at = Clock::now();
           orchestrator_gone_ = true;
         }
@@ -298,6 +316,7 @@ wire::Envelope Session::nextCommand() {
     env = channel_->receive(std::min(kCommandSlice, until(deadline)));
     if (env) break;
     if (orchestrator_gone_) throw PeerError(gone_message_);
+    checkStillConnected();
     if (Clock::now() >= deadline) {
       throw TimeoutError("the orchestrator sent nothing for " +
                          std::to_string(options_.command_timeout_ms / 1000) + " s; giving up");
@@ -330,7 +349,13 @@ wire::Envelope Session::nextCommand() {
   return std::move(*env);
 }
 
+void Session::checkStillConnected() {
+  if (channel_->reconnections() != reconnections_at_welcome_)
+    throw PeerError(reconnectedMessage(options_.endpoint));
+}
+
 void Session::reply(wire::Envelope& env) {
+  checkStillConnected();
   fillHeader(env.mutable_header());
   channel_->send(env);
 }

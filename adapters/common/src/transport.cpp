@@ -65,10 +65,15 @@ namespace {
 class ConnectionWatch : public zmq::monitor_t {
  public:
   bool up = false;
+  bool ever_up = false;
+  int reconnections = 0;
   std::chrono::steady_clock::time_point down_since = std::chrono::steady_clock::now();
   std::string handshake_failure;
 
-  void on_event_connected(const zmq_event_t&, const char*) override { up = true; }
+  void on_event_connected(const zmq_event_t&, const char*) override {
+    if (ever_up) ++reconnections;
+    up = ever_up = true;
+  }
   void on_event_disconnected(const zmq_event_t&, const char*) override {
     up = false;
     down_since = std::chrono::steady_clock::now();
@@ -137,6 +142,12 @@ Millis Channel::timeWithoutConnection() {
   if (impl_->watch.up) return Millis(0);
   return std::chrono::duration_cast<Millis>(std::chrono::steady_clock::now() -
                                             impl_->watch.down_since);
+}
+
+int Channel::reconnections() {
+  while (impl_->watch.check_event(0)) {
+  }
+  return impl_->watch.reconnections;
 }
 
 namespace {

@@ -137,13 +137,17 @@ class Session {
   // Next command from the orchestrator. Heartbeats are sent in the background meanwhile.
   // Checks version, run id and step order: a command whose step is behind the last one seen
   // or more than one ahead is answered with Error and a ProtocolError is thrown. Throws
-  // PeerError when the orchestrator is gone (options.orchestrator_gone_ms without a connection).
+  // PeerError when the orchestrator is gone (options.orchestrator_gone_ms without a connection)
+  // or the connection to it was lost and made again since the Welcome (a network cut longer
+  // than ZeroMQ's heartbeat: what was in flight may be lost, so the run cannot go on).
   wire::Envelope nextCommand();
   // For a process that is nothing but this participant (runParticipant): when the orchestrator
   // is gone while the solver is busy in a step, the heartbeat thread ends the process with the
   // message and exit code 3 after another 5 s, instead of letting the step finish first.
   void exitProcessWhenOrphaned() { exit_when_orphaned_ = true; }
-  void reply(wire::Envelope& env);  // fills the header (step/time of the current command)
+  // Fills the header (step/time of the current command) and sends; PeerError, as nextCommand,
+  // if the connection was lost and made again.
+  void reply(wire::Envelope& env);
   void sendError(const std::string& message, const std::string& where = "");
   const std::string& runId() const { return run_id_; }
   std::uint64_t step() const { return step_; }
@@ -152,6 +156,8 @@ class Session {
  private:
   void fillHeader(wire::Header* h) const;
   void receiveFiles(wire::Welcome& welcome) const;
+  // PeerError if the command channel has connected again since the Welcome.
+  void checkStillConnected();
   ParticipantOptions options_;
   Capabilities caps_;
   std::unique_ptr<Channel> channel_;
@@ -164,6 +170,7 @@ class Session {
   // Set by the heartbeat thread when the orchestrator is gone; gone_message_ is written before.
   std::atomic<bool> orchestrator_gone_{false};
   std::string gone_message_;
+  int reconnections_at_welcome_ = 0;  // of the command channel
   std::thread heartbeat_;
 };
 

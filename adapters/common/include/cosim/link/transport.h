@@ -49,6 +49,10 @@ class Channel {
   // while one that is gone (nothing accepts at the address: killed, or its host unreachable
   // once ZeroMQ's heartbeat closes the connection) leaves it disconnected.
   Millis timeWithoutConnection();
+  // How often this channel has connected again after losing a connection (ZeroMQ reconnects by
+  // itself, e.g. once a network cut longer than its 5 s heartbeat is over). Whatever was in
+  // flight on the lost connection may be lost, and the hub sees the new one as another peer.
+  int reconnections();
   // Why the last security handshake with the orchestrator failed (e.g. its keys were refused),
   // empty if none did.
   std::string handshakeFailure();
