@@ -20,6 +20,7 @@
 #include "ParcelDeposition.H"
 #include "cellValuesOnBoundary.H"
 #include "bedConsistentGradient.H"
+#include "reconstructFaceFlux.H"
 
 #include <chrono>
 #include <stdexcept>
