@@ -75,6 +75,7 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
   } else if (scene.count(kPivDiscardParameter)) {
     o.from = scene.at(kPivDiscardParameter);
   }
+  if (c.to) o.to = *c.to;
   o.depth = c.depth;
   o.cell = c.cell;
   o.heights = c.heights;

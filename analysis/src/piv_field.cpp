@@ -50,7 +50,8 @@ PivAccumulator::PivAccumulator(const PivOptions& options) : o_(options) {
   require(std::isfinite(o_.wall_y), "the front wall's y is not a number");
   require(!o_.depth || (std::isfinite(*o_.depth) && *o_.depth > 0),
           fmt::format("depth = {} m: must be > 0", o_.depth.value_or(0)));
-  require(std::isfinite(o_.from), "from is not a number");
+  require(std::isfinite(o_.from) && !std::isnan(o_.to) && o_.to >= o_.from,
+          fmt::format("time window [{}, {}] s: needs from <= to", o_.from, o_.to));
   for (double h : o_.heights)
     require(std::isfinite(h) && h >= o_.z_min && h <= o_.z_max,
             fmt::format("profile height {} m lies outside the grid's z range [{}, {}] m", h,
@@ -123,7 +124,7 @@ PivResult pivField(const ParticleFile& file, const PivOptions& options) {
   PivAccumulator acc(options);
   const auto& snaps = file.snapshots();
   for (std::size_t s = 0; s < snaps.size(); ++s) {
-    if (snaps[s].time < options.from - 1e-12) continue;
+    if (snaps[s].time < options.from - 1e-12 || snaps[s].time > options.to + 1e-12) continue;
     if (snaps[s].count == 0) {
       acc.add(snaps[s].time, {}, {}, {});
       continue;
@@ -133,8 +134,9 @@ PivResult pivField(const ParticleFile& file, const PivOptions& options) {
   }
   if (acc.result().snapshots == 0)
     throw std::runtime_error(fmt::format(
-        "{}: no snapshot at t >= {} s (it holds {} snapshots{}): take an earlier --from",
-        file.path().string(), options.from, snaps.size(),
+        "{}: no snapshot in {} <= t <= {} s (it holds {} snapshots{}): take another --from "
+        "or --to",
+        file.path().string(), options.from, options.to, snaps.size(),
         snaps.empty() ? std::string()
                       : fmt::format(" from {} to {} s", snaps.front().time, snaps.back().time)));
   return acc.result();
@@ -158,6 +160,7 @@ void writePiv(const PivResult& r, const PivOptions& o, const std::filesystem::pa
   writeFileAtomically(folder / "profiles.csv", prof);
   Json j;
   j["from_s"] = o.from;
+  j["to_s"] = std::isfinite(o.to) ? Json(o.to) : Json("end");
   j["depth_m"] = o.depth ? Json(*o.depth) : Json("parcel diameter");
   j["front_wall_y_m"] = o.wall_y;
   j["x_range_m"] = {o.x_min, o.x_max};

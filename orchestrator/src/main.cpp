@@ -270,6 +270,7 @@ int main(int argc, char** argv) {
   piv->add_option("--from", piv_opt.from,
                   "snapshots at t >= this count [s] (default: the scene parameter piv_discard, "
                   "else 0)");
+  piv->add_option("--to", piv_opt.to, "snapshots at t <= this count [s] (default: the end)");
   piv->add_option("--depth", piv_opt.depth,
                   "a parcel is seen when its centre lies within this distance of the front wall "
                   "[m] (default: within its own diameter)");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "cosim/analysis/particle_file.h"
@@ -129,6 +130,11 @@ TEST(PivField, AFixedDepthCountsTheParcelsBehindTheFirstLayerToo) {
   const PivResult r = pivField(ParticleFile(run / kParticlesFile), o);
   EXPECT_EQ(r.grid.samples[13 * 10 + 5], 4u);
   EXPECT_NEAR(r.grid.mean(5, 13), (2.0 + 1.0 + 50.0 + 4.0) / 4.0, 1e-13);
+  o.to = 0.55;  // the snapshot at 0.5 s alone: A (2), B (1), C (50)
+  const PivResult w = pivField(ParticleFile(run / kParticlesFile), o);
+  EXPECT_EQ(w.snapshots, 1u);
+  EXPECT_NEAR(w.grid.mean(5, 13), (2.0 + 1.0 + 50.0) / 3.0, 1e-13);
+  o.to = std::numeric_limits<double>::infinity();
   o.depth = 0.0009;  // only D (0.8 mm)
   const PivResult d = pivField(ParticleFile(run / kParticlesFile), o);
   EXPECT_EQ(d.samples, 2u);
@@ -211,6 +217,9 @@ TEST(PivField, BadOptionsAndFilesSayWhatIsWrong) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("from 0 to 0.6 s"), std::string::npos) << e.what();
   }
+  o.from = 0.6;
+  o.to = 0.5;
+  EXPECT_THROW(PivAccumulator{o}, std::invalid_argument);
 }
 
 TEST(PivCommand, TakesTheWindowAndTheDiscardedTimeFromTheScene) {

@@ -20,7 +20,7 @@ inline constexpr const char* kPivFolder = "piv";
 
 struct PivCommandOptions {
   std::filesystem::path run;
-  std::optional<double> from, depth, wall_y, x_min, x_max, z_min, z_max;
+  std::optional<double> from, to, depth, wall_y, x_min, x_max, z_min, z_max;
   double cell = 0.004;
   std::vector<double> heights{0.13, 0.15};
   std::filesystem::path output;  // default RUN/piv

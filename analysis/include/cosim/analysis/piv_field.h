@@ -6,12 +6,13 @@
 // A parcel counts as seen in a snapshot when its centre lies within `depth` of the front wall
 // (y - wall_y <= depth; the vessel lies at y > wall_y), or, without a fixed depth, within its
 // own diameter (y - wall_y <= 2 r): the layer of parcels touching the glass and those just
-// behind it. Every seen parcel of every snapshot at t >= from is one sample of the cell (and
+// behind it. Every seen parcel of every snapshot at from <= t <= to is one sample of the cell (and
 // the profile bin) its centre falls in; a cell's value is the mean vz of its samples.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -20,7 +21,8 @@
 namespace cosim::analysis {
 
 struct PivOptions {
-  double from = 0.0;                // [s] snapshots at t >= from count
+  double from = 0.0;                                    // [s] snapshots at from <= t <= to count
+  double to = std::numeric_limits<double>::infinity();  // [s]
   std::optional<double> depth;      // [m] seen: centre within depth of the wall; none: within 2 r
   double wall_y = 0.0;              // [m] the front wall's plane y = wall_y
   double x_min = 0.0, x_max = 0.0;  // [m] the grid's extent across the width
@@ -78,8 +80,8 @@ class PivAccumulator {
 };
 
 // The PIV view of a recorded run. Throws std::runtime_error naming the file when it lacks
-// position or velocity (or radius without a fixed depth), or when no snapshot is at t >= from
-// (saying which times it holds).
+// position or velocity (or radius without a fixed depth), or when no snapshot is in
+// [from, to] (saying which times it holds).
 PivResult pivField(const ParticleFile& file, const PivOptions& options);
 
 // Writes folder/grid.csv (x_m,z_m,vz_m_s,samples: one row per cell, empty vz without samples),
