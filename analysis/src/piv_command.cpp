@@ -99,6 +99,13 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
     }
     out << line;
   }
+  const double cut = static_cast<double>(r.grid.nx) * o.cell - (o.x_max - o.x_min);
+  if (cut > 1e-9 * o.cell)
+    out << fmt::format(
+        "cosim piv: note: {} mm do not divide into cells of {} mm: the last column is cut at "
+        "x = {} mm (its centre, {} mm, is not the centre of what it holds); a cell that divides "
+        "the width avoids that\n",
+        mm(o.x_max - o.x_min), mm(o.cell), mm(o.x_max), mm(r.grid.xCentre(r.grid.nx - 1)));
   out << "cosim piv: grid.csv, profiles.csv and piv.json in " << folder.string() << "\n";
   return 0;
 }
