@@ -89,6 +89,7 @@ RunResult Coupler::run() {
       done = resumeFromCheckpoint();
     }
     progress.emplace(time_, sc_.coupling.end_time, opt_.quiet);
+    progress_ = &*progress;  // the Courant warning ends the open progress line first
     result.steps = done;
     bool interrupted = false;
     for (std::uint64_t k = done; k < nsteps_ && !interrupted; ++k) {
@@ -406,7 +407,7 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
   if (fa.fluid().has_max_courant()) {
     try {
       if (auto w = monitor_.checkCourant(fa.fluid().max_courant(), step_, time_)) {
-        progress_->abort();
+        if (progress_) progress_->abort();
         log_.show(*w);
       }
     } catch (const std::exception& e) {

@@ -22,6 +22,7 @@
 #include "study.h"
 
 #if __has_include("cosim/analysis/report.h")
+#include "cosim/analysis/piv_command.h"
 #include "cosim/analysis/report.h"
 #define COSIM_HAVE_REPORT 1
 #endif
@@ -263,6 +264,50 @@ int main(int argc, char** argv) {
       "max_uncoated_share=0.3); the report then says it was judged with non-default criteria");
   bool no_plots = false;
   rep->add_flag("--no-plots", no_plots, "numbers and HTML only, no matplotlib");
+
+  cosim::analysis::PivCommandOptions piv_opt;
+  auto* piv = app.add_subcommand(
+      "piv",
+      "The particle velocity a PIV camera sees through the front wall: the time-averaged "
+      "vertical velocity of the parcels next to it on a grid, and its profiles across the width "
+      "(RUN/piv/grid.csv, profiles.csv); docs/calibration-validation.md section 2");
+  piv->add_option("run", piv_opt.run, "run folder")->required();
+  piv->add_option("--from", piv_opt.from,
+                  "snapshots at t >= this count [s] (default: the scene parameter piv_discard, "
+                  "else 0)");
+  piv->add_option("--to", piv_opt.to, "snapshots at t <= this count [s] (default: the end)");
+  piv->add_option("--depth", piv_opt.depth,
+                  "a parcel is seen when its centre lies within this distance of the front wall "
+                  "[m] (default: within its own diameter)");
+  piv->add_option("--cell", piv_opt.cell, "grid cell and profile band [m] (default 0.004)");
+  piv->add_option("--heights", piv_opt.heights,
+                  "profile heights above the bottom [m] (default 0.13,0.15)")
+      ->delimiter(',');
+  piv->add_option("--wall-y", piv_opt.wall_y,
+                  "the front wall's plane y [m] (default: scene parameter piv_front_wall_y)");
+  piv->add_option("--x-min", piv_opt.x_min, "grid's left edge [m] (default: piv_x_min)");
+  piv->add_option("--x-max", piv_opt.x_max, "grid's right edge [m] (default: piv_x_max)");
+  piv->add_option("--z-min", piv_opt.z_min, "grid's bottom [m] (default 0)");
+  piv->add_option("--z-max", piv_opt.z_max, "grid's top [m] (default: piv_z_max)");
+  piv->add_option("-o,--output", piv_opt.output, "folder of the CSV files (default RUN/piv)");
+
+  cosim::analysis::PivCompareCommandOptions pivc_opt;
+  auto* pivc = app.add_subcommand(
+      "piv-compare",
+      "Mean absolute error of simulated PIV profiles against measured ones, per profile and per "
+      "region (upward core, downward sides); the CSV format is in docs/calibration-validation.md");
+  pivc->add_option("simulated", pivc_opt.simulated,
+                   "run folder (its piv/profiles.csv, from cosim piv) or a profile CSV")
+      ->required();
+  pivc->add_option("measured", pivc_opt.measured, "measured profiles (CSV: height_m,x_m,vz_m_s)")
+      ->required();
+  std::vector<double> core_band;
+  pivc->add_option("--core", core_band,
+                   "x0,x1 [m]: the core is x0 <= x <= x1 (default: where the measured vz > 0)")
+      ->delimiter(',')
+      ->expected(2);
+  pivc->add_option("-o,--output", pivc_opt.output,
+                   "comparison CSV (default: comparison.csv beside the simulated profiles)");
 #endif
 
   CLI11_PARSE(app, argc, argv);
@@ -311,6 +356,18 @@ int main(int argc, char** argv) {
       rep_opt.criteria.*criterion->value = value;
     }
     if (*rep) return cosim::analysis::runReport(rep_opt);
+    if (*piv) return cosim::analysis::runPivCommand(piv_opt, std::cout);
+    if (*pivc) {
+      if (!core_band.empty()) {
+        if (!(core_band[0] < core_band[1])) {
+          std::cerr << "cosim piv-compare: --core " << core_band[0] << "," << core_band[1]
+                    << ": expected x0,x1 with x0 < x1 [m]\n";
+          return 2;
+        }
+        pivc_opt.core_band = std::make_pair(core_band[0], core_band[1]);
+      }
+      return cosim::analysis::runPivCompareCommand(pivc_opt, std::cout);
+    }
 #endif
     if (*resume) {
       Scenario sc = loadRunScene(resume_folder, sets);

@@ -1,0 +1,163 @@
+// `cosim piv` and `cosim piv-compare` (piv_command.h).
+#include "cosim/analysis/piv_command.h"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "cosim/analysis/files.h"
+#include "cosim/analysis/particle_file.h"
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/analysis/piv_compare.h"
+#include "cosim/analysis/piv_field.h"
+
+namespace cosim::analysis {
+
+namespace {
+namespace fs = std::filesystem;
+
+// The numeric parameters of the scene a run was run with (empty without the file).
+std::map<std::string, double> sceneParameters(const fs::path& run) {
+  std::map<std::string, double> out;
+  const auto file = run / "scenario.resolved.yaml";
+  if (!fs::exists(file)) return out;
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(file.string());
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error(file.string() + ": cannot be read as YAML (" + e.what() +
+                             "); give the PIV window on the command line instead");
+  }
+  const auto params = root["parameters"];
+  if (!params || !params.IsMap()) return out;
+  for (const auto& kv : params) {
+    if (!kv.second.IsScalar()) continue;
+    try {
+      out[kv.first.as<std::string>()] = kv.second.as<double>();
+    } catch (const YAML::Exception&) {
+    }
+  }
+  return out;
+}
+
+double pick(const std::optional<double>& given, const std::map<std::string, double>& scene,
+            const char* parameter, const char* option, const fs::path& run) {
+  if (given) return *given;
+  const auto it = scene.find(parameter);
+  if (it != scene.end()) return it->second;
+  throw std::runtime_error(fmt::format(
+      "cosim piv: {} gives no scene parameter '{}': give {} on the command line (or add the "
+      "parameter to the scene)",
+      (run / "scenario.resolved.yaml").string(), parameter, option));
+}
+
+std::string mm(double v) { return fmt::format("{:.1f}", 1e3 * v); }
+
+std::string maeText(const MaeEntry& e) {
+  return e.points == 0 ? std::string("-") : fmt::format("{:.3f} ({})", e.mae, e.points);
+}
+}  // namespace
+
+int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
+  const auto scene = sceneParameters(c.run);
+  PivOptions o;
+  o.wall_y = pick(c.wall_y, scene, kPivWallParameter, "--wall-y", c.run);
+  o.x_min = pick(c.x_min, scene, kPivXMinParameter, "--x-min", c.run);
+  o.x_max = pick(c.x_max, scene, kPivXMaxParameter, "--x-max", c.run);
+  o.z_min = c.z_min.value_or(0.0);
+  o.z_max = pick(c.z_max, scene, kPivZMaxParameter, "--z-max", c.run);
+  if (c.from) {
+    o.from = *c.from;
+  } else if (scene.count(kPivDiscardParameter)) {
+    o.from = scene.at(kPivDiscardParameter);
+  }
+  if (c.to) o.to = *c.to;
+  o.depth = c.depth;
+  o.cell = c.cell;
+  o.heights = c.heights;
+  const ParticleFile file(c.run / kParticlesFile);
+  const PivResult r = pivField(file, o);
+  const fs::path folder = c.output.empty() ? c.run / kPivFolder : c.output;
+  writePiv(r, o, folder);
+  out << fmt::format(
+      "cosim piv: {} snapshots from {} to {} s, parcels seen through the front wall y = {} m "
+      "({}), {} samples on a grid of {} x {} cells of {} mm\n",
+      r.snapshots, r.first_time, r.last_time, o.wall_y,
+      o.depth ? "centre within " + mm(*o.depth) + " mm" : std::string("centre within its diameter"),
+      r.samples, r.grid.nx, r.grid.nz, mm(o.cell));
+  for (const auto& p : r.profiles) {
+    out << fmt::format("  profile at z = {} mm: x [mm] : vz [m/s] (samples)\n", mm(p.height));
+    std::string line;
+    for (std::size_t i = 0; i < p.x.size(); ++i) {
+      line +=
+          fmt::format("    {:>7} : {:>7} ({})\n", mm(p.x[i]),
+                      std::isfinite(p.vz[i]) ? fmt::format("{:.3f}", p.vz[i]) : "-", p.samples[i]);
+    }
+    out << line;
+  }
+  const double cut = static_cast<double>(r.grid.nx) * o.cell - (o.x_max - o.x_min);
+  if (cut > 1e-9 * o.cell)
+    out << fmt::format(
+        "cosim piv: note: {} mm do not divide into cells of {} mm: the last column is cut at "
+        "x = {} mm (its centre, {} mm, is not the centre of what it holds); a cell that divides "
+        "the width avoids that\n",
+        mm(o.x_max - o.x_min), mm(o.cell), mm(o.x_max), mm(r.grid.xCentre(r.grid.nx - 1)));
+  out << "cosim piv: grid.csv, profiles.csv and piv.json in " << folder.string() << "\n";
+  return 0;
+}
+
+int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
+  fs::path sim = c.simulated;
+  if (fs::is_directory(sim)) {
+    sim = sim / kPivFolder / "profiles.csv";
+    if (!fs::exists(sim))
+      throw std::runtime_error("cosim piv-compare: " + sim.string() +
+                               " does not exist: run `cosim piv " + c.simulated.string() +
+                               "` first (with --heights for the measured profiles' heights)");
+  }
+  PivCompareOptions o;
+  o.core_band = c.core_band;
+  const auto simulated = readProfileCsv(sim);
+  const auto measured = readProfileCsv(c.measured);
+  const PivComparison r = comparePiv(simulated, measured, o);
+  const std::string core_rule = c.core_band
+                                    ? fmt::format("core: {} mm <= x <= {} mm",
+                                                  mm(c.core_band->first), mm(c.core_band->second))
+                                    : std::string("core: measured vz > 0, sides: vz <= 0");
+  out << fmt::format("cosim piv-compare: {} against {} ({})\n", sim.string(), c.measured.string(),
+                     core_rule);
+  out << "  mean absolute error of vz [m/s] (points)\n";
+  out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", "height [mm]", "all", "core", "sides");
+  std::string csv = "height_m,region,points,mae_m_s\n";
+  auto row = [&](const std::string& h, const MaeEntry& e, const char* region) {
+    csv += fmt::format("{},{},{},{}\n", h, region, e.points,
+                       e.points ? formatShortest(e.mae) : std::string());
+  };
+  for (const auto& p : r.profiles) {
+    out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}", mm(p.height), maeText(p.all),
+                       maeText(p.core), maeText(p.sides));
+    if (p.without_simulation)
+      out << fmt::format("  ({} measured points beyond the simulated profile)",
+                         p.without_simulation);
+    out << "\n";
+    const std::string h = formatShortest(p.height);
+    row(h, p.all, "all");
+    row(h, p.core, "core");
+    row(h, p.sides, "sides");
+  }
+  out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", "all", maeText(r.all), maeText(r.core),
+                     maeText(r.sides));
+  row("all", r.all, "all");
+  row("all", r.core, "core");
+  row("all", r.sides, "sides");
+  const fs::path file = c.output.empty() ? sim.parent_path() / "comparison.csv" : c.output;
+  writeFileAtomically(file, csv);
+  out << "cosim piv-compare: written " << file.string() << "\n";
+  return 0;
+}
+
+}  // namespace cosim::analysis

@@ -1,0 +1,199 @@
+// Simulated against measured PIV profiles (piv_compare.h).
+#include "cosim/analysis/piv_compare.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace cosim::analysis {
+
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
+  if (!line.empty() && line.back() == ',') out.emplace_back();
+  return out;
+}
+
+double parse(const std::string& text, bool empty_is_nan, const std::string& where) {
+  if (text.empty() && empty_is_nan) return kNaN;
+  std::size_t used = 0;
+  double v = kNaN;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v))
+    throw std::runtime_error(where + ": '" + text + "' is not a finite number");
+  return v;
+}
+
+void addTo(MaeEntry& e, double err) {
+  e.mae += err;  // the sum until finish()
+  ++e.points;
+}
+
+void finish(MaeEntry& e) { e.mae = e.points > 0 ? e.mae / static_cast<double>(e.points) : kNaN; }
+
+// The simulated profile at one height: points with data, sorted by x.
+struct Curve {
+  std::vector<double> x, v;
+  double spacing = 0;
+  std::optional<double> at(double xq) const {
+    if (x.size() == 1) return std::fabs(xq - x[0]) <= spacing ? std::optional(v[0]) : std::nullopt;
+    if (xq < x.front()) return x.front() - xq <= spacing ? std::optional(v.front()) : std::nullopt;
+    if (xq > x.back()) return xq - x.back() <= spacing ? std::optional(v.back()) : std::nullopt;
+    const auto hi = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), xq) - x.begin());
+    if (hi >= x.size()) return v.back();
+    const std::size_t lo = hi - 1;
+    const double w = (xq - x[lo]) / (x[hi] - x[lo]);
+    return v[lo] + w * (v[hi] - v[lo]);
+  }
+};
+}  // namespace
+
+std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in)
+    throw std::runtime_error(path.string() +
+                             ": cannot be opened (a profile CSV with the columns height_m, x_m, "
+                             "vz_m_s was expected)");
+  std::string line;
+  std::size_t lineno = 0;
+  std::map<std::string, std::size_t> col;
+  std::vector<ProfilePoint> out;
+  while (std::getline(in, line)) {
+    ++lineno;
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    const auto cells = split(t);
+    const std::string where = fmt::format("{}:{}", path.string(), lineno);
+    if (col.empty()) {
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        if (!col.emplace(cells[i], i).second)
+          throw std::runtime_error(where + ": column '" + cells[i] + "' named twice");
+      }
+      for (const char* need : {"height_m", "x_m", "vz_m_s"}) {
+        if (!col.count(need))
+          throw std::runtime_error(
+              where + ": the header has no column '" + need +
+              "' (a profile CSV starts with a header naming height_m, x_m and vz_m_s)");
+      }
+      continue;
+    }
+    auto cell = [&](const char* name) -> std::string {
+      const std::size_t i = col.at(name);
+      if (i >= cells.size())
+        throw std::runtime_error(fmt::format("{}: column '{}' is missing ({} values on the line)",
+                                             where, name, cells.size()));
+      return cells[i];
+    };
+    ProfilePoint p;
+    p.height = parse(cell("height_m"), false, where + " column height_m");
+    p.x = parse(cell("x_m"), false, where + " column x_m");
+    p.vz = parse(cell("vz_m_s"), true, where + " column vz_m_s");
+    out.push_back(p);
+  }
+  if (col.empty())
+    throw std::runtime_error(path.string() +
+                             ": is empty (a header naming height_m, x_m and vz_m_s was expected)");
+  return out;
+}
+
+PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
+                         const std::vector<ProfilePoint>& measured, const PivCompareOptions& o) {
+  // Simulated heights, each with its curve.
+  std::vector<std::pair<double, Curve>> curves;
+  std::vector<double> grid_x;
+  for (const auto& p : simulated) {
+    auto it = std::find_if(curves.begin(), curves.end(), [&](const auto& c) {
+      return std::fabs(c.first - p.height) <= o.height_tolerance;
+    });
+    if (it == curves.end()) {
+      curves.emplace_back(p.height, Curve{});
+      it = curves.end() - 1;
+    }
+    if (std::isfinite(p.vz)) {
+      it->second.x.push_back(p.x);
+      it->second.v.push_back(p.vz);
+    }
+  }
+  std::string heights;
+  for (auto& [h, c] : curves) {
+    heights += (heights.empty() ? "" : ", ") + fmt::format("{} m", h);
+    std::vector<std::size_t> order(c.x.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return c.x[a] < c.x[b]; });
+    Curve s;
+    for (auto i : order) {
+      s.x.push_back(c.x[i]);
+      s.v.push_back(c.v[i]);
+    }
+    s.spacing = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i < s.x.size(); ++i)
+      s.spacing = std::min(s.spacing, s.x[i] - s.x[i - 1]);
+    if (s.x.size() < 2) s.spacing = 0;
+    c = std::move(s);
+  }
+  PivComparison r;
+  for (const auto& m : measured) {
+    if (!std::isfinite(m.vz)) continue;
+    const auto it = std::find_if(curves.begin(), curves.end(), [&](const auto& c) {
+      return std::fabs(c.first - m.height) <= o.height_tolerance;
+    });
+    if (it == curves.end())
+      throw std::runtime_error(fmt::format(
+          "the measured profile at {} m has no simulated profile (simulated heights: {}): run "
+          "`cosim piv RUN --heights ...` with that height",
+          m.height, heights.empty() ? "none" : heights));
+    if (it->second.x.empty())
+      throw std::runtime_error(fmt::format(
+          "the simulated profile at {} m has no data (no parcel seen in that band)", it->first));
+    auto pc = std::find_if(r.profiles.begin(), r.profiles.end(),
+                           [&](const auto& p) { return p.height == it->first; });
+    if (pc == r.profiles.end()) {
+      r.profiles.push_back(ProfileComparison{it->first, {}, {}, {}, 0});
+      pc = r.profiles.end() - 1;
+    }
+    const auto sim = it->second.at(m.x);
+    if (!sim) {
+      ++pc->without_simulation;
+      continue;
+    }
+    const double err = std::fabs(*sim - m.vz);
+    const bool core =
+        o.core_band ? (m.x >= o.core_band->first && m.x <= o.core_band->second) : m.vz > 0;
+    addTo(pc->all, err);
+    addTo(core ? pc->core : pc->sides, err);
+    addTo(r.all, err);
+    addTo(core ? r.core : r.sides, err);
+  }
+  for (auto& p : r.profiles) {
+    finish(p.all);
+    finish(p.core);
+    finish(p.sides);
+  }
+  finish(r.all);
+  finish(r.core);
+  finish(r.sides);
+  return r;
+}
+
+}  // namespace cosim::analysis
