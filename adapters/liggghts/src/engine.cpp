@@ -358,12 +358,7 @@ void Engine::applyTerms(const Terms& terms) {
   check_size(terms.explicit_force, 3, "explicit_force");
   check_size(terms.coating_increment, 1, "coating_increment");
 
-  std::unordered_map<std::int64_t, std::size_t> index;
-  index.reserve(n);
   for (std::size_t k = 0; k < n; ++k) {
-    if (!index.emplace(terms.ids[k], k).second)
-      throw std::runtime_error("forcing lists particle id " + std::to_string(terms.ids[k]) +
-                               " twice");
     auto bad = [&](const std::vector<double>& v, std::size_t per) {
       for (std::size_t c = 0; c < per && !v.empty(); ++c)
         if (!std::isfinite(v[k * per + c])) return true;
@@ -378,6 +373,20 @@ void Engine::applyTerms(const Terms& terms) {
                                " is negative (" + std::to_string(terms.drag_coefficient[k]) +
                                " kg/s); K must be >= 0");
   }
+  auto twice = [&](std::int64_t id) {
+    return std::runtime_error("forcing lists particle id " + std::to_string(id) + " twice");
+  };
+  {  // every id once (the orchestrator sends them in ascending order: then no copy is sorted)
+    std::vector<std::int64_t> sorted;
+    const std::vector<std::int64_t>* ids = &terms.ids;
+    if (!std::is_sorted(ids->begin(), ids->end())) {
+      sorted = terms.ids;
+      std::sort(sorted.begin(), sorted.end());
+      ids = &sorted;
+    }
+    const auto again = std::adjacent_find(ids->begin(), ids->end());
+    if (again != ids->end()) throw twice(*again);
+  }
 
   LAMMPS_NS::Modify* modify = lmp_->modify;
   double* K =
@@ -388,21 +397,41 @@ void Engine::applyTerms(const Terms& terms) {
   double* coating =
       findProperty(modify, kCoatingMassProperty, "property/atom", "scalar")->vector_atom;
 
-  std::vector<int> found(n, 0);
-  const LAMMPS_NS::Atom* atom = lmp_->atom;
-  for (int i = 0; i < atom->nlocal; ++i) {
+  LAMMPS_NS::Atom* atom = lmp_->atom;
+  const int nlocal = atom->nlocal;
+  for (int i = 0; i < nlocal; ++i) {
     K[i] = 0;
     for (int d = 0; d < 3; ++d) uf[i][d] = fex[i][d] = 0;
-    auto it = index.find(atom->tag[i]);
-    if (it == index.end()) continue;
-    const std::size_t k = it->second;
-    found[k] = 1;
+  }
+  auto assign = [&](int i, std::size_t k) {
     if (!terms.drag_coefficient.empty()) K[i] = terms.drag_coefficient[k];
     for (int d = 0; d < 3; ++d) {
       if (!terms.fluid_velocity.empty()) uf[i][d] = terms.fluid_velocity[3 * k + d];
       if (!terms.explicit_force.empty()) fex[i][d] = terms.explicit_force[3 * k + d];
     }
     if (!terms.coating_increment.empty()) coating[i] += terms.coating_increment[k];
+  };
+  std::vector<int> found(n, 0);
+  if (atom->map_style != 0) {
+    // the script keeps LIGGGHTS' own id -> index map (atom_modify map array|hash): no map of ours
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::int64_t id = terms.ids[k];
+      if (id <= 0 || id > atom->map_tag_max) continue;  // not an id LIGGGHTS has (reported below)
+      const int i = atom->map(static_cast<int>(id));
+      if (i < 0 || i >= nlocal) continue;  // on another rank, or only a ghost here
+      found[k] = 1;
+      assign(i, k);
+    }
+  } else {
+    std::unordered_map<std::int64_t, std::size_t> index;
+    index.reserve(n);
+    for (std::size_t k = 0; k < n; ++k) index.emplace(terms.ids[k], k);
+    for (int i = 0; i < nlocal; ++i) {
+      auto it = index.find(atom->tag[i]);
+      if (it == index.end()) continue;
+      found[it->second] = 1;
+      assign(i, it->second);
+    }
   }
   guarded("applying the forcing", [&] { drag_fix_->refreshForces(); });
   std::vector<int> found_anywhere(n, 0);
@@ -466,6 +495,12 @@ State Engine::state() const {
   std::sort(order.begin(), order.end(),
             [&](std::size_t a, std::size_t b) { return all[a * kPer] < all[b * kPer]; });
   s.ids.reserve(n);
+  s.position.reserve(3 * n);
+  s.velocity.reserve(3 * n);
+  s.radius.reserve(n);
+  s.mass.reserve(n);
+  s.coating_mass.reserve(n);
+  s.type.reserve(n);
   for (std::size_t j : order) {
     const double* p = &all[j * kPer];
     s.ids.push_back(static_cast<std::int64_t>(p[0]));
