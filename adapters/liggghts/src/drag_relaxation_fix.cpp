@@ -60,6 +60,13 @@ void DragRelaxationFix::apply(bool store_other_force) {
   const double* mass = atom->rmass;
   const int* amask = atom->mask;
   const int nlocal = atom->nlocal;
+  const auto n = static_cast<std::size_t>(nlocal);
+  if (cache_K_.size() < n || cache_dt_ != dt) {
+    cache_K_.assign(n, -1.0);  // no K is negative: every entry misses
+    cache_m_.assign(n, 0.0);
+    cache_phi_.assign(n, 1.0);
+    cache_dt_ = dt;
+  }
   for (int i = 0; i < nlocal; ++i) {
     if (!(amask[i] & groupbit)) continue;
     if (store_other_force) {
@@ -74,8 +81,14 @@ void DragRelaxationFix::apply(bool store_other_force) {
       for (int d = 0; d < 3; ++d) f[i][d] = other[i][d] + fex[i][d];
       continue;
     }
-    // phi(K dt / m) is the same for the three components: one expm1 per particle, not three
-    const double phi = exponentialDragFactor(K[i] * dt / mass[i]);
+    // phi(K dt / m) is the same for the three components and for every DEM step of the
+    // interval: one expm1 per particle and interval
+    if (cache_K_[i] != K[i] || cache_m_[i] != mass[i]) {
+      cache_K_[i] = K[i];
+      cache_m_[i] = mass[i];
+      cache_phi_[i] = exponentialDragFactor(K[i] * dt / mass[i]);
+    }
+    const double phi = cache_phi_[i];
     for (int d = 0; d < 3; ++d)
       f[i][d] = phi * (K[i] * (uf[i][d] - v[i][d]) + (other[i][d] + fex[i][d]));
   }

@@ -10,6 +10,8 @@
 // walls, gravity); Coupling::install() appends it after the user's script has run.
 #pragma once
 
+#include <vector>
+
 #include "fix.h"
 
 namespace cosim::liggghts {
@@ -49,6 +51,11 @@ class DragRelaxationFix : public LAMMPS_NS::Fix {
   LAMMPS_NS::Fix* other_force_ = nullptr;
   LAMMPS_NS::Fix* last_torque_ = nullptr;
   bool keep_other_ = false;
+  // phi(K dt / m) of the atom at each local index, with the K, m and dt it was computed from:
+  // K and m change only between coupling intervals, so the expm1 runs once per atom and
+  // interval, not once per DEM step (an atom moved to another index simply misses the cache)
+  std::vector<double> cache_K_, cache_m_, cache_phi_;
+  double cache_dt_ = 0.0;
   void lookup();
   void apply(bool store_other_force);
 };
