@@ -34,7 +34,7 @@ void write(const fs::path& f, const std::string& text) {
 // A run folder of the FT4 scene as far as the analyses read it: the resolved parameters, a
 // completed summary and the blade rows F = force, M = torque while the blade falls from 0.04 m
 // to 0.01 m in steps of 1 mm (after three rows at rest at 0.04 m).
-fs::path fakeRun(const fs::path& dir, double mu, double force, double torque) {
+fs::path syntheticRun(const fs::path& dir, double mu, double force, double torque) {
   write(dir / "scenario.resolved.yaml",
         "# x as run\nname: ft4\nparameters:\n  mu_fric: " + std::to_string(mu) +
             "\n  blade_radius: 0.024\n  helix_deg: 5\n");
@@ -179,8 +179,8 @@ TEST(Ft4Calibration, StudyFolderEndToEndRecoversTheFrictionOfASyntheticMeasureme
   const auto study = tempDir("study");
   int i = 0;
   for (double mu : {0.3, 0.45, 0.6, 0.75})
-    fakeRun(study / ("variant-0" + std::to_string(i++)), mu, 4 * mu, 0.02 * mu);
-  fakeRun(study / "variant-00.previous-1", 0.1, 100, 0);  // a replaced variant: not counted
+    syntheticRun(study / ("variant-0" + std::to_string(i++)), mu, 4 * mu, 0.02 * mu);
+  syntheticRun(study / "variant-00.previous-1", 0.1, 100, 0);  // a replaced variant: not counted
   const double g = 0.02 * 0.52 / kLever + 4 * 0.52;
   const double w = g * 0.0295;
   write(study / "measured.csv",
