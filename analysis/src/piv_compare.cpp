@@ -136,7 +136,9 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
     }
   }
   std::string heights;
-  for (auto& [h, c] : curves) {
+  for (auto& entry : curves) {
+    const double h = entry.first;
+    Curve& c = entry.second;
     heights += (heights.empty() ? "" : ", ") + fmt::format("{} m", h);
     std::vector<std::size_t> order(c.x.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
