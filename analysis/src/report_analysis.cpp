@@ -139,7 +139,18 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   }
   if (lastInWindow != snaps.size() - 1)
     lastValues = file.read(lastInWindow, cosim::field::coating_mass);
-  a.verdict = judgeMixing(a.fit, a.snapshots[lastInWindow], lastValues, o.criteria);
+  // The fit window's snapshots tell a skewed distribution on its way to normal (a well-mixed
+  // bed's skewness falls as t^-1/2) from one that stays skewed.
+  NormalityHistory history;
+  history.coating_start = o.coating_start;
+  history.predict_at = o.predict_times.empty()
+                           ? o.predict_until
+                           : *std::min_element(o.predict_times.begin(), o.predict_times.end());
+  for (std::size_t i = 0; i <= lastInWindow; ++i) {
+    if (a.snapshots[i].time >= t0 && a.snapshots[i].time > o.coating_start)
+      history.snapshots.push_back(a.snapshots[i]);
+  }
+  a.verdict = judgeMixing(a.fit, a.snapshots[lastInWindow], lastValues, o.criteria, history);
   if (a.fit.ok) {
     // The extrapolation is computed whenever a fit exists (the check against later simulated
     // times is what tells a user how far to trust it); the report shows it only as a prediction

@@ -363,6 +363,20 @@ void statisticalDetail(std::ostringstream& h, const RunAnalysis& a) {
     h << "D'Agostino-Pearson on " << v.normality.n << " parcels: skewness "
       << g(v.normality.skewness, 3) << ", excess kurtosis " << g(v.normality.kurtosis - 3.0, 3)
       << ", K<sup>2</sup> = " << g(v.normality.k2) << ", p = " << g(v.normality.p_value, 3) << ".";
+    const auto& tr = v.trend;
+    if (tr.measured) {
+      h << " Over the last three quarters of the coating time (" << g(tr.from, 3) << "&ndash;"
+        << g(tr.to, 3) << " s of coating, " << tr.snapshots
+        << " snapshots) |skewness| falls as t<sup>&minus;" << g(tr.skewness_decay, 3)
+        << "</sup> and |excess kurtosis| as t<sup>&minus;" << g(tr.kurtosis_decay, 3)
+        << "</sup> (a well-mixed bed: t<sup>&minus;1/2</sup> and t<sup>&minus;1</sup>, every "
+           "cumulant of the coating growing linearly in time)";
+      if (std::isfinite(tr.at)) {
+        h << "; projected to " << g(tr.at, 3) << " s: skewness " << g(tr.projected_skewness, 3)
+          << ", excess kurtosis " << g(tr.projected_excess_kurtosis, 3);
+      }
+      h << (v.fading_non_normal ? ": the departure fades, so it does not refuse the run." : ".");
+    }
   } else {
     h << htmlEscape(v.normality.problem);
   }

@@ -223,6 +223,17 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   nj["z_kurtosis"] = v.normality.z_kurtosis;
   nj["k2"] = v.normality.k2;
   nj["p_value"] = v.normality.p_value;
+  nj["fading"] = v.fading_non_normal;
+  Json& tj = nj["trend"] = Json::object();
+  tj["measured"] = v.trend.measured;
+  tj["from"] = v.trend.from;
+  tj["to"] = v.trend.to;
+  tj["snapshots"] = static_cast<unsigned long long>(v.trend.snapshots);
+  tj["skewness_decay"] = v.trend.skewness_decay;
+  tj["kurtosis_decay"] = v.trend.kurtosis_decay;
+  tj["at"] = v.trend.at;
+  tj["projected_skewness"] = v.trend.projected_skewness;
+  tj["projected_excess_kurtosis"] = v.trend.projected_excess_kurtosis;
   vj["runs_mean"] = toJson(v.mean_runs);
   vj["runs_variance"] = toJson(v.variance_runs);
 

@@ -96,6 +96,11 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
   s += duration(coated) + " of coating " + percent(1.0 - judged->uncoated_share) +
        " of the parcels are coated and the coating grows as in a well-mixed bed; the CV is " +
        number(judged->cv) + ".";
+  if (v.fading_non_normal && std::isfinite(v.trend.at)) {
+    s += " The coating is still skewed (skewness " + number(judged->skewness) +
+         ") but evens out as a well-mixed bed's does, to a skewness of " +
+         number(v.trend.projected_skewness) + " at " + duration(v.trend.at) + ".";
+  }
   if (a.fit.ok) {
     const auto times = batchTimes(o);
     s += " Extrapolated to a " + batchRange(o) + " batch the CV would be ";
@@ -104,8 +109,8 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
       s += (i ? " and " : "") + number(d.cv) + " at " + duration(times[i]);
     }
     const std::string band = fmt::format("{:.0f}", 100 * o.band) + kNbsp + "%";
-    s += " (each \u00b1" + band + " for a " + band + " error in a2); at " + duration(times.front()) +
-         " a real grain would carry ";
+    s += " (each \u00b1" + band + " for a " + band + " error in a2); at " +
+         duration(times.front()) + " a real grain would carry ";
     const auto d = predictDistribution(a.fit, times.front(), o.band);
     s += quantity(c.grain.perGrain(d.mean), a.mass_unit);
     const double h = c.grain.thickness(d.mean);
