@@ -8,7 +8,10 @@ Reads RUN/particles.h5 (one group per snapshot) and RUN/timeseries.csv. Draws th
 central slab |y| < slab (default: 1.5 parcel diameters) in the x-z plane at up to six snapshots,
 so bubbles show as empty regions in the bed, and the bed pressure drop against time below.
 With --compare, one side view per run at the first of --times (default: each run's last
-snapshot), side by side, each titled with its run folder's name.
+snapshot), side by side, each titled with its run folder's name. With --coating the parcels are
+coloured by their coating mass relative to the bed's mean at that time (never-coated parcels,
+at most 1e-6 of the mean as in cosim report, in grey): which parts of the bed the coating zone
+reaches (the paper's Fig. 7).
 """
 import argparse
 import csv
@@ -22,22 +25,46 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 
-def side_view(ax, g, slab, title):
+COATING_MAX = 3.0  # colour scale of --coating: 0 to 3 times the bed's mean coating
+
+
+def side_view(ax, g, slab, title, coating=False):
     x = g["position"][:].reshape(-1, 3)
     r = g["radius"][:]
     d = 2 * float(np.median(r))
     sel = np.abs(x[:, 1]) < slab * d
-    ax.scatter(x[sel, 0] * 1e3, x[sel, 2] * 1e3, s=(72 * d * 1e3 / 25.4 * 2.2) ** 2 / 4, c="tab:brown",
-               edgecolors="none")
+    size = (72 * d * 1e3 / 25.4 * 2.2) ** 2 / 4
+    mappable = None
+    if coating and "coating_mass" in g:
+        m = np.asarray(g["coating_mass"][:], dtype=float)
+        mean = m.mean()
+        rel = m / mean if mean > 0 else np.zeros_like(m)
+        never = sel & (m <= 1e-6 * mean if mean > 0 else np.ones_like(sel))
+        coated = sel & ~never
+        ax.scatter(x[never, 0] * 1e3, x[never, 2] * 1e3, s=size, c="0.75", edgecolors="none")
+        mappable = ax.scatter(x[coated, 0] * 1e3, x[coated, 2] * 1e3, s=size, c=rel[coated],
+                              cmap="viridis", vmin=0, vmax=COATING_MAX, edgecolors="none")
+        title += f"\n{100 * (m <= 1e-6 * mean).mean():.0f} % never coated" if mean > 0 else "\nnone coated"
+    else:
+        ax.scatter(x[sel, 0] * 1e3, x[sel, 2] * 1e3, s=size, c="tab:brown", edgecolors="none")
     ax.set_aspect("equal")
     ax.set_xlim(x[:, 0].min() * 1e3 - d * 1e3, x[:, 0].max() * 1e3 + d * 1e3)
     ax.set_ylim(0, max(np.percentile(x[:, 2], 99.9) * 1e3 * 1.3, 10))
     ax.set_title(title, fontsize=9)
     ax.set_xlabel("x [mm]")
+    return mappable
 
 
-def compare(runs, times, slab, output):
-    fig, axes = plt.subplots(1, len(runs), figsize=(2.4 * len(runs), 6), squeeze=False)
+def colorbar(fig, axes, mappable):
+    if mappable is not None:
+        bar = fig.colorbar(mappable, ax=axes, shrink=0.6, pad=0.02)
+        bar.set_label("coating / bed mean (grey: never coated)")
+
+
+def compare(runs, times, slab, output, coating=False):
+    fig, axes = plt.subplots(1, len(runs), figsize=(2.4 * len(runs) + (1.2 if coating else 0), 6),
+                             squeeze=False)
+    mappable = None
     for k, run in enumerate(runs):
         try:
             f = h5py.File(f"{run}/particles.h5", "r")
@@ -47,10 +74,14 @@ def compare(runs, times, slab, output):
         if not snaps:
             sys.exit(f"plot_bed: {run}/particles.h5 has no snapshot with particles")
         t, g = min(snaps, key=lambda s: abs(s[0] - times[0])) if times else snaps[-1]
-        side_view(axes[0, k], g, slab, f"{run.rstrip('/').split('/')[-1]}, t = {t:.2f} s")
+        mappable = side_view(axes[0, k], g, slab, f"{run.rstrip('/').split('/')[-1]}, t = {t:.2f} s",
+                             coating) or mappable
     axes[0, 0].set_ylabel("z [mm]")
     fig.suptitle(f"parcels with |y| < {slab:g} d (side view)", fontsize=10)
-    fig.tight_layout()
+    if coating:
+        colorbar(fig, axes[0, :].tolist(), mappable)
+    else:
+        fig.tight_layout()
     out = output or "beds.png"
     fig.savefig(out, dpi=110)
     print(f"plot_bed: wrote {out}")
@@ -62,10 +93,13 @@ def main():
     ap.add_argument("--compare", action="store_true", help="one side view per run, side by side")
     ap.add_argument("--times", help="snapshot times [s], comma separated (default: six across the run)")
     ap.add_argument("--slab", type=float, default=1.5, help="half thickness of the slab in parcel diameters")
+    ap.add_argument("--coating", action="store_true",
+                    help="colour the parcels by their coating (grey: never coated)")
     ap.add_argument("-o", "--output", help="PNG file (default RUN/bed.png)")
     a = ap.parse_args()
     if a.compare:
-        compare(a.run, [float(t) for t in a.times.split(",")] if a.times else None, a.slab, a.output)
+        compare(a.run, [float(t) for t in a.times.split(",")] if a.times else None, a.slab, a.output,
+                a.coating)
         return
     if len(a.run) != 1:
         sys.exit("plot_bed: one run folder, or several with --compare")
@@ -92,7 +126,9 @@ def main():
     grid = fig.add_gridspec(2, len(chosen), height_ratios=[3, 1])
     for k, (t, name) in enumerate(chosen):
         ax = fig.add_subplot(grid[0, k])
-        side_view(ax, f["snapshots"][name], a.slab, f"t = {t:.3f} s")
+        mappable = side_view(ax, f["snapshots"][name], a.slab, f"t = {t:.3f} s", a.coating)
+        if a.coating and k == len(chosen) - 1:
+            colorbar(fig, ax, mappable)
         if k == 0:
             ax.set_ylabel("z [mm]")
     rows = list(csv.DictReader(open(f"{a.run}/timeseries.csv")))
