@@ -146,50 +146,34 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
           ", D'Agostino-Pearson p = " + fmt::format("{:.2g}", v.normality.p_value) + ")";
       v.trend = normalityTrend(history, last);
       const auto& tr = v.trend;
-      const auto rate = [&](const char* what, double b, double wanted) {
-        return std::string(what) + " falls as t^-" + fmt::format("{:.2f}", b) + " over " +
-               fmt::format("{:g}", tr.from) + "-" + fmt::format("{:g}", tr.to) +
-               " s of coating (a well-mixed bed's as t^-" + fmt::format("{:g}", wanted) + ")";
-      };
+      // One moment of the departure: lasting (a reason, "" for the bare one) or fading.
       std::vector<std::string> lasting, fading;
-      if (skewed) {
-        const double b = tr.skewness_decay;
+      const auto judge = [&](const char* what, double b, double min_decay, double wanted,
+                             double projected, double limit) {
+        const auto rate = std::string(what) + " falls as t^-" + fmt::format("{:.2f}", b) +
+                          " over " + fmt::format("{:g}", tr.from) + "-" +
+                          fmt::format("{:g}", tr.to) + " s of coating (a well-mixed bed's as t^-" +
+                          fmt::format("{:g}", wanted) + ")";
+        const auto there =
+            fmt::format("{:.2f}", projected) + " at " + fmt::format("{:g}", tr.at) + " s";
         if (!std::isfinite(b)) {
           lasting.push_back("");
-        } else if (b < c.min_skewness_decay) {
-          lasting.push_back(rate("its skewness", b, 0.5) + ", slower than t^-" +
-                            fmt::format("{:g}", c.min_skewness_decay));
+        } else if (b < min_decay) {
+          lasting.push_back(rate + ", slower than t^-" + fmt::format("{:g}", min_decay));
         } else if (!std::isfinite(tr.at)) {
           lasting.push_back("");  // the run is already past the first reconstructed time
-        } else if (!(tr.projected_skewness <= c.max_abs_skewness)) {
-          lasting.push_back(rate("its skewness", b, 0.5) + " but would still be " +
-                            fmt::format("{:.2f}", tr.projected_skewness) + " at " +
-                            fmt::format("{:g}", tr.at) + " s");
+        } else if (!(projected <= limit)) {
+          lasting.push_back(rate + " but would still be " + there);
         } else {
-          fading.push_back(rate("its skewness", b, 0.5) + ", to " +
-                           fmt::format("{:.2f}", tr.projected_skewness) + " at " +
-                           fmt::format("{:g}", tr.at) + " s");
+          fading.push_back(rate + ", to " + there);
         }
-      }
-      if (peaked) {
-        const double b = tr.kurtosis_decay;
-        if (!std::isfinite(b)) {
-          lasting.push_back("");
-        } else if (b < c.min_kurtosis_decay) {
-          lasting.push_back(rate("its excess kurtosis", b, 1) + ", slower than t^-" +
-                            fmt::format("{:g}", c.min_kurtosis_decay));
-        } else if (!std::isfinite(tr.at)) {
-          lasting.push_back("");
-        } else if (!(tr.projected_excess_kurtosis <= c.max_abs_excess_kurtosis)) {
-          lasting.push_back(rate("its excess kurtosis", b, 1) + " but would still be " +
-                            fmt::format("{:.2f}", tr.projected_excess_kurtosis) + " at " +
-                            fmt::format("{:g}", tr.at) + " s");
-        } else {
-          fading.push_back(rate("its excess kurtosis", b, 1) + ", to " +
-                           fmt::format("{:.2f}", tr.projected_excess_kurtosis) + " at " +
-                           fmt::format("{:g}", tr.at) + " s");
-        }
-      }
+      };
+      if (skewed)
+        judge("its skewness", tr.skewness_decay, c.min_skewness_decay, 0.5, tr.projected_skewness,
+              c.max_abs_skewness);
+      if (peaked)
+        judge("its excess kurtosis", tr.kurtosis_decay, c.min_kurtosis_decay, 1.0,
+              tr.projected_excess_kurtosis, c.max_abs_excess_kurtosis);
       const auto join = [](const std::vector<std::string>& parts) {
         std::string r;
         for (const auto& p : parts) {
