@@ -39,12 +39,12 @@ def side_view(ax, g, slab, title, coating=False):
         m = np.asarray(g["coating_mass"][:], dtype=float)
         mean = m.mean()
         rel = m / mean if mean > 0 else np.zeros_like(m)
-        never = sel & (m <= 1e-6 * mean if mean > 0 else np.ones_like(sel))
-        coated = sel & ~never
+        uncoated = m <= 1e-6 * mean if mean > 0 else np.ones(m.shape, dtype=bool)
+        never, coated = sel & uncoated, sel & ~uncoated
         ax.scatter(x[never, 0] * 1e3, x[never, 2] * 1e3, s=size, c="0.75", edgecolors="none")
         mappable = ax.scatter(x[coated, 0] * 1e3, x[coated, 2] * 1e3, s=size, c=rel[coated],
                               cmap="viridis", vmin=0, vmax=COATING_MAX, edgecolors="none")
-        title += f"\n{100 * (m <= 1e-6 * mean).mean():.0f} % never coated" if mean > 0 else "\nnone coated"
+        title += f"\n{100 * uncoated.mean():.0f} % never coated" if mean > 0 else "\nnone coated"
     else:
         ax.scatter(x[sel, 0] * 1e3, x[sel, 2] * 1e3, s=size, c="tab:brown", edgecolors="none")
     ax.set_aspect("equal")

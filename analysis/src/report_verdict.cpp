@@ -97,9 +97,10 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
        " of the parcels are coated and the coating grows as in a well-mixed bed; the CV is " +
        number(judged->cv) + ".";
   if (v.fading_non_normal && std::isfinite(v.trend.at)) {
-    s += " The coating is still skewed (skewness " + number(judged->skewness) +
-         ") but evens out as a well-mixed bed's does, to a skewness of " +
-         number(v.trend.projected_skewness) + " at " + duration(v.trend.at) + ".";
+    s += " The coating is not yet normally distributed (skewness " + number(judged->skewness) +
+         ", excess kurtosis " + number(judged->excess_kurtosis) +
+         ") but evens out as a well-mixed bed's does, to " + number(v.trend.projected_skewness) +
+         " and " + number(v.trend.projected_excess_kurtosis) + " at " + duration(v.trend.at) + ".";
   }
   if (a.fit.ok) {
     const auto times = batchTimes(o);
