@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <ostream>
 
 #include "coupler.h"
@@ -72,13 +73,22 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
   out << "\n  run folders under " << folder.string() << std::endl;
 
   std::map<std::string, BenchStage> stages;
-  for (const auto& name : opt.stages) {
+  // The coupled stage runs first and records its terms; the solver-alone stages replay them.
+  std::vector<std::string> order = opt.stages;
+  std::stable_partition(order.begin(), order.end(), [](const auto& n) { return n == "coupled"; });
+  const bool recorded = !order.empty() && order.front() == "coupled";
+  auto recording = std::make_shared<TermsRecording>();
+  for (const auto& name : order) {
     RunOptions ro;
     ro.quiet = true;
     ro.overwrite = true;
     ro.output = folder / name;
     ro.scheme = schemeOf(name);
     ro.untimed_steps = opt.warmup;
+    if (name == "coupled")
+      ro.record_terms = recording;
+    else if (recorded)
+      ro.replay_terms = recording;
     Coupler c(loadScenario(opt.scenario, sets, opt.unsets), ro);
     const RunResult r = c.run();
     if (r.exit_code != 0) {

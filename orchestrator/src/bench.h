@@ -1,11 +1,13 @@
 // cosim bench: what a coupled step costs against its solvers alone, on the same scene.
-//   dem      the particles alone: the gas sampled and the models evaluated once, then the same
-//            forcing replayed every interval; the fluid idles (FrozenScheme, particles alone)
-//   cfd      the fluid alone: the particle terms of the first interval replayed, the particles
-//            never advance (FrozenScheme, fluid alone)
-//   coupled  the scene as `cosim run` runs it (ParallelScheme)
+//   coupled  the scene as `cosim run` runs it (its coupling.scheme); runs first and records the
+//            terms of every interval
+//   dem      the particles alone under the recorded forcing, interval by interval; the fluid
+//            idles (FrozenScheme, particles alone)
+//   cfd      the fluid alone with the recorded particle terms; the particles never advance
+//            (FrozenScheme, fluid alone)
 // Each from the scene's initial state, timed per step after `warmup` untimed steps, with its
-// phases. The last line printed is `coupled/max(dem,cfd) = R; serial share = S %`.
+// phases. Without the coupled stage the alone stages replay their first interval's terms. The
+// last line printed is `coupled/max(dem,cfd) = R; serial share = S %`.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +25,7 @@ struct BenchOptions {
   std::uint64_t steps = 50;      // timed coupling steps per stage
   std::uint64_t warmup = 5;      // untimed steps before them
   std::filesystem::path output;  // default runs/<scenario>-bench; one run folder per stage
-  std::vector<std::string> stages{"dem", "cfd", "coupled"};
+  std::vector<std::string> stages{"coupled", "dem", "cfd"};
 };
 
 // Seconds per step of one stage: its phases (fluid_sample, models, advance, bookkeeping) and the

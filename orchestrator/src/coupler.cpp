@@ -53,7 +53,8 @@ Coupler::Coupler(Scenario scenario, RunOptions options)
       record_(sc_, plan_, log_),
       participants_(sc_, plan_, run_id_, log_),
       scheme_(
-          makeCouplingScheme(sc_, plan_, opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme)),
+          makeCouplingScheme(sc_, plan_, opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme,
+                             opt_.replay_terms)),
       monitor_(sc_) {}
 
 Coupler::~Coupler() { participants_.shutdown(false); }
@@ -311,7 +312,12 @@ CouplingTerms Coupler::termsOfStep() {
   }
   std::vector<char> lost;
   const link::ParticleData samples = sampleFluid(lost);  // the gas at the parcels
-  return evaluateModels(samples, lost);                  // forcing, exchange terms
+  CouplingTerms terms = evaluateModels(samples, lost);   // forcing, exchange terms
+  if (opt_.record_terms) {
+    opt_.record_terms->push_back(terms);
+    phases_.skip();
+  }
+  return terms;
 }
 
 // Step 2: the gas velocity, voidage, ... at every parcel; parcels outside the mesh are `lost`.

@@ -43,6 +43,10 @@ struct RunOptions {
       scheme;  // makeCouplingScheme; empty: the scene's coupling.scheme (bench: frozen ones)
   std::uint64_t untimed_steps = 0;  // phase and compute timings start after this many steps
   std::filesystem::path resume;     // continue the run in this folder from its newest checkpoint
+  // cosim bench: the coupled stage appends every interval's terms to `record_terms` (outside the
+  // timed phases); the solver-alone stages replay `replay_terms` (FrozenScheme).
+  std::shared_ptr<TermsRecording> record_terms;
+  std::shared_ptr<const TermsRecording> replay_terms;
 };
 
 struct RunResult {
@@ -111,6 +115,7 @@ class Coupler {
     std::chrono::steady_clock::time_point tick;
     void start() { tick = std::chrono::steady_clock::now(); }
     void lap(const char* phase);
+    void skip() { start(); }  // the time since the last lap counts in no phase
   };
 
   Scenario sc_;

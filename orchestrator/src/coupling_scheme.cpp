@@ -101,6 +101,23 @@ std::optional<wire::Samples> OverlappedScheme::samplesAhead(const link::Particle
 }
 
 std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& state) {
+  const std::size_t k = interval_++;
+  // The fluid places the exchange terms in the cells it found the parcels in, so the fluid
+  // alone samples them once, at the first interval (the same terms as the recording's first).
+  if (k == 0 && alone_ == Alone::fluid) return std::nullopt;
+  if (recording_ && k < recording_->size()) {
+    const CouplingTerms& recorded = (*recording_)[k];
+    CouplingTerms t;
+    t.forcing = onIds(recorded.forcing, state.ids);
+    t.exchange = recorded.exchange;
+    ++replayed_;
+    if (k + 1 == recording_->size()) {  // past the end: the last interval's terms, held
+      frozen_ = recorded;
+      if (frozen_->forcing.has(field::coating_increment))
+        frozen_->forcing.field(field::coating_increment).assign(frozen_->forcing.size(), 0.0);
+    }
+    return t;
+  }
   if (!frozen_) return std::nullopt;
   CouplingTerms t;
   t.forcing = onIds(frozen_->forcing, state.ids);
@@ -130,14 +147,15 @@ AdvanceReplies FrozenScheme::advance(Participants& participants,
   return r;
 }
 
-std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan,
-                                                   const std::string& name) {
+std::unique_ptr<CouplingScheme> makeCouplingScheme(
+    const Scenario& sc, const Plan& plan, const std::string& name,
+    std::shared_ptr<const TermsRecording> recording) {
   if (name == "parallel") return std::make_unique<ParallelScheme>(sc, plan);
   if (name == "overlapped") return std::make_unique<OverlappedScheme>(sc, plan);
   if (name == "frozen-fluid")
-    return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::particles);
+    return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::particles, recording);
   if (name == "frozen-particles")
-    return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::fluid);
+    return std::make_unique<FrozenScheme>(sc, plan, FrozenScheme::Alone::fluid, recording);
   throw std::invalid_argument("unknown coupling scheme '" + name +
                               "' (parallel, overlapped, frozen-fluid, frozen-particles)");
 }

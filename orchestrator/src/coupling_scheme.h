@@ -83,16 +83,24 @@ class OverlappedScheme final : public CouplingScheme {
   std::optional<wire::Samples> ahead_;
 };
 
-// One solver alone, for `cosim bench`: the first interval samples the fluid and evaluates the
-// models as usual; every later interval replays those terms (coating increment paid once) without
-// sampling, and only the named solver advances. The other one idles and costs no CPU.
-//   particles alone: DEM steps under a frozen gas (K and u_f of the first interval, by id)
-//   fluid alone:     CFD steps with frozen particle terms (K, k of the first interval)
+// One solver alone, for `cosim bench`; only the named solver advances, the other idles and
+// costs no CPU.
+//   particles alone: DEM steps under the forcing of the recorded coupled run (K, u_f, explicit
+//                    force and coating increment of interval k, by id)
+//   fluid alone:     CFD steps with the recorded particle terms (K, k of interval k)
+// Given a recording (the coupled stage's TermsRecording), interval k replays its interval k (the
+// fluid alone samples and evaluates its first interval, which places the parcels in its cells), so
+// the solver alone sees what it saw coupled and does the same work (a bed held under the first
+// interval's gas moves differently and costs the DEM more or less than the coupled bed). Past the
+// recording's end its last interval's terms are held; without one the first interval samples the
+// fluid and evaluates the models as usual and every later one replays those terms (the coating
+// increment paid once in both cases).
 class FrozenScheme final : public CouplingScheme {
  public:
   enum class Alone { particles, fluid };
-  FrozenScheme(const Scenario& sc, const Plan& plan, Alone alone)
-      : sc_(sc), plan_(plan), alone_(alone) {}
+  FrozenScheme(const Scenario& sc, const Plan& plan, Alone alone,
+               std::shared_ptr<const TermsRecording> recording = nullptr)
+      : sc_(sc), plan_(plan), alone_(alone), recording_(std::move(recording)) {}
   std::string name() const override {
     return alone_ == Alone::particles ? "frozen-fluid" : "frozen-particles";
   }
@@ -100,17 +108,23 @@ class FrozenScheme final : public CouplingScheme {
   AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
                          const CouplingTerms& terms) override;
   bool evaluatesEveryStep() const override { return false; }
+  std::size_t replayedIntervals() const { return replayed_; }  // taken from the recording
 
  private:
   const Scenario& sc_;
   const Plan& plan_;
   Alone alone_;
+  std::shared_ptr<const TermsRecording> recording_;
+  std::size_t interval_ = 0;  // intervals started
+  std::size_t replayed_ = 0;
   std::optional<CouplingTerms> frozen_;
 };
 
 // `name`: "parallel" or "overlapped" (coupling.scheme of a run), "frozen-fluid" (particles alone)
-// or "frozen-particles" (fluid alone); the last two are what `cosim bench` measures.
-std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan,
-                                                   const std::string& name = "parallel");
+// or "frozen-particles" (fluid alone); the last two are what `cosim bench` measures, replaying
+// `recording` when one is given.
+std::unique_ptr<CouplingScheme> makeCouplingScheme(
+    const Scenario& sc, const Plan& plan, const std::string& name = "parallel",
+    std::shared_ptr<const TermsRecording> recording = nullptr);
 
 }  // namespace cosim::orchestrator

@@ -3,6 +3,11 @@
 // asserted (the machine may be loaded).
 #include "bench.h"
 
+#include "coupling_scheme.h"
+#include "cosim/link/fields.h"
+#include "plan.h"
+#include "scenario.h"
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -14,6 +19,7 @@
 #include <string>
 
 namespace fs = std::filesystem;
+using namespace cosim;
 using namespace cosim::orchestrator;
 
 namespace {
@@ -37,6 +43,44 @@ TEST(Bench, RatiosByHand) {
   const BenchRatios r = benchRatios(s);
   EXPECT_DOUBLE_EQ(r.coupled_over_max, 0.025 / 0.020);
   EXPECT_DOUBLE_EQ(r.serial_percent, 100.0 * 0.005 / 0.025);
+}
+
+// The solver-alone stages replay the coupled stage's terms interval by interval, by particle id,
+// and hold the last interval's terms (coating no longer paid) past the recording's end.
+TEST(Bench, AloneStageReplaysTheRecordedIntervalsById) {
+  const Scenario sc = loadScenario(fs::path(COSIM_SOURCE_DIR) / "scenarios" / "settling-sphere");
+  const SceneModels models = makeModels(sc);
+  const Plan plan = makePlan(sc, models);
+  auto rec = std::make_shared<TermsRecording>();
+  for (int k = 0; k < 3; ++k) {
+    CouplingTerms t;
+    t.forcing.ids = {7, 9};
+    t.forcing.field(field::drag_coefficient) = {1.0 + k, 10.0 + k};
+    t.forcing.field(field::coating_increment) = {0.5, 0.25};
+    t.exchange.ids = {7, 9};
+    t.exchange.field(field::drag_coefficient) = {100.0 + k, 200.0 + k};
+    rec->push_back(t);
+  }
+  FrozenScheme alone(sc, plan, FrozenScheme::Alone::particles, rec);
+  link::ParticleData state;
+  state.ids = {9, 7};  // another order than the recording's
+  for (int k = 0; k < 3; ++k) {
+    const auto t = alone.replay(state);
+    ASSERT_TRUE(t.has_value()) << "interval " << k;
+    EXPECT_EQ(t->forcing.ids, state.ids);
+    EXPECT_EQ(t->forcing.get(field::drag_coefficient), (std::vector<double>{10.0 + k, 1.0 + k}));
+    EXPECT_EQ(t->forcing.get(field::coating_increment), (std::vector<double>{0.25, 0.5}));
+    EXPECT_EQ(t->exchange.get(field::drag_coefficient),
+              (std::vector<double>{100.0 + k, 200.0 + k}));
+  }
+  const auto past = alone.replay(state);
+  ASSERT_TRUE(past.has_value());
+  EXPECT_EQ(past->forcing.get(field::drag_coefficient), (std::vector<double>{12.0, 3.0}));
+  EXPECT_EQ(past->forcing.get(field::coating_increment), (std::vector<double>{0.0, 0.0}));
+  EXPECT_EQ(alone.replayedIntervals(), 3u);
+
+  FrozenScheme unrecorded(sc, plan, FrozenScheme::Alone::particles);
+  EXPECT_FALSE(unrecorded.replay(state).has_value());  // the first interval samples as usual
 }
 
 TEST(Bench, CommandLastLineOnTheSettlingSphere) {

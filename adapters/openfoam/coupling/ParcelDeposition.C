@@ -124,9 +124,16 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
             {
                 continue;
             }
-            // The whole parcel inside its centre cell (satellites lie within its radius):
-            // each satellite's walk would end there at its first test
-            if (centreCell[i] >= 0 && locator_.holdsBall(c, r, centreCell[i]))
+            // Only the faces of the centre cell whose planes the parcel reaches can
+            // put a satellite (all lie within its radius) outside that cell; none:
+            // the whole parcel is inside it, and each satellite's walk would end
+            // there at its first test
+            constexpr label room = 64;
+            label reached[room];
+            const label nReached = centreCell[i] >= 0
+              ? locator_.reachedFaces(c, r, centreCell[i], reached, room)
+              : -1;
+            if (nReached == 0)
             {
                 for (label j = 0; j < nSat; ++j)
                 {
@@ -139,7 +146,23 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
             {
                 const point x = c + r*satellites_.offsets()[j];
                 label celli = -1;
-                if (centreCell[i] >= 0)
+                if (nReached > 0)
+                {
+                    // Inside the centre cell by the reached faces, else walked from
+                    // the cell across the face it lies beyond (a boundary face: from
+                    // the centre cell, whose walk ends at the boundary it leaves by)
+                    const label beyond = locator_.firstBeyond(x, reached, nReached);
+                    if (beyond < 0)
+                    {
+                        celli = centreCell[i];
+                    }
+                    else
+                    {
+                        const label next = locator_.across(beyond);
+                        celli = locator_.walk(x, next >= 0 ? next : centreCell[i]);
+                    }
+                }
+                else if (centreCell[i] >= 0)
                 {
                     celli = locator_.walk(x, centreCell[i]);
                 }

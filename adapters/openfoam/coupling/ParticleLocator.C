@@ -61,21 +61,48 @@ bool Foam::cosim::ParticleLocator::inside(const point& p, label c) const
 }
 
 
-bool Foam::cosim::ParticleLocator::holdsBall
+Foam::label Foam::cosim::ParticleLocator::reachedFaces
 (
     const point& p,
     scalar radius,
-    label c
+    label c,
+    label* slots,
+    label room
 ) const
 {
+    const scalar reach = radius + 1e-12;
+    label n = 0;
     for (label k = faceStart_[c]; k < faceStart_[c + 1]; ++k)
     {
-        if ((faceOut_[k] & (p - faceCentre_[k])) + radius*faceArea_[k] > 0)
+        if ((faceOut_[k] & (p - faceCentre_[k])) + reach*faceArea_[k] > 0)
         {
-            return false;
+            if (n == room)
+            {
+                return -1;
+            }
+            slots[n++] = k;
         }
     }
-    return true;
+    return n;
+}
+
+
+Foam::label Foam::cosim::ParticleLocator::firstBeyond
+(
+    const point& q,
+    const label* slots,
+    label n
+) const
+{
+    for (label i = 0; i < n; ++i)
+    {
+        const label k = slots[i];
+        if ((faceOut_[k] & (q - faceCentre_[k])) > 0)
+        {
+            return k;
+        }
+    }
+    return -1;
 }
 
 
