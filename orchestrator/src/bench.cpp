@@ -106,14 +106,18 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
 
   out << "\nms per step   total";
   for (const char* p : kPhases) out << "  " << std::setw(12) << p;
-  out << "  particles_compute  fluid_compute  fluid_sample_compute\n";
+  out << "  particles_compute  fluid_compute  fluid_sample_compute  send  particles_reply  "
+         "fluid_reply\n";
   for (const auto& name : opt.stages) {
     const auto& st = stages.at(name);
     out << std::left << std::setw(10) << name << std::right << std::setw(8) << ms(st.total());
     for (const char* p : kPhases) out << "  " << std::setw(12) << ms(at(st.phases, p));
     out << "  " << std::setw(17) << ms(at(st.compute, "particles")) << "  " << std::setw(13)
         << ms(at(st.compute, "fluid")) << "  " << std::setw(20)
-        << ms(at(st.compute, "fluid_sample")) << "\n";
+        << ms(at(st.compute, "fluid_sample")) << "  " << std::setw(4)
+        << ms(at(st.compute, "advance_send")) << "  " << std::setw(15)
+        << ms(at(st.compute, "advance_particles_reply")) << "  " << std::setw(11)
+        << ms(at(st.compute, "advance_fluid_reply")) << "\n";
   }
   const BenchRatios r = benchRatios(stages);
   auto total = [&](const char* n) { return stages.count(n) ? stages.at(n).total() : 0.0; };

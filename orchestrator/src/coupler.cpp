@@ -139,6 +139,8 @@ RunResult Coupler::run() {
   result.totals = totals_;
   result.phase_seconds = phases_.seconds;
   result.compute_seconds = participants_.computeSeconds();
+  for (const auto& [n, w] : participants_.advanceWireSeconds())
+    result.compute_seconds["advance_" + n] = w;
   result.timed_steps = result.steps > opt_.untimed_steps ? result.steps - opt_.untimed_steps : 0;
   if (status == "completed") {
     try {
@@ -553,6 +555,8 @@ analysis::Summary Coupler::summarize(const RunResult& r, const std::string& stat
   s.timings.emplace_back("total", r.wall_seconds);
   for (const auto& [n, w] : participants_.computeSeconds())
     s.timings.emplace_back(n + "_compute", w);
+  for (const auto& [n, w] : participants_.advanceWireSeconds())
+    s.timings.emplace_back("advance_" + n, w);
   for (const auto& [n, w] : phases_.seconds) s.timings.emplace_back("step_" + n, w);
   s.parameters.assign(sc_.parameters.begin(), sc_.parameters.end());
   s.coupling_dt = sc_.coupling.dt;

@@ -289,12 +289,34 @@ Replies Participants::exchange(std::map<std::string, wire::Envelope> messages,
                                wire::Envelope::BodyCase reply) {
   std::map<std::string, wire::Envelope::BodyCase> expected;
   double timeout = 0.0;
-  for (auto& [name, env] : messages) {
-    send(name, env);
+  const auto t0 = Clock::now();
+  // Advance: the participant that answered last in the previous interval is the step's
+  // critical path, so its message leaves first (the others' are serialized while it computes)
+  std::vector<std::string> order;
+  for (const auto& [name, env] : messages) order.push_back(name);
+  if (reply == wire::Envelope::kAdvanced) {
+    auto waited = [this](const std::string& n) {
+      const auto it = last_reply_.find(n);
+      return it == last_reply_.end() ? 0.0 : it->second;
+    };
+    std::stable_sort(order.begin(), order.end(),
+                     [&](const auto& a, const auto& b) { return waited(a) > waited(b); });
+  }
+  for (const auto& name : order) {
+    send(name, messages.at(name));
     expected[name] = reply;
     timeout = std::max(timeout, peers_.at(name)->spec.timeout);
   }
-  return await(expected, timeout);
+  if (reply != wire::Envelope::kAdvanced) return await(expected, timeout);
+  const auto sent = Clock::now();
+  arrived_.clear();
+  Replies replies = await(expected, timeout);
+  advance_wire_["send"] += std::chrono::duration<double>(sent - t0).count();
+  for (const auto& [name, at] : arrived_) {
+    last_reply_[name] = std::chrono::duration<double>(at - t0).count();
+    advance_wire_[name + "_reply"] += last_reply_[name];
+  }
+  return replies;
 }
 
 wire::Envelope Participants::request(const std::string& name, wire::Envelope message,
@@ -391,6 +413,7 @@ void Participants::take(const std::string& who, wire::Envelope& env,
                               " (out-of-order step)");
   }
   got[who] = std::move(env);
+  arrived_[who] = Clock::now();
 }
 
 std::optional<std::string> Participants::admit(const link::Hub::Incoming& in) {

@@ -79,7 +79,15 @@ class Participants {
   // Compute time a participant reported for an interval (kept for the summary).
   void addComputeSeconds(const std::string& name, double seconds);
   const std::map<std::string, double>& computeSeconds() const { return compute_; }
-  void resetComputeSeconds() { compute_.clear(); }
+  void resetComputeSeconds() {
+    compute_.clear();
+    advance_wire_.clear();
+  }
+  // Where an Advance exchange's wall time goes, summed over the exchanges: "send" (building
+  // the wire messages and handing them to ZeroMQ, one participant after the other) and, per
+  // participant, "<name>_reply" (from the exchange's start to its reply's arrival). Against the
+  // compute time it reported, that shows what the wire and the wake-ups cost each one.
+  const std::map<std::string, double>& advanceWireSeconds() const { return advance_wire_; }
 
   // Its log file, for the tail shown with a failure (empty if it is not a participant).
   std::filesystem::path logOf(const std::string& name) const;
@@ -125,6 +133,10 @@ class Participants {
   std::unique_ptr<link::Hub> hub_;
   std::map<std::string, std::unique_ptr<Peer>> peers_;
   std::map<std::string, double> compute_;
+  std::map<std::string, double> advance_wire_;
+  std::map<std::string, std::chrono::steady_clock::time_point>
+      arrived_;                                // replies of the exchange in progress
+  std::map<std::string, double> last_reply_;  // seconds to each reply, last Advance exchange
   std::uint64_t step_ = 0;
   double time_ = 0.0;
   std::filesystem::path restart_from_;
