@@ -192,9 +192,10 @@ int main(int argc, char** argv) {
 
   auto* bench = app.add_subcommand(
       "bench",
-      "Cost of a coupled step against its solvers alone, on the same scene: the particles alone "
-      "(gas frozen), the fluid alone (particle terms frozen) and coupled, per step with phases; "
-      "the last line reads 'coupled/max(dem,cfd) = R; serial share = S %'");
+      "Cost of a coupled step against its solvers alone, on the same scene: coupled (its terms "
+      "recorded), the particles alone under the recorded forcing and the fluid alone with the "
+      "recorded particle terms, per step with phases; the last line reads "
+      "'coupled/max(dem,cfd) = R; serial share = S %'");
   BenchOptions bopt;
   bench->add_option("scenario", bopt.scenario, "scenario file or folder")->required();
   bench->add_option("--steps", bopt.steps, "timed coupling steps per stage (default 50)");
