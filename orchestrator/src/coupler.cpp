@@ -52,9 +52,8 @@ Coupler::Coupler(Scenario scenario, RunOptions options)
       run_id_(newRunId()),
       record_(sc_, plan_, log_),
       participants_(sc_, plan_, run_id_, log_),
-      scheme_(
-          makeCouplingScheme(sc_, plan_, opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme,
-                             opt_.replay_terms)),
+      scheme_(makeCouplingScheme(
+          sc_, plan_, opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme, opt_.replay_terms)),
       monitor_(sc_) {}
 
 Coupler::~Coupler() { participants_.shutdown(false); }

@@ -135,7 +135,7 @@ class Participants {
   std::map<std::string, double> compute_;
   std::map<std::string, double> advance_wire_;
   std::map<std::string, std::chrono::steady_clock::time_point>
-      arrived_;                                // replies of the exchange in progress
+      arrived_;                               // replies of the exchange in progress
   std::map<std::string, double> last_reply_;  // seconds to each reply, last Advance exchange
   std::uint64_t step_ = 0;
   double time_ = 0.0;

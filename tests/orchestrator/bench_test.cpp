@@ -3,11 +3,6 @@
 // asserted (the machine may be loaded).
 #include "bench.h"
 
-#include "coupling_scheme.h"
-#include "cosim/link/fields.h"
-#include "plan.h"
-#include "scenario.h"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -17,6 +12,11 @@
 #include <regex>
 #include <sstream>
 #include <string>
+
+#include "cosim/link/fields.h"
+#include "coupling_scheme.h"
+#include "plan.h"
+#include "scenario.h"
 
 namespace fs = std::filesystem;
 using namespace cosim;
