@@ -107,9 +107,11 @@ std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& stat
   if (k == 0 && alone_ == Alone::fluid) return std::nullopt;
   if (recording_ && k < recording_->size()) {
     const CouplingTerms& recorded = (*recording_)[k];
-    CouplingTerms t;
-    t.forcing = onIds(recorded.forcing, state.ids);
-    t.exchange = recorded.exchange;
+    CouplingTerms t;  // only what the solver alone is sent
+    if (alone_ == Alone::particles)
+      t.forcing = onIds(recorded.forcing, state.ids);
+    else
+      t.exchange = recorded.exchange;
     ++replayed_;
     if (k + 1 == recording_->size()) {  // past the end: the last interval's terms, held
       frozen_ = recorded;

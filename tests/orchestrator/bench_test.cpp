@@ -70,6 +70,12 @@ TEST(Bench, AloneStageReplaysTheRecordedIntervalsById) {
     EXPECT_EQ(t->forcing.ids, state.ids);
     EXPECT_EQ(t->forcing.get(field::drag_coefficient), (std::vector<double>{10.0 + k, 1.0 + k}));
     EXPECT_EQ(t->forcing.get(field::coating_increment), (std::vector<double>{0.25, 0.5}));
+  }
+  FrozenScheme fluid(sc, plan, FrozenScheme::Alone::fluid, rec);
+  EXPECT_FALSE(fluid.replay(state).has_value());  // samples once: the fluid places the parcels
+  for (int k = 1; k < 3; ++k) {
+    const auto t = fluid.replay(state);
+    ASSERT_TRUE(t.has_value()) << "interval " << k;
     EXPECT_EQ(t->exchange.get(field::drag_coefficient),
               (std::vector<double>{100.0 + k, 200.0 + k}));
   }
