@@ -15,6 +15,7 @@
 #include "cosim/link/errors.h"
 #include "cosim/link/file_transfer.h"
 #include "cosim/link/session.h"
+#include "cosim/util/cpu_binding.h"
 #include "launchers.h"
 #include "link_security.h"
 #include "processes.h"
@@ -112,6 +113,39 @@ std::string Participants::connectEndpoint() const {
   return sc_.transport.connect.empty() ? hub_->endpoint() : sc_.transport.connect;
 }
 
+std::map<std::string, std::vector<int>> Participants::cpuLayout() {
+  if (sc_.coupling.cpus != "auto") return {};
+  const std::vector<int> allowed = util::allowedCpus();
+  std::string why;
+  if (allowed.size() < 2) why = "this process may use " + std::to_string(allowed.size()) + " CPU";
+  for (const auto& [name, peer] : peers_) {
+    if (!why.empty()) break;
+    if (peer->spec.launch != "local" || peer->spec.mpi > 1)
+      why = name + " is not a single process started here (" + describeLaunch(peer->spec) +
+            "): bind it with its launcher";
+  }
+  if (!why.empty()) {
+    log_.show("coupling.cpus auto: not applied, " + why);
+    return {};
+  }
+  const std::vector<int> first{allowed.front()};
+  const std::vector<int> rest(allowed.begin() + 1, allowed.end());
+  std::map<std::string, std::vector<int>> layout;
+  for (const auto& [name, peer] : peers_) {
+    layout[name] = peer->spec.role == wire::FLUID ? rest : first;
+  }
+  try {
+    util::bindThisProcess(first);
+  } catch (const std::exception& e) {
+    log_.warn(std::string("coupling.cpus auto: ") + e.what() + "; the processes run unbound");
+    return {};
+  }
+  std::string text = "coupling.cpus auto: orchestrator on CPU " + util::cpuListText(first);
+  for (const auto& [name, cpus] : layout) text += ", " + name + " on " + util::cpuListText(cpus);
+  log_.show(text);
+  return layout;
+}
+
 void Participants::start(const fs::path& run_folder) {
   std::string endpoint = sc_.transport.bind;
   std::optional<link::CurveKeyPair> server_keys;
@@ -160,6 +194,7 @@ void Participants::start(const fs::path& run_folder) {
                              " (transport.bind)");
   }
   const std::string connect = connectEndpoint();
+  const std::map<std::string, std::vector<int>> cpus = cpuLayout();
 
   for (auto& [name, peer] : peers_) {
     const ParticipantSpec& spec = peer->spec;
@@ -180,7 +215,9 @@ void Participants::start(const fs::path& run_folder) {
         env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1";
       }
       try {
-        peer->process.emplace(argv, peer->workdir, peer->log, env);
+        const auto bound = cpus.find(name);
+        peer->process.emplace(argv, peer->workdir, peer->log, env,
+                              bound == cpus.end() ? std::vector<int>{} : bound->second);
       } catch (const std::exception& e) {
         throw RunFailure(name, e.what());
       }

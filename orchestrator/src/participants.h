@@ -121,6 +121,9 @@ class Participants {
   void checkAlive(const std::map<std::string, wire::Envelope::BodyCase>& expected,
                   const Replies& got, std::chrono::steady_clock::time_point start, double timeout);
   std::string connectEndpoint() const;
+  // coupling.cpus: auto: the CPUs each started participant is bound to (empty map: unbound),
+  // binding the orchestrator itself too; says in the run log what it chose or why not.
+  std::map<std::string, std::vector<int>> cpuLayout();
   // The hub's refused connections (no keys of this run, garbage) into cosim.log.
   void logRefusals();
   // How a participant of launch: external is started, for the messages.

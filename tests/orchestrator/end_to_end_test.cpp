@@ -19,6 +19,7 @@
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/cpu_binding.h"
 #include "coupler.h"
 #include "scenario.h"
 
@@ -113,6 +114,28 @@ TEST(EndToEnd, SphereInUpwardFlowReachesFlowMinusTerminalVelocity) {
     EXPECT_NEAR(h.vz[i], ref.vz(h.t[i], u_up), 1e-9 * ref.vt()) << "t = " << h.t[i];
   }
   EXPECT_NEAR(h.vz.back(), u_up - ref.vt(), 1e-3 * ref.vt());
+}
+
+// coupling.cpus: auto. Bound to CPUs the run computes the same history to the bit, and its log
+// says where each process ran (with one CPU: that it was not applied).
+TEST(EndToEnd, BoundToCpusTheRunIsTheSameAndSaysWhere) {
+  const std::vector<int> allowed = cosim::util::allowedCpus();
+  const auto free = runSphere({"u_up=0.001"}, "cpus-free");
+  const auto bound = runSphere({"u_up=0.001", "coupling.cpus=auto"}, "cpus-auto");
+  cosim::util::bindThisProcess(allowed);  // the test process was bound with the orchestrator
+  ASSERT_EQ(bound.vz.size(), free.vz.size());
+  for (std::size_t i = 0; i < free.vz.size(); ++i) EXPECT_EQ(bound.vz[i], free.vz[i]) << i;
+  std::ifstream log(fs::temp_directory_path() /
+                    ("cosim-e2e-cpus-auto-" + std::to_string(getpid())) / "cosim.log");
+  std::stringstream text;
+  text << log.rdbuf();
+  const std::string expected =
+      allowed.size() >= 2
+          ? "coupling.cpus auto: orchestrator on CPU " + std::to_string(allowed.front()) +
+                ", fluid on " + cosim::util::cpuListText({allowed.begin() + 1, allowed.end()}) +
+                ", particles on " + std::to_string(allowed.front())
+          : std::string("coupling.cpus auto: not applied");
+  EXPECT_NE(text.str().find(expected), std::string::npos) << text.str();
 }
 
 // coupling.scheme: overlapped. The fluid samples the gas during its step at position +

@@ -183,6 +183,11 @@ TEST(ScenarioErrors, FractionalDemSteps) {
   expectError(mutate("dem_steps: 10", "dem_steps: 2.5"), {"coupling.dem_steps", "whole number"});
 }
 
+TEST(ScenarioErrors, CpusNeitherOffNorAuto) {
+  expectError(mutate("dem_steps: 10", "dem_steps: 10, cpus: all"),
+              {"coupling.cpus", "expected 'off' or 'auto'", "'all'"});
+}
+
 TEST(ScenarioErrors, UnknownAdapter) {
   expectError(mutate("adapter: analytic-fluid", "adapter: ansys"),
               {"participants.fluid.adapter", "unknown adapter 'ansys'", "openfoam"});

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "cosim/util/child_process.h"
+#include "cosim/util/cpu_binding.h"
 #include "cosim/util/rayleigh_time.h"
 #include "cosim/util/text_file.h"
 
@@ -47,6 +48,29 @@ TEST(RunProgram, ExitCodeEnvironmentAndMissingProgram) {
             0);
   EXPECT_EQ(slurp(dir / "env.log"), "x y");
   EXPECT_THROW(runProgram({"/nonexistent/cosim-no-such-program"}, "/dev/null"), std::runtime_error);
+  fs::remove_all(dir);
+}
+
+TEST(CpuBinding, ListTextAsTasksetWritesIt) {
+  EXPECT_EQ(cpuListText({0}), "0");
+  EXPECT_EQ(cpuListText({1, 2, 3}), "1-3");
+  EXPECT_EQ(cpuListText({0, 2, 3, 5}), "0,2-3,5");
+  EXPECT_EQ(cpuListText({}), "");
+}
+
+TEST(CpuBinding, AChildAndItsThreadsRunOnTheCpusGiven) {
+  const std::vector<int> allowed = allowedCpus();
+  ASSERT_FALSE(allowed.empty());
+  const fs::path dir = scratch("cpus-");
+  // the kernel's own account of the child's mask, read by the child itself
+  ChildProcess child({"sh", "-c", "grep Cpus_allowed_list /proc/self/status"}, dir, dir / "out.log",
+                     {}, {allowed.back()});
+  EXPECT_EQ(child.wait(), 0);
+  EXPECT_EQ(slurp(dir / "out.log"), "Cpus_allowed_list:\t" + std::to_string(allowed.back()) + "\n");
+  ChildProcess free({"sh", "-c", "grep Cpus_allowed_list /proc/self/status"}, dir, dir / "free.log",
+                    {});
+  EXPECT_EQ(free.wait(), 0);
+  EXPECT_EQ(slurp(dir / "free.log"), "Cpus_allowed_list:\t" + cpuListText(allowed) + "\n");
   fs::remove_all(dir);
 }
 

@@ -1,6 +1,7 @@
 #include "cosim/util/child_process.h"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -17,13 +18,17 @@ namespace cosim::util {
 namespace fs = std::filesystem;
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path& cwd,
-                           const fs::path& log, const std::map<std::string, std::string>& env)
+                           const fs::path& log, const std::map<std::string, std::string>& env,
+                           const std::vector<int>& cpus)
     : log_(log) {
   if (argv.empty()) throw std::runtime_error("empty command");
   // Everything the child needs is prepared before fork (no allocation after it).
   std::vector<char*> args;
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
+  cpu_set_t cpu_set;
+  CPU_ZERO(&cpu_set);
+  for (int c : cpus) CPU_SET(c, &cpu_set);
   const pid_t parent = getpid();
   int err_pipe[2];
   if (pipe2(err_pipe, O_CLOEXEC) != 0) throw std::runtime_error("pipe failed");
@@ -49,6 +54,12 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path&
       _exit(127);
     }
     for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
+    // before exec: every thread the adapter starts inherits the binding
+    if (!cpus.empty() && sched_setaffinity(0, sizeof cpu_set, &cpu_set) != 0) {
+      int e = errno;
+      (void)!write(err_pipe[1], &e, sizeof e);
+      _exit(127);
+    }
     execvp(args[0], args.data());
     int e = errno;
     (void)!write(err_pipe[1], &e, sizeof e);

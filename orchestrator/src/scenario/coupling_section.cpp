@@ -18,6 +18,10 @@ const std::vector<KeySpec>& CouplingSection::keys() {
        "parallel (sample the gas between the intervals, both solvers waiting) | overlapped (the "
        "fluid samples at the end of its step where the parcels will be, position + velocity dt, "
        "while the particles advance; docs/performance.md)"},
+      {"cpus", "off",
+       "off (the processes run wherever the system puts them) | auto (with 2 or more CPUs and both "
+       "solvers started here as single processes: the particles and the orchestrator bound to the "
+       "first CPU, the fluid to the others; docs/performance.md, \"Bound to CPUs\")"},
   };
   return k;
 }
@@ -52,6 +56,11 @@ CouplingSection parseCoupling(const YAML::Node& coupling, const Context& ctx) {
     if (c.scheme != "parallel" && c.scheme != "overlapped")
       ctx.fail(coupling["scheme"], "coupling.scheme",
                "expected 'parallel' or 'overlapped', got '" + c.scheme + "'");
+  }
+  if (coupling["cpus"]) {
+    c.cpus = ctx.text(coupling["cpus"], "coupling.cpus");
+    if (c.cpus != "off" && c.cpus != "auto")
+      ctx.fail(coupling["cpus"], "coupling.cpus", "expected 'off' or 'auto', got '" + c.cpus + "'");
   }
   if (c.end_time <= c.start_time) {
     ctx.fail(coupling["end_time"], "coupling.end_time", "must be later than start_time");

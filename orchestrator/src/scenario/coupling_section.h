@@ -18,6 +18,10 @@ struct CouplingSection {
   // parcels between the intervals, while both solvers wait; "overlapped" has the fluid sample it
   // at the end of its own step, where the parcels will be (position + velocity dt)
   std::string scheme = "parallel";
+  // Where the processes run: "off" (wherever the system puts them) or "auto" (with two or more
+  // CPUs and both solvers local single processes: the particles and the orchestrator on the
+  // first CPU, the fluid on the others; docs/performance.md, "Bound to CPUs")
+  std::string cpus = "off";
 
   // Coupling steps of the run: (end_time - start_time) / dt rounded.
   std::uint64_t steps() const;

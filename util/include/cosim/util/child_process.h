@@ -18,9 +18,11 @@ class ChildProcess {
   ChildProcess() = default;
   // argv[0] is looked up in PATH unless it holds a '/'. stdout and stderr are appended to `log`
   // (e.g. /dev/null), stdin is /dev/null; `env` is added to the inherited environment.
+  // `cpus`: the CPUs the child and all its threads run on (empty: wherever the system puts them).
   // Throws std::runtime_error if the executable cannot be started.
   ChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
-               const std::filesystem::path& log, const std::map<std::string, std::string>& env);
+               const std::filesystem::path& log, const std::map<std::string, std::string>& env,
+               const std::vector<int>& cpus = {});
   ChildProcess(ChildProcess&& o) noexcept { *this = std::move(o); }
   ChildProcess& operator=(ChildProcess&& o) noexcept;
   ~ChildProcess();
