@@ -156,9 +156,10 @@ bool under(const std::string& key, const std::string& prefix) {
 
 bool mayChange(const std::string& key) {
   // coupling.scheme: the saved state is the same under either (the first interval after a
-  // resume samples between the intervals anyway)
-  for (const char* p : {"coupling.end_time", "coupling.scheme", "output", "checkpoint", "transport",
-                        "checks", "observables", "description"}) {
+  // resume samples between the intervals anyway); coupling.cpus: where the processes run, not
+  // what they compute (a bound run is the same to the bit)
+  for (const char* p : {"coupling.end_time", "coupling.scheme", "coupling.cpus", "output",
+                        "checkpoint", "transport", "checks", "observables", "description"}) {
     if (under(key, p)) return true;
   }
   // participants.<name>.timeout

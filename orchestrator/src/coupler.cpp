@@ -188,8 +188,9 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
                       "what the saved state cannot honour:";
     for (const auto& d : differences) msg += "\n  - " + d;
     msg +=
-        "\n  (only coupling.end_time, coupling.scheme, output, checkpoint, transport, checks, "
-        "observables and timeouts may change; start a new run for anything else)";
+        "\n  (only coupling.end_time, coupling.scheme, coupling.cpus, output, checkpoint, "
+        "transport, checks, observables and timeouts may change; start a new run for anything "
+        "else)";
     throw RunFailure("", msg);
   }
   if (models_.wake && !saved.wake) {

@@ -238,15 +238,17 @@ TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
   auto run = start(
       w, {"run", "scene.yaml", "-o", "r", "--quiet", "--set", "coupling.end_time=0.04"}, "r.out");
   ASSERT_EQ(finish(run), 0) << text(w.dir / "r.out");
-  auto changed = start(w,
-                       {"resume", "r", "--quiet", "--set", "coupling.end_time=0.08", "--set",
-                        "models.drag.law=stokes", "--set", "coupling.dt=2e-3"},
-                       "changed.out");
+  auto changed =
+      start(w,
+            {"resume", "r", "--quiet", "--set", "coupling.end_time=0.08", "--set",
+             "models.drag.law=stokes", "--set", "coupling.dt=2e-3", "--set", "coupling.cpus=auto"},
+            "changed.out");
   EXPECT_EQ(finish(changed), 2);
   const std::string out = text(w.dir / "changed.out");
   EXPECT_NE(out.find("models.drag.law: schiller_naumann -> stokes"), std::string::npos) << out;
   EXPECT_NE(out.find("coupling.dt: "), std::string::npos) << out;
   EXPECT_EQ(out.find("- coupling.end_time"), std::string::npos) << "end time may change: " << out;
+  EXPECT_EQ(out.find("- coupling.cpus"), std::string::npos) << "the binding may change: " << out;
   EXPECT_EQ(analysis::readJsonFile(w.dir / "r/summary.json").at("status"), "completed")
       << "a refused resume leaves the run folder as it was";
 
