@@ -114,8 +114,13 @@ std::string Participants::connectEndpoint() const {
 }
 
 std::map<std::string, std::vector<int>> Participants::cpuLayout() {
-  if (sc_.coupling.cpus != "auto") return {};
-  const std::vector<int> allowed = util::allowedCpus();
+  // from the CPUs cosim was given, not those an earlier run of this process bound it to (the
+  // stages of a bench, the variants of a study): its children inherit its mask
+  const std::vector<int> allowed = util::initialCpus();
+  if (sc_.coupling.cpus != "auto") {
+    if (!allowed.empty() && util::allowedCpus() != allowed) util::bindThisProcess(allowed);
+    return {};
+  }
   std::string why;
   if (allowed.size() < 2) why = "this process may use " + std::to_string(allowed.size()) + " CPU";
   for (const auto& [name, peer] : peers_) {

@@ -118,24 +118,30 @@ TEST(EndToEnd, SphereInUpwardFlowReachesFlowMinusTerminalVelocity) {
 
 // coupling.cpus: auto. Bound to CPUs the run computes the same history to the bit, and its log
 // says where each process ran (with one CPU: that it was not applied).
+// A second bound run in the same process (a bench's next stage, a study's next variant) is laid
+// out from the CPUs cosim was given, and an unbound one after it gives them back.
 TEST(EndToEnd, BoundToCpusTheRunIsTheSameAndSaysWhere) {
   const std::vector<int> allowed = cosim::util::allowedCpus();
   const auto free = runSphere({"u_up=0.001"}, "cpus-free");
   const auto bound = runSphere({"u_up=0.001", "coupling.cpus=auto"}, "cpus-auto");
-  cosim::util::bindThisProcess(allowed);  // the test process was bound with the orchestrator
+  runSphere({"u_up=0.001", "coupling.cpus=auto"}, "cpus-again");
+  runSphere({"u_up=0.001"}, "cpus-off");
+  EXPECT_EQ(cosim::util::allowedCpus(), allowed) << "an unbound run after a bound one";
   ASSERT_EQ(bound.vz.size(), free.vz.size());
   for (std::size_t i = 0; i < free.vz.size(); ++i) EXPECT_EQ(bound.vz[i], free.vz[i]) << i;
-  std::ifstream log(fs::temp_directory_path() /
-                    ("cosim-e2e-cpus-auto-" + std::to_string(getpid())) / "cosim.log");
-  std::stringstream text;
-  text << log.rdbuf();
   const std::string expected =
       allowed.size() >= 2
           ? "coupling.cpus auto: orchestrator on CPU " + std::to_string(allowed.front()) +
                 ", fluid on " + cosim::util::cpuListText({allowed.begin() + 1, allowed.end()}) +
                 ", particles on " + std::to_string(allowed.front())
           : std::string("coupling.cpus auto: not applied");
-  EXPECT_NE(text.str().find(expected), std::string::npos) << text.str();
+  for (const char* tag : {"cpus-auto-", "cpus-again-"}) {
+    std::ifstream log(fs::temp_directory_path() /
+                      ("cosim-e2e-" + std::string(tag) + std::to_string(getpid())) / "cosim.log");
+    std::stringstream text;
+    text << log.rdbuf();
+    EXPECT_NE(text.str().find(expected), std::string::npos) << tag << "\n" << text.str();
+  }
 }
 
 // coupling.scheme: overlapped. The fluid samples the gas during its step at position +

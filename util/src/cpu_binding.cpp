@@ -21,6 +21,11 @@ std::vector<int> allowedCpus() {
   return cpus;
 }
 
+std::vector<int> initialCpus() {
+  static const std::vector<int> initial = allowedCpus();
+  return initial;
+}
+
 void bindThisProcess(const std::vector<int>& cpus) {
   cpu_set_t set;
   CPU_ZERO(&set);
@@ -31,12 +36,12 @@ void bindThisProcess(const std::vector<int>& cpus) {
   for (const auto& task : fs::directory_iterator("/proc/self/task", ec)) {
     const pid_t tid = static_cast<pid_t>(std::stol(task.path().filename().string()));
     if (sched_setaffinity(tid, sizeof set, &set) != 0 && errno != ESRCH) {
-      throw std::runtime_error("cannot bind the orchestrator to CPU(s) " + cpuListText(cpus) +
-                               ": " + std::strerror(errno));
+      throw std::runtime_error("cannot bind this process to CPU(s) " + cpuListText(cpus) + ": " +
+                               std::strerror(errno));
     }
   }
   if (ec && sched_setaffinity(0, sizeof set, &set) != 0) {
-    throw std::runtime_error("cannot bind the orchestrator to CPU(s) " + cpuListText(cpus) + ": " +
+    throw std::runtime_error("cannot bind this process to CPU(s) " + cpuListText(cpus) + ": " +
                              std::strerror(errno));
   }
 }

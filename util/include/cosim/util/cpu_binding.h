@@ -11,6 +11,8 @@ namespace cosim::util {
 
 // The CPUs this process may run on, in increasing order (empty if the system does not say).
 std::vector<int> allowedCpus();
+// allowedCpus() as it was at the first call: what the process was given before it bound itself.
+std::vector<int> initialCpus();
 
 // Binds every thread of this process to `cpus` (threads started later inherit it). Throws
 // std::runtime_error naming the CPUs when the system refuses.
