@@ -291,6 +291,7 @@ void Coupler::reportInitialState() {
   if (plan_.coating) ledger_.start(state_);
   initial_count_ = state_.size();
   record_.snapshot(time_, state_, true);
+  if (auto wrong = checkParticleCount(sc_, state_)) throw RunFailure("particles", *wrong);
   refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_, reported_dt_over_rayleigh_));
 }
 

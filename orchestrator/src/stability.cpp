@@ -232,6 +232,38 @@ void StepMonitor::checkMassBalance(double in, double out, double held, double re
   }
 }
 
+std::optional<std::string> checkParticleCount(const Scenario& sc,
+                                              const link::ParticleData& initial_state) {
+  if (!sc.checks.particle_count) return std::nullopt;
+  const std::uint64_t want = *sc.checks.particle_count;
+  const std::uint64_t have = initial_state.size();
+  if (have == want) return std::nullopt;
+  std::ostringstream m;
+  m << "the particles hold " << have << " particles when coupling starts, where the scene's "
+    << "checks.particle_count asks for " << want
+    << fmt::format(" ({:+.1f} %)", 100.0 * (static_cast<double>(have) - static_cast<double>(want)) /
+                                       static_cast<double>(want));
+  const double rho = sc.constants.material.particle_density;
+  if (rho > 0.0 && initial_state.has(field::radius) && have > 0) {
+    double volume = 0.0;
+    for (double r : initial_state.get(field::radius)) volume += r * r * r;
+    volume *= 4.0 / 3.0 * std::numbers::pi;
+    const double per = volume / static_cast<double>(have);
+    m << fmt::format("; they weigh {:.4g} kg where {:.4g} kg were asked for", rho * volume,
+                     rho * per * static_cast<double>(want));
+  }
+  if (have < want) {
+    m << ".\n  The particle solver could not place them all: with LIGGGHTS' insert/pack its log "
+         "says 'INSERTION WARNING' with the count. Make the fill region larger (taller), "
+         "insert in several waves while the first settle (insert_every), or lower the count; "
+         "then run again.";
+  } else {
+    m << ".\n  The particle solver holds more than the scene asks for: check its script's "
+         "insertion (two insertions, or a count that is not the scene's n_grains).";
+  }
+  return m.str();
+}
+
 std::optional<std::string> checkParticleState(const link::ParticleData& s, const std::string& where,
                                               double max_speed, std::uint64_t step, double time) {
   std::ostringstream os;

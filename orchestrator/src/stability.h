@@ -54,6 +54,13 @@ std::optional<std::string> checkParticleState(const link::ParticleData& state,
                                               const std::string& where, double max_speed,
                                               std::uint64_t step, double time);
 
+// The particles held when coupling starts against checks.particle_count (when the scene sets
+// it): another count says what was inserted, the mass it stands for (with
+// constants.particle_density) against the mass asked for, and what to do. nullopt if it agrees
+// or is not checked.
+std::optional<std::string> checkParticleCount(const Scenario& sc,
+                                              const link::ParticleData& initial_state);
+
 // Per-step monitors that need memory across steps.
 class StepMonitor {
  public:

@@ -45,6 +45,54 @@ link::ParticleData grains(double r) {
 }
 }  // namespace
 
+// checks.particle_count: 2 grains of r = 1 mm at 1750 kg/m3 are 2 x 4/3 pi 1e-9 x 1750 =
+// 1.4661e-5 kg; 3 asked for would weigh 2.1991e-5 kg (-33.3 %).
+TEST(Stability, AParticleCountOtherThanTheScenesStopsTheRunWithWhatWasPlaced) {
+  Scenario sc = baseScenario();
+  EXPECT_FALSE(checkParticleCount(sc, grains(1e-3)));  // not asked for: not checked
+  sc = parseScenario(R"(
+name: s
+participants:
+  particles: { adapter: free-particles }
+coupling: { dt: 1.0e-4, dem_steps: 1, end_time: 0.01 }
+constants: { particle_density: 1750 }
+checks: { particle_count: 3 }
+)",
+                     fs::temp_directory_path() / "s.yaml");
+  ASSERT_EQ(sc.checks.particle_count, 3u);
+  const auto fewer = checkParticleCount(sc, grains(1e-3));
+  ASSERT_TRUE(fewer);
+  EXPECT_NE(fewer->find("hold 2 particles"), std::string::npos) << *fewer;
+  EXPECT_NE(fewer->find("asks for 3 (-33.3 %)"), std::string::npos) << *fewer;
+  EXPECT_NE(fewer->find("weigh 1.466e-05 kg where 2.199e-05 kg"), std::string::npos) << *fewer;
+  EXPECT_NE(fewer->find("could not place them all"), std::string::npos) << *fewer;
+  sc.checks.particle_count = 2;
+  EXPECT_FALSE(checkParticleCount(sc, grains(1e-3)));
+  sc.checks.particle_count = 1;
+  const auto more = checkParticleCount(sc, grains(1e-3));
+  ASSERT_TRUE(more);
+  EXPECT_NE(more->find("(+100.0 %)"), std::string::npos) << *more;
+  EXPECT_NE(more->find("holds more than the scene asks for"), std::string::npos) << *more;
+}
+
+TEST(Stability, AParticleCountThatIsNotAWholePositiveNumberIsBlamedOnItsKey) {
+  for (const char* bad : {"2.5", "0", "-3", "many"}) {
+    try {
+      parseScenario(std::string(R"(
+name: s
+participants:
+  particles: { adapter: free-particles }
+coupling: { dt: 1.0e-4, dem_steps: 1, end_time: 0.01 }
+checks: { particle_count: )") +
+                        bad + " }\n",
+                    fs::temp_directory_path() / "s.yaml");
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("checks.particle_count"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Stability, StiffContactsAreRefusedWithTheStepThatWouldWork) {
   Scenario sc = baseScenario();  // DEM dt 1e-4 vs t_R 7.7e-5: ratio 1.3
   auto rep = checkBeforeRun(sc, {}, {}, grains(0.75e-3));

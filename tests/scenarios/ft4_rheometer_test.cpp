@@ -191,3 +191,37 @@ TEST(Ft4RheometerTiny, FluidizedTheBedRestsOnTheVesselsWholeArea) {
   EXPECT_NEAR(drop, expected, 0.025 * expected);
   fs::remove_all(out);
 }
+
+// Twice the tiny size's powder (40 g) in its 50 mm tall vessel: one pour of random loose packing
+// cannot hold it (measured: 1,004 of the 1,617 parcels), and the run must stop before its first
+// step with the counts and what to do, its recorded state kept; with more pours
+// (fill_pours) every parcel is placed. round(0.04 / (1750 pi/6 (3e-3)^3)) = 1,617.
+TEST(Ft4RheometerTiny, APowderOnePourCannotHoldIsRefusedOrPouredAgain) {
+  const auto scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/ft4-rheometer/tiny.yaml";
+  const double want = std::round(0.04 / (kRhoP * kPi / 6 * kDp * kDp * kDp));
+  ASSERT_EQ(want, 1617.0);
+  const std::vector<std::string> sets = {"powder_mass=0.04", "coupling.end_time=0.002"};
+  RunOptions o;
+  o.quiet = true;
+  {
+    o.output = fs::temp_directory_path() / ("cosim-ft4-onepour-" + std::to_string(getpid()));
+    fs::remove_all(o.output);
+    RunResult r = Coupler(loadScenario(scene, sets), o).run();
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.message.find("checks.particle_count asks for 1617"), std::string::npos)
+        << r.message;
+    EXPECT_NE(r.message.find("could not place them all"), std::string::npos) << r.message;
+    EXPECT_TRUE(fs::exists(o.output / "particles.h5"));
+    fs::remove_all(o.output);
+  }
+  {
+    o.output = fs::temp_directory_path() / ("cosim-ft4-pours-" + std::to_string(getpid()));
+    fs::remove_all(o.output);
+    auto more = sets;
+    more.push_back("fill_pours=4");
+    RunResult r = Coupler(loadScenario(scene, more), o).run();
+    ASSERT_EQ(r.exit_code, 0) << r.message;
+    EXPECT_EQ(static_cast<double>(r.final_state.ids.size()), want);
+    fs::remove_all(o.output);
+  }
+}

@@ -1,5 +1,7 @@
 #include "scenario/checks_section.h"
 
+#include <cmath>
+
 namespace cosim::orchestrator {
 
 const std::vector<KeySpec>& ChecksSection::keys() {
@@ -8,6 +10,10 @@ const std::vector<KeySpec>& ChecksSection::keys() {
       {"max_particle_speed", "50", "a particle faster than this [m/s] stops the run; > 0"},
       {"mass_balance_tolerance", "1e-4", "relative precursor balance drift that stops the run"},
       {"max_courant", "5", "fluid Courant number that stops the run; > 0"},
+      {"particle_count", "(not checked)",
+       "particles the particle participant must hold when coupling starts (the scene's "
+       "n_grains); another count (an insertion that could not place them all) stops the run "
+       "before its first step"},
   };
   return k;
 }
@@ -30,6 +36,13 @@ ChecksSection parseChecks(const YAML::Node& c, const Context& ctx) {
   if (c["mass_balance_tolerance"])
     out.mass_balance_tolerance =
         ctx.positive(c["mass_balance_tolerance"], "checks.mass_balance_tolerance", "");
+  if (c["particle_count"]) {
+    const double n = ctx.positive(c["particle_count"], "checks.particle_count", "(particles)");
+    if (n != std::floor(n) || n > 1e15)
+      ctx.fail(c["particle_count"], "checks.particle_count",
+               "expected a whole number of particles, e.g. ${n_grains}");
+    out.particle_count = static_cast<std::uint64_t>(n);
+  }
   return out;
 }
 
