@@ -253,10 +253,10 @@ std::optional<std::string> checkParticleCount(const Scenario& sc,
                      rho * per * static_cast<double>(want));
   }
   if (have < want) {
-    m << ".\n  The particle solver could not place them all: with LIGGGHTS' insert/pack its log "
-         "says 'INSERTION WARNING' with the count. Make the fill region larger (taller), "
-         "insert in several waves while the first settle (insert_every), or lower the count; "
-         "then run again.";
+    m << ".\n  The particle solver could not place them all (LIGGGHTS' insert/pack says only "
+         "'WARNING: Particle insertion: Less insertions than requested' in its log). Make the "
+         "fill region larger (taller), pour again once the first pour has settled (as "
+         "scenarios/ft4-rheometer does with fill_pours), or lower the count; then run again.";
   } else {
     m << ".\n  The particle solver holds more than the scene asks for: check its script's "
          "insertion (two insertions, or a count that is not the scene's n_grains).";
