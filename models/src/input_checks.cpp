@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <iterator>
+#include <tuple>
 
 namespace cosim::models {
 
@@ -73,6 +75,12 @@ void validateConstants(const std::string& owner, const SceneConstants& c) {
 void checkInputs(const std::string& owner, const std::vector<std::string>& fields,
                  const ParcelBatch& p, const SceneConstants& c) {
   (void)c;
+  static_assert(std::size(kRules) <= std::tuple_size_v<decltype(ParcelBatch::checked)>);
+  if (p.checked_lost != p.lost || p.checked_n != p.n) {
+    p.checked.fill(nullptr);
+    p.checked_lost = p.lost;
+    p.checked_n = p.n;
+  }
   for (const auto& f : fields) {
     const FieldRule* rule = nullptr;
     for (const auto& r : kRules) {
@@ -87,6 +95,8 @@ void checkInputs(const std::string& owner, const std::vector<std::string>& field
                        "' but the batch does not carry it (the orchestrator must request every "
                        "field in requiredFields() from the adapters)");
     }
+    const auto index = static_cast<std::size_t>(rule - kRules);
+    if (v != nullptr && p.checked[index] == v) continue;  // found valid for an earlier law
     // One pass per rule, parcel by parcel (the rule chosen once, not per value)
     const std::size_t k = rule->components;
     auto scan = [&](auto ok, const char* expected) {
@@ -112,6 +122,7 @@ void checkInputs(const std::string& owner, const std::vector<std::string>& field
         scan([](double x) { return x >= 0.0 && x <= 1.0; }, "a mass fraction in [0, 1]");
         break;
     }
+    p.checked[index] = v;
   }
 }
 

@@ -14,7 +14,6 @@
 namespace cosim::models::test {
 namespace {
 
-
 // Runs f and returns the ModelError message ("" if nothing was thrown).
 std::string errorOf(const std::function<void()>& f) {
   try {
@@ -129,8 +128,8 @@ TEST(BadInput, ZoneParameterErrors) {
   expectError([&] { r.makeZone("union", u); }, {"part 1 (sphere)", "'radius'"});
 }
 
-const std::vector<std::string> kDragLaws = {"stokes", "schiller_naumann", "di_felice",
-                                            "gidaspow", "koch_hill", "beetstra"};
+const std::vector<std::string> kDragLaws = {"stokes",   "schiller_naumann", "di_felice",
+                                            "gidaspow", "koch_hill",        "beetstra"};
 const std::vector<std::string> kMassLaws = {"deen_gunn", "gunn", "ranz_marshall"};
 
 // Evaluates every drag and mass-transfer law on b with constants c.
@@ -140,7 +139,8 @@ void evaluateAll(const Batch& b, const SceneConstants& c) {
     Registry::instance().makeDrag(n, Parameters(n))->coefficients(b.view(), c, out.data());
   }
   for (const auto& n : kMassLaws) {
-    Registry::instance().makeMassTransfer(n, Parameters(n))
+    Registry::instance()
+        .makeMassTransfer(n, Parameters(n))
         ->transferCoefficients(b.view(), c, out.data());
   }
 }
@@ -164,8 +164,8 @@ TEST(BadInput, EvaluationErrorsNameModelFieldAndParcel) {
   };
   for (const auto& c : cases) {
     for (const auto& n : kDragLaws) {
-      if (n == "stokes" && (std::string(c.field) == "voidage" ||
-                            std::string(c.field) == "fluid_density")) {
+      if (n == "stokes" &&
+          (std::string(c.field) == "voidage" || std::string(c.field) == "fluid_density")) {
         continue;  // Stokes reads neither
       }
       Batch b;
@@ -213,19 +213,52 @@ TEST(BadInput, LostParcelsGetZeroAndAreNotChecked) {
   }
   for (const auto& n : kMassLaws) {
     std::vector<double> k(2, -1.0);
-    ASSERT_NO_THROW(Registry::instance().makeMassTransfer(n, Parameters(n))
+    ASSERT_NO_THROW(Registry::instance()
+                        .makeMassTransfer(n, Parameters(n))
                         ->transferCoefficients(v, constants(5.0), k.data()));
     EXPECT_GT(k[0], 0.0);
     EXPECT_EQ(k[1], 0.0);
   }
   std::vector<double> F(6, 0.0);
-  Registry::instance().makeForce("pressure_gradient", Parameters("pg"))
+  Registry::instance()
+      .makeForce("pressure_gradient", Parameters("pg"))
       ->addForces(v, constants(5.0), F.data());
   EXPECT_GT(F[2], 0.0);
   EXPECT_EQ(F[5], 0.0);
   // without the flag the same zero samples are an error naming the parcel
   expectError([&] { drag[1]->coefficients(b.view(), constants(5.0), F.data()); },
               {"parcel 1", "'voidage'"});
+}
+
+// A batch remembers the arrays its laws have found valid (a second law does not scan them
+// again), but a copy pointing a field at another array, or with other lost parcels, has that
+// array scanned: a bad value is never let through by the memo.
+TEST(BadInput, AFieldCheckedOnceIsCheckedAgainWhenItsArrayChanges) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Batch b;
+  b.add(0.5, 1.0, kD, 5.0);
+  b.add(0.5, 1.0, kD, 5.0);
+  const ParcelBatch v = b.view();
+  const std::vector<std::string> fields = {"fluid_velocity", "voidage"};
+  ASSERT_NO_THROW(checkInputs("first law", fields, v, constants(5.0)));
+  ASSERT_NO_THROW(checkInputs("second law", fields, v, constants(5.0)));
+  // another array for one field (as the undisturbed gas velocity is): scanned, and refused
+  std::vector<double> bad_velocity = b.fluid_velocity;
+  bad_velocity[4] = nan;
+  ParcelBatch q = v;
+  q.fluid_velocity = bad_velocity.data();
+  expectError([&] { checkInputs("third law", fields, q, constants(5.0)); },
+              {"third law", "'fluid_velocity'", "parcel 1"});
+  // a parcel marked lost is not checked; the same arrays with that parcel back are
+  std::vector<double> bad_voidage = b.voidage;
+  bad_voidage[1] = 0.0;
+  const std::vector<char> lost = {0, 1};
+  ParcelBatch r = v;
+  r.voidage = bad_voidage.data();
+  r.lost = lost.data();
+  ASSERT_NO_THROW(checkInputs("law", fields, r, constants(5.0)));
+  r.lost = nullptr;
+  expectError([&] { checkInputs("law", fields, r, constants(5.0)); }, {"'voidage'", "parcel 1"});
 }
 
 TEST(BadInput, SceneConstantsAreChecked) {
@@ -286,10 +319,10 @@ TEST(BadInput, NoNaNOrInfOverAGridOfExtremeInputs) {
   for (const auto& n : kMassLaws) {
     mass.push_back(Registry::instance().makeMassTransfer(n, Parameters(n)));
   }
-  const double eps_grid[] = {1e-6, 1e-4, 0.01, 0.1, 0.3, 0.35, 0.4, 0.5, 0.6,
-                             0.79999999, 0.8, 0.9, 0.99, 0.999999, 1.0};
-  const double re_grid[] = {0.0, 1e-300, 1e-12, 1e-6, 1e-3, 0.1, 1.0, 10.0,
-                            100.0, 999.999, 1000.0, 1e4, 1e5};
+  const double eps_grid[] = {1e-6, 1e-4,       0.01, 0.1, 0.3,  0.35,     0.4, 0.5,
+                             0.6,  0.79999999, 0.8,  0.9, 0.99, 0.999999, 1.0};
+  const double re_grid[] = {0.0,  1e-300, 1e-12,   1e-6,   1e-3, 0.1, 1.0,
+                            10.0, 100.0,  999.999, 1000.0, 1e4,  1e5};
   const double d_grid[] = {1e-7, 1e-5, 3e-4, 1e-2, 1.0};
   const double fluid[][2] = {{1.12, 1.8e-5}, {1e-3, 1e-7}, {1000.0, 1.0}};  // rho, mu
   std::size_t evaluated = 0;

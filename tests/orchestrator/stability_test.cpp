@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "cosim/link/fields.h"
 #include "coupler.h"
@@ -219,4 +220,40 @@ constants: { particle_density: 1750, youngs_modulus: 5.0e9, poisson_ratio: 0.3 }
   // t_R scales as E^-1/2: 7.681e-5 / sqrt(1000) = 2.429e-6 s; dem_steps >= ceil(1e-4/4.858e-7) =
   // 206
   EXPECT_NE(r.message.find("dem_steps >= 206"), std::string::npos) << r.message;
+}
+
+// The per-step check of what a peer sent: every field finite, no parcel faster than
+// checks.max_particle_speed, voidage in (0, 1]; the message names the field, the particle id,
+// the value and the step.
+TEST(Stability, AParticleStateCheckNamesTheFirstBadValue) {
+  link::ParticleData s;
+  s.ids = {7, 8, 9, 10, 11};
+  s.field(field::position) = {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4};
+  s.field(field::velocity) = {0,  0, 1, 3, 0, 4, 0, 0,
+                              -2, 1, 1, 1, 0, 0, 0};  // 1, 5, 2, 1.73, 0 m/s
+  s.field(field::voidage) = {0.4, 0.5, 1.0, 0.9, 0.99};
+  EXPECT_FALSE(checkParticleState(s, "particles", 5.0, 3, 0.3));  // 5 m/s is not above 5
+  const auto fast = checkParticleState(s, "particles", 4.5, 3, 0.3);
+  ASSERT_TRUE(fast);
+  EXPECT_NE(fast->find("particle 8 moves at 5 m/s at step 3"), std::string::npos) << *fast;
+  EXPECT_NE(fast->find("checks.max_particle_speed = 4.5"), std::string::npos) << *fast;
+
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double bad : {std::nan(""), inf, -inf}) {
+    link::ParticleData b = s;
+    b.field(field::position)[13] = bad;  // particle 11, y
+    const auto msg = checkParticleState(b, "fluid", 100.0, 4, 0.4);
+    ASSERT_TRUE(msg);
+    EXPECT_NE(msg->find("fluid: position of particle 11 is"), std::string::npos) << *msg;
+    EXPECT_NE(msg->find("at step 4"), std::string::npos) << *msg;
+  }
+  link::ParticleData e = s;
+  e.field(field::voidage)[2] = 1.0 + 1e-6;
+  const auto out = checkParticleState(e, "fluid", 100.0, 5, 0.5);
+  ASSERT_TRUE(out);
+  EXPECT_NE(out->find("voidage 1.000001 at particle 9 (step 5) is outside (0, 1]"),
+            std::string::npos)
+      << *out;
+  e.field(field::voidage)[2] = 1.0 + 1e-12;  // round-off above 1 is accepted
+  EXPECT_FALSE(checkParticleState(e, "fluid", 100.0, 5, 0.5));
 }

@@ -36,29 +36,90 @@ void DragRelaxationFix::init() {
 }
 
 void DragRelaxationFix::setup(int) {
-  apply(!keep_other_);
+  apply(keep_other_ ? Source::kept : Source::computed_kept);
   keep_other_ = false;
 }
 
-void DragRelaxationFix::post_force(int) { apply(true); }
+// The other forces are kept only at the last step of a run: what reads them (the next
+// interval's refreshForces, a restart file, the setup after one) comes after a run.
+void DragRelaxationFix::post_force(int) {
+  apply(update->ntimestep == update->laststep ? Source::computed_kept : Source::computed);
+}
 
 void DragRelaxationFix::refreshForces() {
   lookup();
-  apply(false);
+  apply(Source::kept);
 }
 
-void DragRelaxationFix::apply(bool store_other_force) {
+namespace {
+
+// The per-atom arrays of one apply(): distinct LIGGGHTS arrays, never overlapping.
+struct DragArrays {
+  const double* __restrict K;
+  const double* __restrict uf;
+  const double* __restrict fex;
+  double* __restrict other;
+  double* __restrict torque_kept;
+  double* __restrict torque;
+  const double* __restrict v;
+  double* __restrict f;
+  const double* __restrict mass;
+  const int* __restrict mask;
+  double* __restrict cache_K;
+  double* __restrict cache_m;
+  double* __restrict cache_phi;
+};
+
+// Where the other forces of one apply() come from.
+enum class Other {
+  computed,       // LIGGGHTS has just computed them (a DEM step)
+  computed_kept,  // the same, at the last step of a run: kept (with the torque) for what follows
+  kept,           // the kept ones (new forcing between two runs, or the setup after a restart)
+};
+
+// F = phi(K dt / m) (K (u_f - v) + F_other + F_explicit) for every atom of the group. kTorque
+// with Other::kept: the kept torque is put back as well.
+template <Other kFrom, bool kTorque>
+void relax(const DragArrays& a, int nlocal, int groupbit, double dt) {
+  for (int i = 0; i < nlocal; ++i) {
+    if (!(a.mask[i] & groupbit)) continue;
+    const int j = 3 * i;
+    double o[3];
+    for (int d = 0; d < 3; ++d) {
+      if constexpr (kFrom == Other::kept) {
+        o[d] = a.other[j + d];
+        if constexpr (kTorque) a.torque[j + d] = a.torque_kept[j + d];
+      } else {
+        o[d] = a.f[j + d];
+        if constexpr (kFrom == Other::computed_kept) {
+          a.other[j + d] = o[d];
+          if constexpr (kTorque) a.torque_kept[j + d] = a.torque[j + d];
+        }
+      }
+    }
+    const double k = a.K[i];
+    if (k <= 0.0) {
+      // no drag: the explicit force (if any) is simply added
+      for (int d = 0; d < 3; ++d) a.f[j + d] = o[d] + a.fex[j + d];
+      continue;
+    }
+    // phi(K dt / m) is the same for the three components and for every DEM step of the
+    // interval: one expm1 per particle and interval
+    if (a.cache_K[i] != k || a.cache_m[i] != a.mass[i]) {
+      a.cache_K[i] = k;
+      a.cache_m[i] = a.mass[i];
+      a.cache_phi[i] = exponentialDragFactor(k * dt / a.mass[i]);
+    }
+    const double phi = a.cache_phi[i];
+    for (int d = 0; d < 3; ++d)
+      a.f[j + d] = phi * (k * (a.uf[j + d] - a.v[j + d]) + (o[d] + a.fex[j + d]));
+  }
+}
+
+}  // namespace
+
+void DragRelaxationFix::apply(Source from) {
   const double dt = update->dt;
-  const double* K = drag_coefficient_->vector_atom;
-  double** uf = fluid_velocity_->array_atom;
-  double** fex = explicit_force_->array_atom;
-  double** other = other_force_->array_atom;
-  double** torque_kept = last_torque_->array_atom;
-  double** torque = atom->torque;
-  double** v = atom->v;
-  double** f = atom->f;
-  const double* mass = atom->rmass;
-  const int* amask = atom->mask;
   const int nlocal = atom->nlocal;
   const auto n = static_cast<std::size_t>(nlocal);
   if (cache_K_.size() < n || cache_dt_ != dt) {
@@ -67,30 +128,35 @@ void DragRelaxationFix::apply(bool store_other_force) {
     cache_phi_.assign(n, 1.0);
     cache_dt_ = dt;
   }
-  for (int i = 0; i < nlocal; ++i) {
-    if (!(amask[i] & groupbit)) continue;
-    if (store_other_force) {
-      for (int d = 0; d < 3; ++d) other[i][d] = f[i][d];
-      if (torque)
-        for (int d = 0; d < 3; ++d) torque_kept[i][d] = torque[i][d];
-    } else if (torque && keep_other_) {
-      for (int d = 0; d < 3; ++d) torque[i][d] = torque_kept[i][d];
-    }
-    if (K[i] <= 0.0) {
-      // no drag: the explicit force (if any) is simply added
-      for (int d = 0; d < 3; ++d) f[i][d] = other[i][d] + fex[i][d];
-      continue;
-    }
-    // phi(K dt / m) is the same for the three components and for every DEM step of the
-    // interval: one expm1 per particle and interval
-    if (cache_K_[i] != K[i] || cache_m_[i] != mass[i]) {
-      cache_K_[i] = K[i];
-      cache_m_[i] = mass[i];
-      cache_phi_[i] = exponentialDragFactor(K[i] * dt / mass[i]);
-    }
-    const double phi = cache_phi_[i];
-    for (int d = 0; d < 3; ++d)
-      f[i][d] = phi * (K[i] * (uf[i][d] - v[i][d]) + (other[i][d] + fex[i][d]));
+  if (nlocal == 0) return;
+  // LIGGGHTS allocates every per-atom array as one block (Memory::create/grow): the 3 values of
+  // atom i are at [3 i, 3 i + 3) of the first row. Flat pointers spare a load per array and atom
+  // on this path, which runs at every DEM step.
+  const bool torque = atom->torque != nullptr;
+  const DragArrays a{drag_coefficient_->vector_atom,
+                     fluid_velocity_->array_atom[0],
+                     explicit_force_->array_atom[0],
+                     other_force_->array_atom[0],
+                     last_torque_->array_atom[0],
+                     torque ? atom->torque[0] : nullptr,
+                     atom->v[0],
+                     atom->f[0],
+                     atom->rmass,
+                     atom->mask,
+                     cache_K_.data(),
+                     cache_m_.data(),
+                     cache_phi_.data()};
+  if (from == Source::computed) {
+    relax<Other::computed, false>(a, nlocal, groupbit, dt);
+  } else if (from == Source::computed_kept) {
+    if (torque)
+      relax<Other::computed_kept, true>(a, nlocal, groupbit, dt);
+    else
+      relax<Other::computed_kept, false>(a, nlocal, groupbit, dt);
+  } else if (torque && keep_other_) {
+    relax<Other::kept, true>(a, nlocal, groupbit, dt);
+  } else {
+    relax<Other::kept, false>(a, nlocal, groupbit, dt);
   }
 }
 

@@ -358,7 +358,16 @@ void Engine::applyTerms(const Terms& terms) {
   check_size(terms.explicit_force, 3, "explicit_force");
   check_size(terms.coating_increment, 1, "coating_increment");
 
-  for (std::size_t k = 0; k < n; ++k) {
+  // One pass over each field; only when it fails, the parcel-by-parcel search for the message
+  auto clean = [](const std::vector<double>& v) {
+    bool ok = true;
+    for (double x : v) ok &= std::isfinite(x);
+    return ok;
+  };
+  bool all_clean = clean(terms.drag_coefficient) && clean(terms.fluid_velocity) &&
+                   clean(terms.explicit_force) && clean(terms.coating_increment);
+  for (double k : terms.drag_coefficient) all_clean &= k >= 0;
+  for (std::size_t k = 0; k < n && !all_clean; ++k) {
     auto bad = [&](const std::vector<double>& v, std::size_t per) {
       for (std::size_t c = 0; c < per && !v.empty(); ++c)
         if (!std::isfinite(v[k * per + c])) return true;
@@ -434,8 +443,14 @@ void Engine::applyTerms(const Terms& terms) {
     }
   }
   guarded("applying the forcing", [&] { drag_fix_->refreshForces(); });
-  std::vector<int> found_anywhere(n, 0);
-  MPI_Allreduce(found.data(), found_anywhere.data(), static_cast<int>(n), MPI_INT, MPI_MAX, comm_);
+  std::vector<int> found_anywhere;
+  if (size_ > 1) {
+    found_anywhere.assign(n, 0);
+    MPI_Allreduce(found.data(), found_anywhere.data(), static_cast<int>(n), MPI_INT, MPI_MAX,
+                  comm_);
+  } else {
+    found_anywhere = std::move(found);
+  }
   std::string missing;
   int count = 0;
   for (std::size_t k = 0; k < n; ++k)
@@ -455,6 +470,45 @@ void Engine::advance(int steps) {
           [&] { lmp_->input->one(cmd.c_str()); });
   need_setup_ = false;
 }
+
+namespace {
+
+// The order of records (stride `per`, the id first) by ascending id. LIGGGHTS numbers its atoms
+// 1..N, so the ids usually fill a range not much wider than their count: each record is then put
+// at its id's slot in one pass; ids spread wider (or repeated) are sorted.
+std::vector<std::size_t> orderById(const std::vector<double>& records, std::size_t per) {
+  const std::size_t n = records.size() / per;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  if (n == 0) return order;
+  double lo = records[0], hi = records[0];
+  for (std::size_t j = 1; j < n; ++j) {
+    lo = std::min(lo, records[j * per]);
+    hi = std::max(hi, records[j * per]);
+  }
+  const double span = hi - lo + 1;
+  if (span <= 2.0 * static_cast<double>(n) + 16) {
+    constexpr std::size_t kEmpty = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> slot(static_cast<std::size_t>(span), kEmpty);
+    bool unique = true;
+    for (std::size_t j = 0; j < n && unique; ++j) {
+      std::size_t& at = slot[static_cast<std::size_t>(records[j * per] - lo)];
+      unique = at == kEmpty;
+      at = j;
+    }
+    if (unique) {
+      std::size_t k = 0;
+      for (std::size_t j : slot)
+        if (j != kEmpty) order[k++] = j;
+      return order;
+    }
+  }
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return records[a * per] < records[b * per]; });
+  return order;
+}
+
+}  // namespace
 
 State Engine::state() const {
   constexpr int kPer = 11;  // id, x[3], v[3], radius, mass, coating, type
@@ -477,39 +531,42 @@ State Engine::state() const {
     p[9] = coating ? coating[i] : 0.0;
     p[10] = atom->type[i];
   }
-  int count = static_cast<int>(local.size());
-  std::vector<int> counts(rank_ == 0 ? size_ : 0), offsets(rank_ == 0 ? size_ : 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
   std::vector<double> all;
-  if (rank_ == 0) {
-    std::exclusive_scan(counts.begin(), counts.end(), offsets.begin(), 0);
-    all.resize(static_cast<std::size_t>(offsets.back() + counts.back()));
+  if (size_ == 1) {
+    all = std::move(local);  // one rank: nothing to gather
+  } else {
+    int count = static_cast<int>(local.size());
+    std::vector<int> counts(rank_ == 0 ? size_ : 0), offsets(rank_ == 0 ? size_ : 0);
+    MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
+    if (rank_ == 0) {
+      std::exclusive_scan(counts.begin(), counts.end(), offsets.begin(), 0);
+      all.resize(static_cast<std::size_t>(offsets.back() + counts.back()));
+    }
+    MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                MPI_DOUBLE, 0, comm_);
   }
-  MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-              MPI_DOUBLE, 0, comm_);
   State s;
   if (rank_ != 0) return s;
   const std::size_t n = all.size() / kPer;
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return all[a * kPer] < all[b * kPer]; });
-  s.ids.reserve(n);
-  s.position.reserve(3 * n);
-  s.velocity.reserve(3 * n);
-  s.radius.reserve(n);
-  s.mass.reserve(n);
-  s.coating_mass.reserve(n);
-  s.type.reserve(n);
-  for (std::size_t j : order) {
-    const double* p = &all[j * kPer];
-    s.ids.push_back(static_cast<std::int64_t>(p[0]));
-    s.position.insert(s.position.end(), p + 1, p + 4);
-    s.velocity.insert(s.velocity.end(), p + 4, p + 7);
-    s.radius.push_back(p[7]);
-    s.mass.push_back(p[8]);
-    s.coating_mass.push_back(p[9]);
-    s.type.push_back(p[10]);
+  const std::vector<std::size_t> order = orderById(all, kPer);
+  s.ids.resize(n);
+  s.position.resize(3 * n);
+  s.velocity.resize(3 * n);
+  s.radius.resize(n);
+  s.mass.resize(n);
+  s.coating_mass.resize(n);
+  s.type.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double* p = &all[order[k] * kPer];
+    s.ids[k] = static_cast<std::int64_t>(p[0]);
+    for (std::size_t d = 0; d < 3; ++d) {
+      s.position[3 * k + d] = p[1 + d];
+      s.velocity[3 * k + d] = p[4 + d];
+    }
+    s.radius[k] = p[7];
+    s.mass[k] = p[8];
+    s.coating_mass[k] = p[9];
+    s.type[k] = p[10];
   }
   return s;
 }

@@ -268,14 +268,17 @@ void LiggghtsSolver::checkTimestep() {
 
 void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
   if (!engine_) throw std::runtime_error("Advance before configure");
-  const ParticleData terms = ParticleData::fromWire(cmd.terms());
+  ParticleData terms = ParticleData::fromWire(cmd.terms());
   Terms t;
-  t.ids = terms.ids;
-  if (terms.has(field::drag_coefficient)) t.drag_coefficient = terms.get(field::drag_coefficient);
-  if (terms.has(field::fluid_velocity)) t.fluid_velocity = terms.get(field::fluid_velocity);
-  if (terms.has(field::explicit_force)) t.explicit_force = terms.get(field::explicit_force);
-  if (terms.has(field::coating_increment))
-    t.coating_increment = terms.get(field::coating_increment);
+  // moved, not copied (field() sizes a field to ids.size(): the ids are moved last)
+  auto take = [&](const std::string& name, std::vector<double>& to) {
+    if (terms.has(name)) to = std::move(terms.field(name));
+  };
+  take(field::drag_coefficient, t.drag_coefficient);
+  take(field::fluid_velocity, t.fluid_velocity);
+  take(field::explicit_force, t.explicit_force);
+  take(field::coating_increment, t.coating_increment);
+  t.ids = std::move(terms.ids);
   if (!t.drag_coefficient.empty() && t.fluid_velocity.empty())
     throw std::runtime_error("Advance carries drag_coefficient without fluid_velocity");
 

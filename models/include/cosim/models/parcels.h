@@ -1,6 +1,7 @@
 // What a coupling model sees: a batch of parcels as contiguous arrays, and the scene constants.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -36,6 +37,13 @@ struct ParcelBatch {
   // (WakeBuildup, cosim/models/drag/wake_buildup.h); read by undisturbed_velocity
   // 'self_disturbance_transient' only. Not a wire field: the coupler fills it.
   const double* built_up_force = nullptr;
+
+  // Kept by checkInputs: the arrays it has already found valid in this batch (by field), so
+  // that the next law reading the same field does not scan it again. A copy of the batch that
+  // points a field at another array (the undisturbed gas velocity) has that one scanned.
+  mutable std::array<const double*, 12> checked{};
+  mutable const char* checked_lost = nullptr;
+  mutable std::size_t checked_n = 0;
 
   bool isLost(std::size_t i) const { return lost != nullptr && lost[i] != 0; }
 };

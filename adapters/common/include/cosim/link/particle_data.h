@@ -29,6 +29,8 @@ class ParticleData {
   void resizeFields();
   void erase(const std::string& name) { fields_.erase(name); }
   std::vector<std::string> names() const;
+  // Every field by name, for a pass over all of them without copying the names.
+  const std::map<std::string, std::vector<double>>& fields() const { return fields_; }
 
   // Keep only the named fields (packets carry what the scene uses, nothing else).
   ParticleData select(const std::vector<std::string>& names) const;

@@ -56,8 +56,11 @@ class DragRelaxationFix : public LAMMPS_NS::Fix {
   // interval, not once per DEM step (an atom moved to another index simply misses the cache)
   std::vector<double> cache_K_, cache_m_, cache_phi_;
   double cache_dt_ = 0.0;
+  // Where apply() takes the other forces from: those LIGGGHTS has just computed (kept for
+  // later at the last step of a run, computed_kept), or the kept ones.
+  enum class Source { computed, computed_kept, kept };
   void lookup();
-  void apply(bool store_other_force);
+  void apply(Source from);
 };
 
 }  // namespace cosim::liggghts
