@@ -15,6 +15,7 @@
 #include "cosim/liggghts/drag_relaxation_fix.h"
 #include "cosim/liggghts/hertz_contact_time.h"
 #include "cosim/liggghts/liggghts_error.h"
+#include "cosim/liggghts/order_by_id.h"
 #include "dump.h"
 #include "fix.h"
 #include "fix_property_atom.h"
@@ -470,45 +471,6 @@ void Engine::advance(int steps) {
           [&] { lmp_->input->one(cmd.c_str()); });
   need_setup_ = false;
 }
-
-namespace {
-
-// The order of records (stride `per`, the id first) by ascending id. LIGGGHTS numbers its atoms
-// 1..N, so the ids usually fill a range not much wider than their count: each record is then put
-// at its id's slot in one pass; ids spread wider (or repeated) are sorted.
-std::vector<std::size_t> orderById(const std::vector<double>& records, std::size_t per) {
-  const std::size_t n = records.size() / per;
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  if (n == 0) return order;
-  double lo = records[0], hi = records[0];
-  for (std::size_t j = 1; j < n; ++j) {
-    lo = std::min(lo, records[j * per]);
-    hi = std::max(hi, records[j * per]);
-  }
-  const double span = hi - lo + 1;
-  if (span <= 2.0 * static_cast<double>(n) + 16) {
-    constexpr std::size_t kEmpty = static_cast<std::size_t>(-1);
-    std::vector<std::size_t> slot(static_cast<std::size_t>(span), kEmpty);
-    bool unique = true;
-    for (std::size_t j = 0; j < n && unique; ++j) {
-      std::size_t& at = slot[static_cast<std::size_t>(records[j * per] - lo)];
-      unique = at == kEmpty;
-      at = j;
-    }
-    if (unique) {
-      std::size_t k = 0;
-      for (std::size_t j : slot)
-        if (j != kEmpty) order[k++] = j;
-      return order;
-    }
-  }
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return records[a * per] < records[b * per]; });
-  return order;
-}
-
-}  // namespace
 
 State Engine::state() const {
   constexpr int kPer = 11;  // id, x[3], v[3], radius, mass, coating, type
