@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "cosim/link/fields.h"
+#include "cosim/util/all_finite.h"
 
 namespace cosim::orchestrator {
 
@@ -265,27 +266,12 @@ std::optional<std::string> checkParticleCount(const Scenario& sc,
   return m.str();
 }
 
-namespace {
-
-// True when every value is finite: x * 0 is 0 for a finite x and NaN for an infinite or NaN one;
-// four partial sums keep the additions independent of each other.
-bool allFinite(const std::vector<double>& v) {
-  double a[4] = {0.0, 0.0, 0.0, 0.0};
-  std::size_t i = 0;
-  for (; i + 4 <= v.size(); i += 4)
-    for (std::size_t d = 0; d < 4; ++d) a[d] += v[i + d] * 0.0;
-  for (; i < v.size(); ++i) a[0] += v[i] * 0.0;
-  return (a[0] + a[1]) + (a[2] + a[3]) == 0.0;
-}
-
-}  // namespace
-
 std::optional<std::string> checkParticleState(const link::ParticleData& s, const std::string& where,
                                               double max_speed, std::uint64_t step, double time) {
   // Runs four times a coupling step over every parcel: one branch-free pass per field, and the
   // message (with the first offending value) only when a pass fails.
   for (const auto& [name, v] : s.fields()) {
-    if (allFinite(v)) continue;
+    if (util::allFinite(v)) continue;
     const unsigned c = std::max(1U, field::components(name));
     for (std::size_t i = 0; i < v.size(); ++i) {
       if (!std::isfinite(v[i])) {

@@ -316,3 +316,16 @@ TEST(ParcelFields, AreWireFieldsAndBindToTheirMembers) {
   arrays.precursor_fraction.clear();  // a field the scene does not carry
   EXPECT_EQ(arrays.view().precursor_fraction, nullptr);
 }
+
+// take() moves a field out whole, whatever was done to the ids before (the LIGGGHTS adapter
+// moves the ids out of a packet first), and leaves nothing of it behind.
+TEST(Protocol, ParticleDataTakeMovesAFieldOutWhole) {
+  link::ParticleData d;
+  d.ids = {4, 5};
+  d.field(field::fluid_velocity) = {1, 2, 3, 4, 5, 6};
+  const auto ids = std::move(d.ids);
+  EXPECT_EQ(d.take(field::fluid_velocity), (std::vector<double>{1, 2, 3, 4, 5, 6}));
+  EXPECT_FALSE(d.has(field::fluid_velocity));
+  EXPECT_TRUE(d.take(field::drag_coefficient).empty());
+  EXPECT_EQ(ids.size(), 2U);
+}

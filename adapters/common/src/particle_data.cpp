@@ -30,6 +30,11 @@ const std::vector<double>& ParticleData::get(const std::string& name) const {
   return it->second;
 }
 
+std::vector<double> ParticleData::take(const std::string& name) {
+  auto node = fields_.extract(name);
+  return node ? std::move(node.mapped()) : std::vector<double>{};
+}
+
 void ParticleData::resizeFields() {
   for (auto& [name, v] : fields_) v.resize(ids.size() * componentsOrOne(name), 0.0);
 }

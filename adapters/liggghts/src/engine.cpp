@@ -16,6 +16,7 @@
 #include "cosim/liggghts/hertz_contact_time.h"
 #include "cosim/liggghts/liggghts_error.h"
 #include "cosim/liggghts/order_by_id.h"
+#include "cosim/util/all_finite.h"
 #include "dump.h"
 #include "fix.h"
 #include "fix_property_atom.h"
@@ -360,13 +361,9 @@ void Engine::applyTerms(const Terms& terms) {
   check_size(terms.coating_increment, 1, "coating_increment");
 
   // One pass over each field; only when it fails, the parcel-by-parcel search for the message
-  auto clean = [](const std::vector<double>& v) {
-    bool ok = true;
-    for (double x : v) ok &= std::isfinite(x);
-    return ok;
-  };
-  bool all_clean = clean(terms.drag_coefficient) && clean(terms.fluid_velocity) &&
-                   clean(terms.explicit_force) && clean(terms.coating_increment);
+  bool all_clean = util::allFinite(terms.drag_coefficient) &&
+                   util::allFinite(terms.fluid_velocity) && util::allFinite(terms.explicit_force) &&
+                   util::allFinite(terms.coating_increment);
   for (double k : terms.drag_coefficient) all_clean &= k >= 0;
   for (std::size_t k = 0; k < n && !all_clean; ++k) {
     auto bad = [&](const std::vector<double>& v, std::size_t per) {

@@ -270,15 +270,11 @@ void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
   if (!engine_) throw std::runtime_error("Advance before configure");
   ParticleData terms = ParticleData::fromWire(cmd.terms());
   Terms t;
-  // moved, not copied (field() sizes a field to ids.size(): the ids are moved last)
-  auto take = [&](const std::string& name, std::vector<double>& to) {
-    if (terms.has(name)) to = std::move(terms.field(name));
-  };
-  take(field::drag_coefficient, t.drag_coefficient);
-  take(field::fluid_velocity, t.fluid_velocity);
-  take(field::explicit_force, t.explicit_force);
-  take(field::coating_increment, t.coating_increment);
-  t.ids = std::move(terms.ids);
+  t.ids = std::move(terms.ids);  // moved out of the packet, not copied
+  t.drag_coefficient = terms.take(field::drag_coefficient);
+  t.fluid_velocity = terms.take(field::fluid_velocity);
+  t.explicit_force = terms.take(field::explicit_force);
+  t.coating_increment = terms.take(field::coating_increment);
   if (!t.drag_coefficient.empty() && t.fluid_velocity.empty())
     throw std::runtime_error("Advance carries drag_coefficient without fluid_velocity");
 

@@ -28,6 +28,8 @@ class ParticleData {
   // Resize every field to the current ids.size().
   void resizeFields();
   void erase(const std::string& name) { fields_.erase(name); }
+  // Moves a field out (empty if absent) and removes it, without the copy of get().
+  std::vector<double> take(const std::string& name);
   std::vector<std::string> names() const;
   // Every field by name, for a pass over all of them without copying the names.
   const std::map<std::string, std::vector<double>>& fields() const { return fields_; }
