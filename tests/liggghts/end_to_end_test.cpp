@@ -10,8 +10,8 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "coupler.h"
 #include "cosim/link/fields.h"
+#include "coupler.h"
 #include "scenario.h"
 
 using namespace cosim;
@@ -27,7 +27,8 @@ constexpr double kTau = 2500 * 2.25e-6 / 18;
 }  // namespace
 
 TEST(LiggghtsEndToEnd, SphereReachesTerminalVelocityInAnalyticFluid) {
-  Scenario sc = loadScenario(fs::path(COSIM_LIGGGHTS_TEST_DATA) / "settling-sphere-liggghts" / "scenario.yaml");
+  Scenario sc = loadScenario(fs::path(COSIM_LIGGGHTS_TEST_DATA) / "settling-sphere-liggghts" /
+                             "scenario.yaml");
   RunOptions o;
   o.quiet = true;
   o.output = fs::temp_directory_path() / ("cosim-liggghts-e2e-" + std::to_string(getpid()));
@@ -53,7 +54,39 @@ TEST(LiggghtsEndToEnd, SphereReachesTerminalVelocityInAnalyticFluid) {
     EXPECT_NEAR(vz[k], ref, 0.01 * kVt) << "t = " << t[k];
     worst = std::max(worst, std::abs(vz[k] - ref) / kVt);
   }
-  std::printf("terminal velocity %.6e m/s (analytic %.6e), relative error %.2e; %zu steps, worst "
-              "transient error %.2e v_t\n", v_end, -kVt, std::abs(v_end + kVt) / kVt, t.size(), worst);
+  std::printf(
+      "terminal velocity %.6e m/s (analytic %.6e), relative error %.2e; %zu steps, worst "
+      "transient error %.2e v_t\n",
+      v_end, -kVt, std::abs(v_end + kVt) / kVt, t.size(), worst);
   fs::remove_all(o.output);
+}
+
+// A script whose own `run` outlasts participants.particles.timeout: the run stops at step 0 and
+// the message shows the adapter's log naming where LIGGGHTS writes its progress meanwhile (it
+// used to show an empty log).
+TEST(LiggghtsEndToEnd, AScriptOutlastingTheTimeoutSaysWhereLiggghtsWrites) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("cosim-liggghts-slow-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  fs::copy(fs::path(COSIM_LIGGGHTS_TEST_DATA) / "settling-sphere-liggghts", dir / "scene",
+           fs::copy_options::recursive);
+  {
+    std::FILE* f = std::fopen((dir / "scene" / "dem" / "in.sphere").c_str(), "a");
+    ASSERT_NE(f, nullptr);
+    std::fputs("\nrun 100000000\n", f);  // minutes of LIGGGHTS before the first coupled step
+    std::fclose(f);
+  }
+  Scenario sc = loadScenario(dir / "scene" / "scenario.yaml", {"participants.particles.timeout=1"});
+  RunOptions o;
+  o.quiet = true;
+  o.output = dir / "run";
+  Coupler c(std::move(sc), o);
+  const RunResult r = c.run();
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.message.find("did not answer within 1 s at step 0"), std::string::npos) << r.message;
+  const std::string liggghts_log = (o.output / "particles" / "liggghts.log").string();
+  EXPECT_NE(r.message.find("LIGGGHTS' own output meanwhile: " + liggghts_log), std::string::npos)
+      << r.message;
+  fs::remove_all(dir);
 }

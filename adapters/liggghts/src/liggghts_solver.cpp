@@ -207,6 +207,12 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
       std::filesystem::current_path(welcome.workdir());
   }
   engine_ = std::make_unique<Engine>(comm_, std::filesystem::current_path());
+  // The script's own runs (a settling, an insertion) come before the first coupled step and may
+  // take minutes: say where LIGGGHTS writes meanwhile, so that a timeout there is not a blank.
+  if (rank_ == 0)
+    spdlog::info("[liggghts] running {} {}; LIGGGHTS' own output meanwhile: {}", options_.script,
+                 welcome.restart_from().empty() ? "from its start" : "from the checkpoint",
+                 (std::filesystem::current_path() / "liggghts.log").string());
   if (welcome.restart_from().empty())
     engine_->runScript(options_.script);
   else
