@@ -21,8 +21,10 @@ std::string firstError(const FoamRunConfig& cfg) {
 
 FoamRunConfig base() {
   FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0.1"}, {"inlet_precursor", "0"},
-                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.substitute = {{"inlet_velocity", "0.1"},
+                    {"inlet_precursor", "0"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
   cfg.send = {"voidage"};
   cfg.receive = {"position", "radius"};
   return cfg;
@@ -69,10 +71,24 @@ TEST(OpenFoamSettings, DecompositionNotMatchingTheRanksIsNamed) {
   // Two MPI ranks, a decomposeParDict for three: rank 0 refuses, every rank stops, no hang
   auto cfg = base();
   cfg.ranks = 2;
-  cfg.edits.push_back({"system/decomposeParDict", "numberOfSubdomains 2;", "numberOfSubdomains 3;"});
+  cfg.edits.push_back(
+      {"system/decomposeParDict", "numberOfSubdomains 2;", "numberOfSubdomains 3;"});
   const auto msg = firstError(cfg);
   EXPECT_NE(msg.find("numberOfSubdomains is 3"), std::string::npos) << msg;
   EXPECT_NE(msg.find("2 MPI ranks"), std::string::npos) << msg;
+}
+
+TEST(OpenFoamSettings, ABlockWithoutCellsIsNamedBeforeBlockMeshCrashes) {
+  // blockMesh 1912 dies of a segmentation fault on a block with 0 cells in a direction (a cell
+  // size larger than the block in a templated case): refused first, with the block and its count
+  for (const char* counts : {"(5 0 25)", "(5 5 -1)", "(5 2.5 25)"}) {
+    auto cfg = base();
+    cfg.edits.push_back({"system/blockMeshDict", "(5 5 25)", counts});
+    const auto msg = firstError(cfg);
+    EXPECT_NE(msg.find("system/blockMeshDict, block 1"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("cell count is"), std::string::npos) << msg;
+    EXPECT_EQ(msg.find("printStack"), std::string::npos) << msg;
+  }
 }
 
 }  // namespace

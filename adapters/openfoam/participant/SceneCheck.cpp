@@ -1,10 +1,12 @@
 #include "SceneCheck.h"
 
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cosim/link/fields.h"
 
@@ -38,6 +40,64 @@ bool hasWord(const std::string& text, const std::string& name) {
   return false;
 }
 
+// The text without OpenFOAM's comments (// to the end of the line, /* ... */).
+std::string withoutComments(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text.compare(i, 2, "//") == 0) {
+      i = text.find('\n', i);
+      if (i == std::string::npos) break;
+      out += '\n';
+    } else if (text.compare(i, 2, "/*") == 0) {
+      const std::size_t end = text.find("*/", i + 2);
+      if (end == std::string::npos) break;
+      i = end + 1;
+      out += ' ';
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+// Every `hex (8 vertices) [zone] (nx ny nz)` of a blockMeshDict has a whole number of cells,
+// at least 1, in each direction: blockMesh 1912 crashes with a segmentation fault on 0 or a
+// negative count, which a templated case gets from its parameters (a cell size larger than a
+// block, a block of zero or negative width).
+void checkBlockCellCounts(const fs::path& dict, const fs::path& dir) {
+  const std::string text = withoutComments(textOf(dict));
+  static const std::regex hex(R"(\bhex\s*\(([^()]*)\)\s*(?:[A-Za-z_][\w.]*\s*)?\(([^()]*)\))");
+  const std::string file = fs::relative(dict, dir).string();
+  int block = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), hex); it != std::sregex_iterator();
+       ++it) {
+    ++block;
+    const std::string counts = (*it)[2].str();
+    std::istringstream in(counts);
+    std::vector<std::string> n;
+    for (std::string tok; in >> tok;) n.push_back(tok);
+    const char* axis[] = {"first", "second", "third"};
+    auto where = [&] {
+      return "cosimFoam: " + file + ", block " + std::to_string(block) + " (hex (" +
+             (*it)[1].str() + ") (" + counts + ")): ";
+    };
+    if (n.size() != 3)
+      throw std::runtime_error(where() + "expected 3 cell counts, got " + std::to_string(n.size()));
+    for (int d = 0; d < 3; ++d) {
+      char* end = nullptr;
+      const long c = std::strtol(n[d].c_str(), &end, 10);
+      if (*end != '\0' || c < 1)
+        throw std::runtime_error(
+            where() + "the " + axis[d] + " cell count is '" + n[d] +
+            "': every block needs a whole number of cells, at least 1, in each direction. In a "
+            "templated case the count comes from the scene's parameters: a cell size larger "
+            "than the block, or a block of zero or negative width (check the parameters the "
+            "command line changed)");
+    }
+  }
+}
+
 }  // namespace
 
 int subdomainsOf(const fs::path& dict) {
@@ -64,6 +124,7 @@ void checkCase(const AdapterSettings& settings, int ranks, const fs::path& dir) 
                              " has no mesh (constant/polyMesh) and no system/blockMeshDict to "
                              "make one");
   }
+  if (blockMesh) checkBlockCellCounts(dir / "system/blockMeshDict", dir);
   if (!blockMesh && !haveMesh) {
     throw std::runtime_error("cosimFoam: options.mesh is 'existing' but " + dir.string() +
                              "/constant/polyMesh has no mesh");
