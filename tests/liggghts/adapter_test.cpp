@@ -220,6 +220,37 @@ TEST(LiggghtsAdapter, UnstableTimestepIsRefusedWithAWorkingValue) {
   EXPECT_NE(run.waitExit(30), 0);
 }
 
+// A negative friction coefficient, which LIGGGHTS accepts and the bed later blows up with, is
+// refused before the script runs, with its line.
+TEST(LiggghtsAdapter, NegativeFrictionIsRefusedWithItsLine) {
+  ScratchDir dir;
+  const auto pdir = dir.path() / "particles";
+  std::filesystem::create_directories(pdir);
+  int number = 0, friction_line = 0;
+  {
+    std::ifstream in(dataDir() / "in.single_particle");
+    std::ofstream out(pdir / "in.single_particle");
+    std::string line;
+    while (std::getline(in, line)) {
+      ++number;
+      if (line == "fix m4 all property/global coefficientFriction peratomtypepair 1 0.52") {
+        line = "fix m4 all property/global coefficientFriction peratomtypepair 1 -0.3";
+        friction_line = number;
+      }
+      out << line << "\n";
+    }
+  }
+  ASSERT_GT(friction_line, 0) << "tests/liggghts/data/in.single_particle changed";
+  AdapterRun run(pdir, 1);
+  run.handshake("script: in.single_particle\n", 1e-4, 100, kState, kForcing);
+  const auto reply = run.receive(60);
+  ASSERT_TRUE(reply.has_error());
+  const std::string msg = reply.error().message();
+  EXPECT_NE(msg.find("line " + std::to_string(friction_line)), std::string::npos) << msg;
+  EXPECT_NE(msg.find("coefficientFriction` has the value -0.3"), std::string::npos) << msg;
+  EXPECT_NE(run.waitExit(30), 0);
+}
+
 // The script's timestep must equal coupling dt / dem_steps.
 TEST(LiggghtsAdapter, TimestepMismatchNamesBothValues) {
   ScratchDir dir;

@@ -206,6 +206,9 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
         std::filesystem::current_path() != std::filesystem::path(welcome.workdir()))
       std::filesystem::current_path(welcome.workdir());
   }
+  // What `cosim validate` checks of the script (files it reads, its timestep, friction), before
+  // LIGGGHTS runs a line of it
+  checkScene(welcome);
   engine_ = std::make_unique<Engine>(comm_, std::filesystem::current_path());
   // The script's own runs (a settling, an insertion) come before the first coupled step and may
   // take minutes: say where LIGGGHTS writes meanwhile, so that a timeout there is not a blank.

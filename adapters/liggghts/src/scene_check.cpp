@@ -101,6 +101,24 @@ void checkScene(const cosim::wire::Welcome& welcome) {
             "script are relative to that folder)",
             where, w[0] == "fix" ? "fix " + w[1] + " ... " + w[3] : w[0], *file));
     }
+    // Friction coefficients: LIGGGHTS takes a negative one and the bed blows up steps later
+    // with a speed that looks like an unstable time step.
+    if (w[0] == "fix" && w.size() > 5 && w[3] == "property/global" &&
+        (w[4] == "coefficientFriction" || w[4] == "coefficientRollingFriction")) {
+      // values follow the style (peratomtype, or peratomtypepair and the number of types)
+      const std::size_t first = w[5] == "peratomtypepair" ? 7 : 6;
+      for (std::size_t i = first; i < w.size(); ++i) {
+        char* end = nullptr;
+        const double v = std::strtod(w[i].c_str(), &end);
+        if (end == w[i].c_str() || *end != '\0') continue;  // a LIGGGHTS variable, or a keyword
+        if (!(v >= 0) || !std::isfinite(v))
+          throw std::runtime_error(fmt::format(
+              "{}: `fix {} ... {}` has the value {}: a friction coefficient must be a finite "
+              "number >= 0 (e.g. 0.52); in a templated script it comes from the "
+              "scene's parameters",
+              where, w[1], w[4], w[i]));
+      }
+    }
     if (w[0] == "timestep" && w.size() > 1 && w[1].find('$') == std::string::npos) {
       char* end = nullptr;
       const double dt = std::strtod(w[1].c_str(), &end);
