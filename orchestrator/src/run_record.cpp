@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 
 #include "checkpoints.h"
@@ -86,6 +87,34 @@ std::string refusal(const fs::path& folder) {
   return what + ", and cosim never records a run over another one: " + how;
 }
 
+// Whether `a` is `b` or lies inside it (paths made absolute and normalised, links resolved as
+// far as they exist).
+bool within(const fs::path& a, const fs::path& b) {
+  const fs::path rel = fs::weakly_canonical(a).lexically_relative(fs::weakly_canonical(b));
+  return !rel.empty() && *rel.begin() != "..";
+}
+
+// Why recording a run in `folder` would write over the scene itself (its folder, its scenario
+// file, a participant's files: folder, which the run copies into folder/<participant>), or
+// nothing if it would not.
+std::optional<std::string> overScene(const fs::path& folder, const Scenario& sc) {
+  const std::string f = folder.string();
+  if (!sc.dir.empty() && within(sc.dir, folder) && within(folder, sc.dir))
+    return "the run folder " + f + " is the scene's own folder (" + sc.dir.string() +
+           "): a run is never recorded over the scene it runs; choose another folder with -o";
+  for (const auto& [name, p] : sc.participants) {
+    const fs::path target = folder / name;
+    for (const fs::path& source : {p.files, sc.file}) {
+      if (source.empty()) continue;
+      if (within(source, target) || within(target, source))
+        return "the run folder " + f + " would put participant '" + name + "' in " +
+               target.string() + ", over the scene's " + source.string() +
+               ": a run is never recorded over the scene it runs; choose another folder with -o";
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 // The run folder is claimed with an exclusive flock on its lock file, held for the whole run:
@@ -141,6 +170,7 @@ void RunRecord::release() {
 
 const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
   const fs::path base = output.empty() ? sc_.output.folder : fs::absolute(output);
+  if (const auto why = overScene(base, sc_)) throw std::runtime_error(*why);
   // A folder the user named (-o) is that run's folder or none: refused if it holds anything
   // (or a run holds it), never replaced by another name the user would not look in.
   if (!output.empty()) {

@@ -440,6 +440,41 @@ TEST(RunFolder, RunsStartedTogetherWithTheSameOutputOneRunsTheOthersAreRefused) 
   EXPECT_FALSE(fs::exists(w.dir / "same-2"));
 }
 
+// --overwrite never writes a run over the scene it runs: not into the scenario's own folder,
+// not where a participant's folder would land on (or in) a files: folder.
+TEST(RunFolder, ARunIsNeverRecordedOverItsScene) {
+  Workspace w;
+  fs::create_directories(w.dir / "dem");
+  std::ofstream(w.dir / "dem" / "note.txt") << "the scene's own file\n";
+  const std::string scene = text(w.dir / "scene.yaml");
+  struct Case {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {{"-o", "."}, "is the scene's own folder"},
+      {{"-o", "dem/.."}, "is the scene's own folder"},
+      {{"-o", "dem", "--set", "participants.particles.files=dem"}, "over the scene's"},
+      {{"-o", "dem/sub", "--set", "participants.particles.files=dem"}, "over the scene's"},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    std::vector<std::string> args = {"run", "scene.yaml", "--quiet", "--overwrite"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const std::string log = "over-scene-" + std::to_string(k++) + ".out";
+    auto run = start(w, args, log);
+    EXPECT_EQ(finish(run), 1) << text(w.dir / log);
+    const std::string out = text(w.dir / log);
+    EXPECT_NE(out.find(c.says), std::string::npos) << out;
+    EXPECT_NE(out.find("choose another folder with -o"), std::string::npos) << out;
+  }
+  EXPECT_EQ(text(w.dir / "scene.yaml"), scene);
+  EXPECT_FALSE(fs::exists(w.dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(w.dir / "dem" / "particles"));
+  EXPECT_FALSE(fs::exists(w.dir / "dem" / "summary.json"));
+  EXPECT_EQ(text(w.dir / "dem" / "note.txt"), "the scene's own file\n");
+}
+
 TEST(RunFolder, AnExistingOutputFolderIsRefusedWithWhatToDo) {
   Workspace w;
   auto first =
