@@ -123,7 +123,12 @@ std::optional<std::string> overScene(const fs::path& folder, const Scenario& sc)
 // the run ends; a run that locked the file just before it was unlinked sees that its file is no
 // longer the one at the path and tries again.
 bool RunRecord::claim(const fs::path& folder) {
-  fs::create_directories(folder);
+  std::error_code made;
+  fs::create_directories(folder, made);
+  if (made)
+    throw std::runtime_error("cannot create the run folder " + folder.string() + ": " +
+                             made.message() +
+                             "; choose a folder you can write to with -o (or output.folder)");
   const fs::path lock = folder / kLockFile;
   for (int attempt = 0; attempt < 100; ++attempt) {
     const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);

@@ -475,6 +475,21 @@ TEST(RunFolder, ARunIsNeverRecordedOverItsScene) {
   EXPECT_EQ(text(w.dir / "dem" / "note.txt"), "the scene's own file\n");
 }
 
+// A run folder that cannot be made (under a file, on a read-only or missing mount) is named
+// with the system's reason, not as a bare filesystem error.
+TEST(RunFolder, AFolderThatCannotBeMadeIsNamedWithWhy) {
+  Workspace w;
+  std::ofstream(w.dir / "plain") << "a file\n";
+  auto run = start(w, {"run", "scene.yaml", "--quiet", "-o", "plain/run"}, "unmade.out");
+  EXPECT_EQ(finish(run), 1);
+  const std::string out = text(w.dir / "unmade.out");
+  EXPECT_NE(out.find("cannot create the run folder " + (w.dir / "plain/run").string() +
+                     ": Not a directory"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(text(w.dir / "plain"), "a file\n");
+}
+
 TEST(RunFolder, AnExistingOutputFolderIsRefusedWithWhatToDo) {
   Workspace w;
   auto first =
