@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -220,6 +221,34 @@ std::vector<fs::path> CheckpointStore::all() const {
   std::sort(found.begin(), found.end(),
             [](const fs::path& a, const fs::path& b) { return timeOf(a) < timeOf(b); });
   return found;
+}
+
+std::optional<fs::path> CheckpointStore::at(double time) const {
+  for (const auto& c : all())
+    if (std::abs(timeOf(c) - time) <= 1e-9 * std::max(1.0, std::abs(time))) return c;
+  return std::nullopt;
+}
+
+std::vector<fs::path> CheckpointStore::setAsideAfter(const fs::path& kept) const {
+  std::vector<fs::path> moved;
+  const double t = timeOf(kept);
+  for (const auto& c : all()) {
+    if (timeOf(c) <= t) continue;
+    const fs::path aside = dir_ / "superseded";
+    fs::create_directories(aside);
+    fs::path to = aside / c.filename();
+    for (int k = 2; fs::exists(to); ++k)
+      to = aside / (c.filename().string() + "-" + std::to_string(k));
+    fs::rename(c, to);
+    moved.push_back(to);
+  }
+  return moved;
+}
+
+std::string CheckpointStore::listTimes() const {
+  std::string out;
+  for (const auto& c : all()) out += (out.empty() ? "" : ", ") + c.filename().string() + " s";
+  return out.empty() ? "none" : out;
 }
 
 std::optional<fs::path> CheckpointStore::newest() const {

@@ -70,6 +70,14 @@ class CheckpointStore {
   std::optional<std::filesystem::path> newest() const;
   // Every complete checkpoint, oldest first.
   std::vector<std::filesystem::path> all() const;
+  // The complete checkpoint at `time` (to a relative 1e-9), if any.
+  std::optional<std::filesystem::path> at(double time) const;
+  // Moves every complete checkpoint newer than `kept` into checkpoints/superseded/ (a resume
+  // from an older one makes them another history; they are kept, never removed) and returns
+  // where they went.
+  std::vector<std::filesystem::path> setAsideAfter(const std::filesystem::path& kept) const;
+  // "0.1 s, 0.12 s" (the times of all()), or "none".
+  std::string listTimes() const;
 
  private:
   std::filesystem::path dir_;

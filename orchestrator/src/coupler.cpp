@@ -156,7 +156,29 @@ RunResult Coupler::run() {
     log_.file(result.message);
     result.message += "\n  everything recorded so far is in " + record_.folder().string();
     // A run stopped before its end by a failure continues from its newest checkpoint
-    if (status == "failed" && result.steps < nsteps_ && (opt_.resume.empty() || resume_accepted_)) {
+    const bool at_restore = !opt_.resume.empty() && (unreadable_checkpoint_ ||
+                                                     (resume_accepted_ && step_ <= resumed_step_));
+    if (status == "failed" && at_restore) {
+      // The resume failed before its first step: perhaps the checkpoint itself cannot be read
+      // back; the others are another way on.
+      std::string others, next;
+      for (const auto& c : checkpoints_->all()) {
+        if (c == resumed_from_) continue;
+        others += (others.empty() ? "" : ", ") + c.filename().string() + " s";
+        next = c.filename().string();  // the newest of the others
+      }
+      result.message +=
+          resumed_from_.empty()
+              ? std::string()
+              : "; the resume from the checkpoint at t = " + resumed_from_.filename().string() +
+                    " s failed before its first step";
+      if (!others.empty())
+        result.message += "; the run's other complete checkpoints: " + others +
+                          ". If that checkpoint is damaged, continue from another, e.g.\n  "
+                          "cosim resume " +
+                          record_.folder().string() + " --from " + next;
+    } else if (status == "failed" && result.steps < nsteps_ &&
+               (opt_.resume.empty() || resume_accepted_)) {
       if (const auto newest = checkpoints_->newest()) {
         result.message += "; its newest checkpoint is t = " + newest->filename().string() +
                           " s: once the cause is fixed, continue with\n  cosim resume " +
@@ -168,17 +190,26 @@ RunResult Coupler::run() {
 }
 
 std::uint64_t Coupler::resumeFromCheckpoint() {
-  const auto checkpoint = checkpoints_->newest();
+  const auto checkpoint =
+      opt_.resume_from ? checkpoints_->at(*opt_.resume_from) : checkpoints_->newest();
+  if (!checkpoint && opt_.resume_from) {
+    throw RunFailure("", "cosim resume --from " + analysis::formatShortest(*opt_.resume_from) +
+                             ": " + record_.folder().string() +
+                             " holds no complete checkpoint at that time; it holds: " +
+                             checkpoints_->listTimes());
+  }
   if (!checkpoint) {
     throw RunFailure("", "nothing to resume in " + record_.folder().string() +
                              ": it holds no complete checkpoint (checkpoints/<time>/ with "
                              "orchestrator.json); runs write them when checkpoint.interval is "
                              "set, and when they are interrupted");
   }
+  resumed_from_ = *checkpoint;
   CoupledState saved;
   try {
     saved = readCoupledState(*checkpoint);
   } catch (const std::exception& e) {
+    unreadable_checkpoint_ = true;
     throw RunFailure("", e.what());
   }
   const auto differences = sceneDifferences(YAML::Load(saved.scene), sc_.resolved);
@@ -206,6 +237,12 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
                              "coupling.end_time=...");
   }
   resume_accepted_ = true;  // from here on the run folder changes
+  resumed_step_ = saved.step;
+  // Checkpoints newer than the one resumed from (--from) belong to the history it leaves
+  for (const auto& moved : checkpoints_->setAsideAfter(*checkpoint))
+    log_.show("set aside the newer checkpoint " + moved.filename().string() + " in " +
+              moved.parent_path().string() +
+              " (this resume continues from t = " + checkpoint->filename().string() + " s)");
   record_.writeResolvedScene();
   record_.resumeRecorders(saved.series_rows, saved.time, saved.next_output, run_id_);
   if (recordsZonePasses() && saved.zone_passes) {

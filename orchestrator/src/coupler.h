@@ -43,6 +43,8 @@ struct RunOptions {
       scheme;  // makeCouplingScheme; empty: the scene's coupling.scheme (bench: frozen ones)
   std::uint64_t untimed_steps = 0;  // phase and compute timings start after this many steps
   std::filesystem::path resume;     // continue the run in this folder from its newest checkpoint
+  // ... or from the one at this time (cosim resume --from); newer ones are set aside
+  std::optional<double> resume_from;
   // cosim bench: the coupled stage appends every interval's terms to `record_terms` (outside the
   // timed phases); the solver-alone stages replay `replay_terms` (FrozenScheme).
   std::shared_ptr<TermsRecording> record_terms;
@@ -136,6 +138,11 @@ class Coupler {
   double next_checkpoint_ = 0.0;
   double wall_before_ = 0.0;  // wall seconds of the run before it was resumed
   bool resume_accepted_ = false;
+  // The checkpoint a resume started from and its step: a failure before the run got past it
+  // says which other checkpoints there are (the one it started from may be what failed).
+  std::filesystem::path resumed_from_;
+  std::uint64_t resumed_step_ = 0;
+  bool unreadable_checkpoint_ = false;  // its orchestrator.json could not be read
 
   std::uint64_t nsteps_ = 0;
   std::uint64_t step_ = 0;

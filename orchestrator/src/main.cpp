@@ -155,6 +155,11 @@ int main(int argc, char** argv) {
                    "transport, checks and observables may differ from the checkpoint's scene")
       ->take_all();
   resume->add_flag("-q,--quiet", ropt.quiet, "no progress line");
+  double resume_from = 0;
+  auto* from_opt = resume->add_option(
+      "--from", resume_from,
+      "continue from the checkpoint at this time [s] instead of the newest (ls RUN/checkpoints); "
+      "newer ones are moved to RUN/checkpoints/superseded/");
 
   auto* val = app.add_subcommand(
       "validate", "Check a scenario and show what it would start and send, without running");
@@ -375,6 +380,7 @@ int main(int argc, char** argv) {
       std::signal(SIGINT, onSignal);
       std::signal(SIGTERM, onSignal);
       ropt.resume = std::filesystem::absolute(resume_folder);
+      if (from_opt->count() > 0) ropt.resume_from = resume_from;
       Coupler c(std::move(sc), ropt);
       RunResult r = c.run();
       if (r.exit_code != 0) std::cerr << "\ncosim: run stopped\n" << r.message << "\n";

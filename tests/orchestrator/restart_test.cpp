@@ -233,6 +233,50 @@ TEST(Restart, AFinishedRunIsMadeLongerAndEqualsTheLongerRun) {
   expectSameRun(w.dir / "long", w.dir / "ext");
 }
 
+// The newest checkpoint damaged (its particle state emptied, as a failing disk or a careless
+// hand would leave it): the resume fails before its first step and names the other checkpoints
+// and the command; `resume --from` the older one sets the damaged one aside (kept) and gives the
+// uninterrupted run.
+TEST(Restart, ADamagedNewestCheckpointIsNamedAndAnOlderOneContinuesTheRun) {
+  Workspace w;
+  auto longer =
+      start(w, {"run", "scene.yaml", "-o", "long", "--quiet", "--set", "coupling.end_time=0.16"},
+            "long.out");
+  ASSERT_EQ(finish(longer), 0) << text(w.dir / "long.out");
+  auto first = start(w, {"run", "scene.yaml", "-o", "ext", "--quiet"}, "ext.out");
+  ASSERT_EQ(finish(first), 0) << text(w.dir / "ext.out");
+  const fs::path newest = w.dir / "ext/checkpoints/0.12";
+  ASSERT_TRUE(fs::is_directory(newest));
+  for (const auto& f : fs::directory_iterator(newest / "particles"))
+    std::ofstream(f.path(), std::ios::trunc);
+
+  auto failed =
+      start(w, {"resume", "ext", "--quiet", "--set", "coupling.end_time=0.16"}, "failed.out");
+  EXPECT_EQ(finish(failed), 2);
+  const std::string out = text(w.dir / "failed.out");
+  EXPECT_NE(out.find("the resume from the checkpoint at t = 0.12 s failed before its first step"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("other complete checkpoints: 0.1 s"), std::string::npos) << out;
+  EXPECT_NE(out.find("cosim resume " + (w.dir / "ext").string() + " --from 0.1"), std::string::npos)
+      << out;
+
+  auto none = start(w, {"resume", "ext", "--quiet", "--from", "0.05"}, "none.out");
+  EXPECT_EQ(finish(none), 2);
+  EXPECT_NE(text(w.dir / "none.out")
+                .find("no complete checkpoint at that time; it holds: 0.1 s, "
+                      "0.12 s"),
+            std::string::npos)
+      << text(w.dir / "none.out");
+
+  auto older =
+      start(w, {"resume", "ext", "--quiet", "--from", "0.1", "--set", "coupling.end_time=0.16"},
+            "older.out");
+  ASSERT_EQ(finish(older), 0) << text(w.dir / "older.out");
+  EXPECT_TRUE(fs::is_directory(w.dir / "ext/checkpoints/superseded/0.12/particles"));
+  expectSameRun(w.dir / "long", w.dir / "ext");
+}
+
 TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
   Workspace w;
   auto run = start(
