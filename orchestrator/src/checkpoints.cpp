@@ -264,6 +264,12 @@ CoupledState readCoupledState(const fs::path& checkpoint) {
     if (j.value("format", "") != "cosim-checkpoint")
       throw std::runtime_error("not a cosim checkpoint (no format: cosim-checkpoint)");
     return fromJson(j);
+  } catch (const nlohmann::json::exception& e) {
+    // a key missing or of the wrong type: the file is not what this cosim wrote
+    throw std::runtime_error(file.string() +
+                             ": the checkpoint's state is damaged or was not written by this "
+                             "version of cosim (" +
+                             e.what() + ")");
   } catch (const std::exception& e) {
     throw std::runtime_error(file.string() + ": " + e.what());
   }
