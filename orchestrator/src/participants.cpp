@@ -416,8 +416,36 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
     logRefusals();
     // On every wake-up, message or not: no stream of messages may hide a dead or silent peer.
     checkAlive(expected, got, start, timeout);
+    noteLongFirstWait(expected, got, start, timeout);
   }
+  answered_once_ = true;
   return got;
+}
+
+// The first answers of a run come after each participant's own start-up (a LIGGGHTS script's
+// settling, a mesh being made), which may take minutes with nothing on the screen: say who is
+// awaited and where its log is, after 15 s and then every minute.
+void Participants::noteLongFirstWait(
+    const std::map<std::string, wire::Envelope::BodyCase>& expected, const Replies& got,
+    Clock::time_point start, double timeout) {
+  if (answered_once_) return;
+  const double waited = std::chrono::duration<double>(Clock::now() - start).count();
+  if (waited < next_wait_note_) return;
+  next_wait_note_ = waited < 60 ? 60 : next_wait_note_ + 60;
+  std::string who, keys;
+  for (const auto& [name, kind] : expected) {
+    if (got.count(name)) continue;
+    const auto log = logOf(name);
+    who +=
+        (who.empty() ? "" : ", ") + name + (log.empty() ? "" : " (its log: " + log.string() + ")");
+    keys += (keys.empty() ? "" : ", ") + ("participants." + name + ".timeout");
+  }
+  if (who.empty()) return;
+  log_.show("waiting " + std::to_string(static_cast<int>(waited)) + " s for the first answer of " +
+            who +
+            ": its own start-up before the first step (a script's settling, a mesh) can "
+            "take minutes; the run gives up after " +
+            std::to_string(static_cast<int>(timeout)) + " s (" + keys + ")");
 }
 
 void Participants::take(const std::string& who, wire::Envelope& env,

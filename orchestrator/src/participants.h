@@ -144,6 +144,11 @@ class Participants {
   double time_ = 0.0;
   std::filesystem::path restart_from_;
   bool stop_noted_ = false;
+  bool answered_once_ = false;    // the first await of the run is over
+  double next_wait_note_ = 15.0;  // seconds into the first await of the next "waiting" line
+  void noteLongFirstWait(const std::map<std::string, wire::Envelope::BodyCase>& expected,
+                         const Replies& got, std::chrono::steady_clock::time_point start,
+                         double timeout);
   std::string token_;                 // this run's secret (run_token.h)
   std::filesystem::path token_file_;  // written for participants of launch: external
   std::string orchestrator_public_;   // CurveZMQ: the server's public key; else empty

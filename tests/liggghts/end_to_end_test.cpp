@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "cosim/link/fields.h"
 #include "coupler.h"
@@ -61,10 +63,10 @@ TEST(LiggghtsEndToEnd, SphereReachesTerminalVelocityInAnalyticFluid) {
   fs::remove_all(o.output);
 }
 
-// A script whose own `run` outlasts participants.particles.timeout: the run stops at step 0 and
-// the message shows the adapter's log naming where LIGGGHTS writes its progress meanwhile (it
-// used to show an empty log).
-TEST(LiggghtsEndToEnd, AScriptOutlastingTheTimeoutSaysWhereLiggghtsWrites) {
+// A script whose own `run` outlasts participants.particles.timeout: the run says whom it waits
+// for after 15 s, stops at step 0 and the message shows the adapter's log naming where LIGGGHTS
+// writes its progress meanwhile (it used to show an empty log).
+TEST(LiggghtsEndToEnd, AScriptOutlastingTheTimeoutSaysWhomItAwaitsAndWhereLiggghtsWrites) {
   const fs::path dir =
       fs::temp_directory_path() / ("cosim-liggghts-slow-" + std::to_string(getpid()));
   fs::remove_all(dir);
@@ -77,16 +79,26 @@ TEST(LiggghtsEndToEnd, AScriptOutlastingTheTimeoutSaysWhereLiggghtsWrites) {
     std::fputs("\nrun 100000000\n", f);  // minutes of LIGGGHTS before the first coupled step
     std::fclose(f);
   }
-  Scenario sc = loadScenario(dir / "scene" / "scenario.yaml", {"participants.particles.timeout=1"});
+  Scenario sc =
+      loadScenario(dir / "scene" / "scenario.yaml", {"participants.particles.timeout=17"});
   RunOptions o;
   o.quiet = true;
   o.output = dir / "run";
   Coupler c(std::move(sc), o);
   const RunResult r = c.run();
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.message.find("did not answer within 1 s at step 0"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("did not answer within 17 s at step 0"), std::string::npos) << r.message;
   const std::string liggghts_log = (o.output / "particles" / "liggghts.log").string();
   EXPECT_NE(r.message.find("LIGGGHTS' own output meanwhile: " + liggghts_log), std::string::npos)
       << r.message;
+  // While it waited, the run said who it waited for and where to look (after 15 s)
+  std::ifstream log(o.output / "cosim.log");
+  const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("waiting 15 s for the first answer of particles (its log: " +
+                      (o.output / "particles.log").string()),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("gives up after 17 s (participants.particles.timeout)"), std::string::npos)
+      << text;
   fs::remove_all(dir);
 }
