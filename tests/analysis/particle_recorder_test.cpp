@@ -453,3 +453,60 @@ TEST(ParticleRecorder, ClearErrors) {
     EXPECT_NE(std::string(e.what()).find("nothing.h5"), std::string::npos);
   }
 }
+
+namespace {
+// Rewrites dataset `name` of snapshot group `group` with `values` (a 1-D array), as a damaged
+// file or another writer would leave it.
+void rewriteDataset(const fs::path& file, const std::string& group, const std::string& name,
+                    const std::vector<double>& values) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  const hid_t g = H5Gopen2(f, ("snapshots/" + group).c_str(), H5P_DEFAULT);
+  ASSERT_GE(g, 0);
+  ASSERT_GE(H5Ldelete(g, name.c_str(), H5P_DEFAULT), 0);
+  const hsize_t n = values.size();
+  const hid_t space = H5Screate_simple(1, &n, nullptr);
+  const hid_t set =
+      H5Dcreate2(g, name.c_str(), H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  ASSERT_GE(set, 0);
+  ASSERT_GE(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+  H5Dclose(set);
+  H5Sclose(space);
+  H5Gclose(g);
+  H5Fclose(f);
+}
+}  // namespace
+
+// A damaged file (a field with fewer rows than the snapshot's ids, a NaN) is refused by the
+// reader with the snapshot, its time and the dataset: it would otherwise pass silently into every
+// statistic of a report (a NaN CV, a mean over the wrong parcels).
+TEST(ParticleRecorder, ADamagedSnapshotIsRefusedNamingItsTimeAndDataset) {
+  for (const std::string damage : {"short", "nan"}) {
+    SCOPED_TRACE(damage);
+    const TempDir dir("damaged_" + damage);
+    {
+      ParticleRecorder rec(dir, kFields, kIdentity);
+      rec.write(0.01, state({1, 2, 3, 4}, 0.01));
+      rec.write(0.02, state({1, 2, 3, 4}, 0.02));
+    }
+    if (damage == "short")
+      rewriteDataset(dir / kParticlesFile, "000001", cosim::field::coating_mass, {1e-9, 2e-9});
+    else
+      rewriteDataset(dir / kParticlesFile, "000001", cosim::field::coating_mass,
+                     {1e-9, 2e-9, std::nan(""), 4e-9});
+    ParticleFile f(dir / kParticlesFile);
+    EXPECT_EQ(f.read(0, cosim::field::coating_mass).size(), 4u);  // the intact one reads
+    try {
+      f.read(1, cosim::field::coating_mass);
+      FAIL() << "a damaged snapshot must be refused";
+    } catch (const std::runtime_error& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find("snapshot 000001 (t = 0.02 s), dataset 'coating_mass'"), std::string::npos)
+          << msg;
+      EXPECT_NE(msg.find(damage == "short" ? "has 2 rows for the 4 parcel ids"
+                                           : "value nan (row 2) is not a finite number"),
+                std::string::npos)
+          << msg;
+    }
+  }
+}
