@@ -159,7 +159,7 @@ RunResult Coupler::run() {
     const bool at_restore = !opt_.resume.empty() && (unreadable_checkpoint_ ||
                                                      (resume_accepted_ && step_ <= resumed_step_));
     if (status == "failed" && at_restore) {
-      // The resume failed before its first step: perhaps the checkpoint itself cannot be read
+      // The resume failed before it completed a step: perhaps the checkpoint itself cannot be read
       // back; the others are another way on.
       std::string others, next;
       for (const auto& c : checkpoints_->all()) {
@@ -171,7 +171,7 @@ RunResult Coupler::run() {
           resumed_from_.empty()
               ? std::string()
               : "; the resume from the checkpoint at t = " + resumed_from_.filename().string() +
-                    " s failed before its first step";
+                    " s failed before it completed a step";
       if (!others.empty())
         result.message += "; the run's other complete checkpoints: " + others +
                           ". If that checkpoint is damaged, continue from another, e.g.\n  "
