@@ -102,6 +102,13 @@ std::vector<double> readDoubles(hid_t loc, const std::string& name, std::uint64_
   return out;
 }
 
+std::uint64_t rowsOf(hid_t loc, const std::string& name, const std::string& file) {
+  int rank = 0;
+  hsize_t dims[2] = {0, 1};
+  openDataset(loc, name, file, rank, dims);
+  return dims[0];
+}
+
 std::vector<std::int64_t> readInt64s(hid_t loc, const std::string& name, const std::string& file) {
   int rank = 0;
   hsize_t dims[2] = {0, 1};

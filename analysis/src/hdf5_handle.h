@@ -60,6 +60,8 @@ void writeInt64s(hid_t loc, const std::string& name, const std::int64_t* data, s
 std::vector<double> readDoubles(hid_t loc, const std::string& name, std::uint64_t& rows,
                                 std::uint64_t& cols, const std::string& file);
 std::vector<std::int64_t> readInt64s(hid_t loc, const std::string& name, const std::string& file);
+// The number of rows (first dimension) of a dataset, without reading it.
+std::uint64_t rowsOf(hid_t loc, const std::string& name, const std::string& file);
 
 void writeAttribute(hid_t loc, const std::string& name, double value, const std::string& file);
 void writeAttribute(hid_t loc, const std::string& name, std::int64_t value,

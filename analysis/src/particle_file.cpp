@@ -2,21 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 
+#include "cosim/analysis/files.h"
+#include "cosim/util/all_finite.h"
 #include "hdf5_handle.h"
 
 namespace cosim::analysis {
-
-namespace {
-std::string formatTime(double t) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", t);
-  return buf;
-}
-}  // namespace
 
 struct ParticleFile::Impl {
   h5::Handle file;
@@ -93,30 +86,32 @@ std::vector<double> ParticleFile::read(std::size_t snapshot, const std::string& 
   }
   const SnapshotInfo& info = snapshots_.at(snapshot);
   h5::Handle g = h5::openGroup(impl_->snapshots, info.group, name);
-  const std::string where = name + ", snapshot " + info.group + " (t = " + formatTime(info.time) +
-                            " s), dataset '" + field + "'";
+  const std::string where = name + ", snapshot " + info.group +
+                            " (t = " + formatShortest(info.time) + " s), dataset '" + field + "'";
   std::uint64_t rows = 0, cols = 0;
   std::vector<double> v;
   try {
     v = h5::readDoubles(g, field, rows, cols, name);
   } catch (const std::exception& e) {
     throw std::runtime_error(where + ": " + e.what() +
-                             " (not numbers: the file is damaged or was not written by cosim)");
+                             " (the file is damaged or was not written by cosim)");
   }
   // One row per parcel of the snapshot, every value a number: anything else is a damaged file,
   // and would pass silently into every statistic of a report.
-  const std::size_t n = ids(snapshot).size();
+  const std::uint64_t n = h5::rowsOf(g, "id", name);
   if (rows != n)
     throw std::runtime_error(where + " has " + std::to_string(rows) + " rows for the " +
                              std::to_string(n) +
                              " parcel ids of the snapshot: the file is damaged or was not "
                              "written by cosim");
-  for (std::size_t k = 0; k < v.size(); ++k)
-    if (!std::isfinite(v[k]))
-      throw std::runtime_error(where + ": value " + std::to_string(v[k]) + " (row " +
-                               std::to_string(k / std::max<std::uint64_t>(cols, 1)) +
-                               ") is not a finite number; cosim never records one, so the file "
-                               "is damaged");
+  if (!util::allFinite(v)) {
+    const auto k = static_cast<std::size_t>(
+        std::find_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }) - v.begin());
+    throw std::runtime_error(where + ": value " + std::to_string(v[k]) + " (row " +
+                             std::to_string(k / std::max<std::uint64_t>(cols, 1)) +
+                             ") is not a finite number; cosim never records one, so the file "
+                             "is damaged");
+  }
   if (components != nullptr) *components = cols;
   return v;
 }

@@ -87,6 +87,17 @@ std::string text(const fs::path& file) {
 
 // Everything two runs must share: the time series without the wall-clock column, every
 // snapshot's fields, the summary's totals.
+// Two runs of the scene: `long` to 0.16 s, the reference, and `ext` to its own end (0.12 s),
+// the one a test then resumes.
+void runLongAndShort(const Workspace& w) {
+  auto longer =
+      start(w, {"run", "scene.yaml", "-o", "long", "--quiet", "--set", "coupling.end_time=0.16"},
+            "long.out");
+  ASSERT_EQ(finish(longer), 0) << text(w.dir / "long.out");
+  auto first = start(w, {"run", "scene.yaml", "-o", "ext", "--quiet"}, "ext.out");
+  ASSERT_EQ(finish(first), 0) << text(w.dir / "ext.out");
+}
+
 void expectSameRun(const fs::path& a, const fs::path& b) {
   const auto ta = analysis::readTimeSeries(a / "timeseries.csv");
   const auto tb = analysis::readTimeSeries(b / "timeseries.csv");
@@ -217,12 +228,8 @@ TEST(Restart, CtrlCStopsWithACheckpointAndSaysHowToResume) {
 
 TEST(Restart, AFinishedRunIsMadeLongerAndEqualsTheLongerRun) {
   Workspace w;
-  auto longer =
-      start(w, {"run", "scene.yaml", "-o", "long", "--quiet", "--set", "coupling.end_time=0.16"},
-            "long.out");
-  ASSERT_EQ(finish(longer), 0) << text(w.dir / "long.out");
-  auto first = start(w, {"run", "scene.yaml", "-o", "ext", "--quiet"}, "ext.out");
-  ASSERT_EQ(finish(first), 0) << text(w.dir / "ext.out");
+  runLongAndShort(w);
+  if (::testing::Test::HasFatalFailure()) return;
   auto again = start(w, {"resume", "ext", "--quiet"}, "again.out");
   EXPECT_EQ(finish(again), 2);
   EXPECT_NE(text(w.dir / "again.out").find("coupling.end_time=..."), std::string::npos)
@@ -239,12 +246,8 @@ TEST(Restart, AFinishedRunIsMadeLongerAndEqualsTheLongerRun) {
 // uninterrupted run.
 TEST(Restart, ADamagedNewestCheckpointIsNamedAndAnOlderOneContinuesTheRun) {
   Workspace w;
-  auto longer =
-      start(w, {"run", "scene.yaml", "-o", "long", "--quiet", "--set", "coupling.end_time=0.16"},
-            "long.out");
-  ASSERT_EQ(finish(longer), 0) << text(w.dir / "long.out");
-  auto first = start(w, {"run", "scene.yaml", "-o", "ext", "--quiet"}, "ext.out");
-  ASSERT_EQ(finish(first), 0) << text(w.dir / "ext.out");
+  runLongAndShort(w);
+  if (::testing::Test::HasFatalFailure()) return;
   const fs::path newest = w.dir / "ext/checkpoints/0.12";
   ASSERT_TRUE(fs::is_directory(newest));
   for (const auto& f : fs::directory_iterator(newest / "particles"))
