@@ -88,7 +88,8 @@ RunResult Coupler::run() {
     } else {
       done = resumeFromCheckpoint();
     }
-    progress.emplace(time_, sc_.coupling.end_time, opt_.quiet);
+    progress.emplace(time_, sc_.coupling.end_time, opt_.quiet, Progress::WallClock{}, stdout,
+                     sc_.coupling.start_time);
     progress_ = &*progress;  // the Courant warning ends the open progress line first
     result.steps = done;
     bool interrupted = false;

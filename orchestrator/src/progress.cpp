@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -23,9 +24,10 @@ double steadySeconds() {
 }
 }  // namespace
 
-Progress::Progress(double t0, double t1, bool quiet, WallClock clock, std::FILE* out)
+Progress::Progress(double t0, double t1, bool quiet, WallClock clock, std::FILE* out, double origin)
     : t0_(t0),
       t1_(t1),
+      origin_(std::min(origin, t0)),
       quiet_(quiet),
       clock_(clock ? std::move(clock) : WallClock(steadySeconds)),
       out_(out),
@@ -35,7 +37,7 @@ Progress::Progress(double t0, double t1, bool quiet, WallClock clock, std::FILE*
 
 void Progress::print(double t, std::uint64_t steps, std::size_t particles, bool final) {
   const double wall = clock_() - start_;
-  const double frac = (t - t0_) / (t1_ - t0_);
+  const double frac = (t - origin_) / (t1_ - origin_);
   const double steps_per_s = step_rate_.rate();
   fmt::print(out_,
              "{}t = {:.4g} / {:.4g} s ({:5.1f}%)  step {}  {} particles  wall {}  {} steps/s  ETA "

@@ -17,14 +17,18 @@ class Progress {
   // synthetic one, and a stream to print to instead of stdout.
   using WallClock = std::function<double()>;
 
-  Progress(double t0, double t1, bool quiet, WallClock clock = {}, std::FILE* out = stdout);
+  // t0: where this piece starts (a resumed run: its checkpoint's time); t1: the run's end. The
+  // percentage shown is of the run from `origin` (its coupling.start_time) to t1, so a resumed
+  // run at t = 20 of 40 s shows 50 %; rates, ETA and the log cadence are of this piece.
+  Progress(double t0, double t1, bool quiet, WallClock clock = {}, std::FILE* out = stdout,
+           double origin = 0.0);
   void update(double t, std::uint64_t steps, std::size_t particles);
   void finish(double t, std::uint64_t steps);
   void abort();
 
  private:
   void print(double t, std::uint64_t steps, std::size_t particles, bool final);
-  double t0_, t1_;
+  double t0_, t1_, origin_;
   bool quiet_;
   WallClock clock_;
   std::FILE* out_;

@@ -116,3 +116,25 @@ TEST(Progress, LogLineOfAnEightMinuteRunAnnouncesMinutesNotHours) {
             std::string::npos)
       << text;
 }
+
+// A run resumed at 20 s of its 40 s: the line says how far the run is (50 %), not how far this
+// piece of it is (0 %); the ETA is that of what remains.
+TEST(Progress, AResumedRunShowsItsShareOfTheWholeRun) {
+  double now = 0.0;
+  char* buffer = nullptr;
+  std::size_t size = 0;
+  std::FILE* out = open_memstream(&buffer, &size);
+  ASSERT_NE(out, nullptr);
+  {
+    Progress p(
+        20.0, 40.0, false, [&] { return now; }, out, 0.0);
+    for (int k = 1; k <= 3; ++k) {
+      now = 0.5 * k;
+      p.update(20.0 + 0.01 * k, static_cast<std::uint64_t>(200000 + k), 8000);
+    }
+  }
+  std::fclose(out);
+  const std::string text(buffer, size);
+  std::free(buffer);
+  EXPECT_NE(text.find("t = 20.01 / 40 s ( 50.0%)  step 200001"), std::string::npos) << text;
+}

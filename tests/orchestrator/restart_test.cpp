@@ -240,6 +240,21 @@ TEST(Restart, AFinishedRunIsMadeLongerAndEqualsTheLongerRun) {
   expectSameRun(w.dir / "long", w.dir / "ext");
 }
 
+// A run folder moved elsewhere (scratch to project space, another node's disk, a renamed
+// study) resumes in its new place: nothing in it points back to where it was run.
+TEST(Restart, AMovedRunFolderResumesWhereItNowIs) {
+  Workspace w;
+  runLongAndShort(w);
+  if (::testing::Test::HasFatalFailure()) return;
+  fs::create_directories(w.dir / "elsewhere");
+  fs::rename(w.dir / "ext", w.dir / "elsewhere" / "moved");
+  auto extend = start(
+      w, {"resume", "elsewhere/moved", "--quiet", "--set", "coupling.end_time=0.16"}, "moved.out");
+  ASSERT_EQ(finish(extend), 0) << text(w.dir / "moved.out");
+  EXPECT_FALSE(fs::exists(w.dir / "ext")) << "the resume wrote where the folder used to be";
+  expectSameRun(w.dir / "long", w.dir / "elsewhere" / "moved");
+}
+
 // The newest checkpoint damaged (its particle state emptied, as a failing disk or a careless
 // hand would leave it): the resume fails before its first step and names the other checkpoints
 // and the command; `resume --from` the older one sets the damaged one aside (kept) and gives the
