@@ -257,3 +257,29 @@ TEST(Stability, AParticleStateCheckNamesTheFirstBadValue) {
   e.field(field::voidage)[2] = 1.0 + 1e-12;  // round-off above 1 is accepted
   EXPECT_FALSE(checkParticleState(e, "fluid", 100.0, 5, 0.5));
 }
+
+// A checkpoint interval below the coupling step (a typo of 1e-9 for 1e-1) checkpoints after
+// every step: said before the run, with the count and a usable interval; no warning otherwise.
+TEST(Stability, ACheckpointIntervalBelowTheCouplingStepIsNamedBeforeTheRun) {
+  Scenario sc = baseScenario();
+  sc.coupling.dem_steps = 10;
+  sc.coupling.start_time = 0.0;
+  sc.coupling.end_time = 1.0;  // 10,000 steps of 1e-4 s
+  auto said = [&] {
+    std::string all;
+    for (const auto& l : checkBeforeRun(sc, {}, {}, grains(0.75e-3)).lines) all += l + "\n";
+    return all;
+  };
+  sc.checkpoint.interval = 1e-9;
+  const std::string text = said();
+  EXPECT_NE(text.find("warning: checkpoint.interval 1e-09 s is shorter than the coupling "
+                      "interval 0.0001 s"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("(10000 in this run)"), std::string::npos) << text;
+  EXPECT_NE(text.find("checkpoint.interval: 0.1)"), std::string::npos) << text;
+  sc.checkpoint.interval = 0.1;
+  EXPECT_EQ(said().find("checkpoint.interval"), std::string::npos) << said();
+  sc.checkpoint.interval = 0.0;
+  EXPECT_EQ(said().find("checkpoint.interval"), std::string::npos) << said();
+}
