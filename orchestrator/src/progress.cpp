@@ -24,10 +24,11 @@ double steadySeconds() {
 }
 }  // namespace
 
-Progress::Progress(double t0, double t1, bool quiet, WallClock clock, std::FILE* out, double origin)
+Progress::Progress(double t0, double t1, bool quiet, WallClock clock, std::FILE* out,
+                   std::optional<double> origin)
     : t0_(t0),
       t1_(t1),
-      origin_(std::min(origin, t0)),
+      origin_(std::min(origin.value_or(t0), t0)),
       quiet_(quiet),
       clock_(clock ? std::move(clock) : WallClock(steadySeconds)),
       out_(out),

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <functional>
+#include <optional>
 
 #include "recent_rate.h"
 
@@ -18,10 +19,11 @@ class Progress {
   using WallClock = std::function<double()>;
 
   // t0: where this piece starts (a resumed run: its checkpoint's time); t1: the run's end. The
-  // percentage shown is of the run from `origin` (its coupling.start_time) to t1, so a resumed
-  // run at t = 20 of 40 s shows 50 %; rates, ETA and the log cadence are of this piece.
+  // percentage shown is of the run from `origin` (its coupling.start_time; t0 when not given) to
+  // t1, so a resumed run at t = 20 of 40 s shows 50 %; rates, ETA and the log cadence are of
+  // this piece.
   Progress(double t0, double t1, bool quiet, WallClock clock = {}, std::FILE* out = stdout,
-           double origin = 0.0);
+           std::optional<double> origin = std::nullopt);
   void update(double t, std::uint64_t steps, std::size_t particles);
   void finish(double t, std::uint64_t steps);
   void abort();

@@ -32,14 +32,15 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/
   if (s.size() == 0)
     r.lines.push_back("warning: the particle participant reports no particles at start");
   if (sc.checkpoint.interval > 0 && sc.checkpoint.interval < sc.coupling.dt) {
-    const double steps = (sc.coupling.end_time - sc.coupling.start_time) / sc.coupling.dt;
+    const double span = sc.coupling.end_time - sc.coupling.start_time;
+    const double steps = span / sc.coupling.dt;
     r.lines.push_back("warning: checkpoint.interval " + g(sc.checkpoint.interval) +
                       " s is shorter than the coupling interval " + g(sc.coupling.dt) +
                       " s: a checkpoint of both solvers' whole state after every coupling step (" +
                       fmt::format("{:.0f}", steps) +
                       " in this run), which costs more than the steps themselves; a long run "
                       "needs one every few minutes of wall time (e.g. checkpoint.interval: " +
-                      g(std::max(100.0 * sc.coupling.dt, 0.1 * (steps * sc.coupling.dt))) + ")");
+                      g(std::max(100.0 * sc.coupling.dt, 0.1 * span)) + ")");
   }
 
   // DEM dt / Rayleigh time from the constants, where they are given

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <regex>
 #include <string>
 #include <vector>
@@ -120,21 +121,31 @@ TEST(Progress, LogLineOfAnEightMinuteRunAnnouncesMinutesNotHours) {
 // A run resumed at 20 s of its 40 s: the line says how far the run is (50 %), not how far this
 // piece of it is (0 %); the ETA is that of what remains.
 TEST(Progress, AResumedRunShowsItsShareOfTheWholeRun) {
-  double now = 0.0;
-  char* buffer = nullptr;
-  std::size_t size = 0;
-  std::FILE* out = open_memstream(&buffer, &size);
-  ASSERT_NE(out, nullptr);
-  {
-    Progress p(
-        20.0, 40.0, false, [&] { return now; }, out, 0.0);
-    for (int k = 1; k <= 3; ++k) {
-      now = 0.5 * k;
-      p.update(20.0 + 0.01 * k, static_cast<std::uint64_t>(200000 + k), 8000);
+  auto firstLine = [](std::optional<double> origin) {
+    double now = 0.0;
+    char* buffer = nullptr;
+    std::size_t size = 0;
+    std::FILE* out = open_memstream(&buffer, &size);
+    if (out == nullptr) {
+      ADD_FAILURE() << "open_memstream failed";
+      return std::string();
     }
-  }
-  std::fclose(out);
-  const std::string text(buffer, size);
-  std::free(buffer);
-  EXPECT_NE(text.find("t = 20.01 / 40 s ( 50.0%)  step 200001"), std::string::npos) << text;
+    {
+      Progress p(
+          20.0, 40.0, false, [&] { return now; }, out, origin);
+      for (int k = 1; k <= 3; ++k) {
+        now = 0.5 * k;
+        p.update(20.0 + 0.01 * k, static_cast<std::uint64_t>(200000 + k), 8000);
+      }
+    }
+    std::fclose(out);
+    const std::string text(buffer, size);
+    std::free(buffer);
+    return text;
+  };
+  const std::string whole = firstLine(0.0);
+  EXPECT_NE(whole.find("t = 20.01 / 40 s ( 50.0%)  step 200001"), std::string::npos) << whole;
+  // without an origin the share is of the piece itself: 0.01 of its 20 s
+  const std::string piece = firstLine(std::nullopt);
+  EXPECT_NE(piece.find("t = 20.01 / 40 s (  0.1%)  step 200001"), std::string::npos) << piece;
 }
