@@ -1,6 +1,9 @@
 #include "scenario.h"
 
+#include <fmt/format.h>
+
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -116,7 +119,12 @@ void applySet(YAML::Node root, const std::string& set, Context& ctx) {
     }
     chain.push_back(next);
   }
-  chain.back()[parts.back()] = parsed;
+  YAML::Node target = chain.back()[parts.back()];
+  if (parts.front() == "parameters" && parts.size() == 2 && target.IsMap() && parsed.IsScalar()) {
+    target["value"] = parsed;  // a parameter with a range: the value changes, the range stays
+  } else {
+    chain.back()[parts.back()] = parsed;
+  }
   ctx.addOverride(joinPath(parts), shown);
 }
 
@@ -172,6 +180,47 @@ void keyPaths(const YAML::Node& n, const std::string& path, std::set<std::string
   }
 }
 
+// A parameter's value, a number or one ${expression} of the parameters before it.
+double parameterValue(const YAML::Node& v, const std::string& key, const Variables& before,
+                      const Context& ctx) {
+  if (!v.IsScalar()) ctx.fail(v, key, "expected a number or ${expression}");
+  try {
+    const std::string s = v.Scalar();
+    if (s.find("${") == std::string::npos) return ctx.number(v, key);
+    if (!isSingleExpression(s)) ctx.fail(v, key, "expected one ${expression}");
+    const auto b = s.find("${");
+    return evaluate(s.substr(b + 2, s.rfind('}') - b - 2), before);
+  } catch (const ExpressionError& e) {
+    ctx.fail(v, key, e.what());
+  }
+}
+
+// A parameter is `name: value`, or `name: {value: V, min: A, max: B, doc: "..."}` when the
+// scene states the range it holds for (inclusive bounds; numbers or ${...} of earlier
+// parameters). A value outside the range is refused before anything starts, with the range and
+// what the parameter is.
+double rangedParameter(const YAML::Node& v, const std::string& key, const Variables& before,
+                       const Context& ctx) {
+  ctx.allowOnly(v, key, {"value", "min", "max", "doc"});
+  if (!v["value"]) ctx.fail(v, key + ".value", "missing; a parameter with a range needs its value");
+  const double val = parameterValue(v["value"], key + ".value", before, ctx);
+  const std::string doc = v["doc"] ? " (" + ctx.text(v["doc"], key + ".doc") + ")" : "";
+  std::optional<double> lo, hi;
+  if (v["min"]) lo = parameterValue(v["min"], key + ".min", before, ctx);
+  if (v["max"]) hi = parameterValue(v["max"], key + ".max", before, ctx);
+  const auto shown = [](double x) { return fmt::format("{:.6g}", x); };
+  if (lo && hi && *lo > *hi)
+    ctx.fail(v["min"], key + ".min",
+             "the range is empty: min " + shown(*lo) + " > max " + shown(*hi));
+  if ((lo && val < *lo) || (hi && val > *hi)) {
+    ctx.fail(v["value"], key,
+             shown(val) + " is outside [" + (lo ? shown(*lo) : std::string("-inf")) + ", " +
+                 (hi ? shown(*hi) : std::string("inf")) + "], the range the scene holds for" + doc +
+                 "; give a value within it");
+  }
+  return val;
+}
+
 // Parameters first: each may use the ones before it.
 Variables parseParameters(const YAML::Node& params, const Context& ctx) {
   Variables out;
@@ -179,24 +228,35 @@ Variables parseParameters(const YAML::Node& params, const Context& ctx) {
   if (!params.IsMap()) ctx.fail(params, "parameters", "expected a map name: value");
   for (const auto& kv : params) {
     const auto k = ctx.keyName(kv.first, "parameters");
-    const YAML::Node v = kv.second;
-    if (!v.IsScalar()) ctx.fail(v, "parameters." + k, "expected a number or ${expression}");
-    try {
-      const std::string s = v.Scalar();
-      double val = 0;
-      if (s.find("${") != std::string::npos) {
-        if (!isSingleExpression(s)) ctx.fail(v, "parameters." + k, "expected one ${expression}");
-        const auto b = s.find("${");
-        val = evaluate(s.substr(b + 2, s.rfind('}') - b - 2), out);
-      } else {
-        val = ctx.number(v, "parameters." + k);
-      }
-      out[k] = val;
-    } catch (const ExpressionError& e) {
-      ctx.fail(v, "parameters." + k, e.what());
-    }
+    const std::string key = "parameters." + k;
+    out[k] = kv.second.IsMap() ? rangedParameter(kv.second, key, out, ctx)
+                               : parameterValue(kv.second, key, out, ctx);
   }
   return out;
+}
+
+// A parameter given with its range becomes its bare value in the tree, so that
+// scenario.resolved.yaml (and what reads it) holds `name: number` throughout.
+void dropParameterRanges(YAML::Node params) {
+  if (!params.IsMap()) return;
+  for (auto kv : params)
+    if (kv.second.IsMap()) params[kv.first.Scalar()] = kv.second["value"];
+}
+
+// A scene that extends another and gives a bare value for a parameter the other file gives
+// with its range changes the value only: the range stays.
+void keepBaseRanges(const YAML::Node& base, YAML::Node own) {
+  const YAML::Node bp = base["parameters"];
+  YAML::Node op = own["parameters"];
+  if (!bp.IsMap() || !op.IsMap()) return;
+  for (auto kv : op) {
+    if (!kv.first.IsScalar() || !kv.second.IsScalar()) continue;
+    const std::string k = kv.first.Scalar();
+    if (!bp[k].IsMap()) continue;
+    YAML::Node wrapped(YAML::NodeType::Map);
+    wrapped["value"] = kv.second;
+    op[k] = wrapped;
+  }
 }
 
 // extends: another scenario file this one only changes (e.g. a size variant of a scene).
@@ -218,6 +278,7 @@ YAML::Node applyExtends(YAML::Node root, const fs::path& origin, Context& ctx) {
     ctx.fail(root["extends"], "extends",
              "'" + base.string() + "' extends another file itself; one level only");
   root.remove("extends");
+  keepBaseRanges(b, root);
   std::set<std::string> base_keys, own, own_values;
   keyPaths(b, "", base_keys, nullptr);
   keyPaths(root, "", own, &own_values);
@@ -241,6 +302,7 @@ Scenario parseTree(YAML::Node root, const fs::path& origin, const std::vector<st
 
   reading = "parameters";
   sc.parameters = parseParameters(root["parameters"], ctx);
+  dropParameterRanges(root["parameters"]);
   reading = "name";
   sc.name =
       root["name"] ? ctx.text(root["name"], "name") : origin.parent_path().filename().string();

@@ -464,3 +464,110 @@ TEST(ScenarioErrors, ExtendedSceneErrorsNameTheFileThatGaveTheKey) {
   EXPECT_EQ(msg.rfind(small.string() + ":5: coupling.dem_steps: ", 0), 0u) << msg;
   fs::remove_all(dir);
 }
+
+// kGood with its flow given with a range: 0 to 300 L/min, the cap
+// from an earlier parameter (3e6 d), so that the range can follow the scene's other choices.
+std::string rangedScene(const std::string& flow = "50", const std::string& dcap = "${3e6 * d}") {
+  std::string s = kGood;
+  const std::string from = "  flow_lpm: 50\n";
+  s.replace(s.find(from), from.size(),
+            "  flow_lpm: {value: " + flow + ", min: 0, max: \"" + dcap +
+                "\", doc: \"fluidization flow [L/min]\"}\n");
+  return s;
+}
+
+TEST(Scenario, AParameterWithARangeGivesItsValueAndTheResolvedSceneHoldsTheBareNumber) {
+  Scenario sc = parse(rangedScene());
+  EXPECT_DOUBLE_EQ(sc.parameters.at("flow_lpm"), 50.0);
+  EXPECT_NEAR(sc.parameters.at("u"), 50.0 / 60000.0 / 0.01, 1e-15);
+  ASSERT_TRUE(sc.resolved["parameters"]["flow_lpm"].IsScalar());
+  EXPECT_EQ(sc.resolved["parameters"]["flow_lpm"].Scalar(), "50");
+  // --set of a bare number changes the value and keeps the range; the bounds are inclusive.
+  sc = parse(rangedScene(), {"flow_lpm=0"});
+  EXPECT_DOUBLE_EQ(sc.parameters.at("flow_lpm"), 0.0);
+  sc = parse(rangedScene(), {"flow_lpm=1"});
+  EXPECT_NEAR(sc.parameters.at("u"), 1.0 / 60000.0 / 0.01, 1e-15);
+  EXPECT_DOUBLE_EQ(parse(rangedScene(), {"flow_lpm=1.0"}).parameters.at("flow_lpm"), 1.0);
+  // The cap is 3e6 d = 300 L/min at d = 1e-4: 300 is in, and the cap follows d.
+  EXPECT_DOUBLE_EQ(parse(rangedScene("300"), {}).parameters.at("flow_lpm"), 300.0);
+  EXPECT_DOUBLE_EQ(parse(rangedScene("600"), {"d=2e-4"}).parameters.at("flow_lpm"), 600.0);
+}
+
+TEST(ScenarioErrors, AParameterOutsideItsRangeIsRefusedWithTheRangeAndWhereItCameFrom) {
+  // From the command line: the override is blamed, with the range and what the parameter is.
+  try {
+    parse(rangedScene(), {"flow_lpm=-5"});
+    ADD_FAILURE() << "accepted flow_lpm=-5";
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(
+        msg.rfind("command line --set flow_lpm=-5: parameters.flow_lpm: -5 is outside [0, 300]", 0),
+        0u)
+        << msg;
+    EXPECT_NE(msg.find("fluidization flow [L/min]"), std::string::npos) << msg;
+  }
+  // Just above the cap (300 L/min at d = 1e-4) is refused, as is 200 when d halves the cap.
+  expectError(rangedScene("300.0001"), {"bad.yaml:5:", "parameters.flow_lpm", "outside [0, 300]"});
+  expectError(rangedScene("200"), {"parameters.flow_lpm", "outside [0, 150]", "--set d=5e-5"},
+              {"d=5e-5"});
+  // The range's own mistakes.
+  expectError(rangedScene("1", "-1"),
+              {"parameters.flow_lpm.min", "range is empty", "min 0 > max -1"});
+  expectError(rangedScene("1", "${q}"), {"parameters.flow_lpm.max", "unknown parameter 'q'"});
+  expectError(rangedScene("abc"), {"parameters.flow_lpm.value", "expected a number, got 'abc'"});
+  expectError(mutate("  flow_lpm: 50\n", "  flow_lpm: {min: 0}\n"),
+              {"parameters.flow_lpm.value", "missing"});
+  expectError(mutate("  flow_lpm: 50\n", "  flow_lpm: {value: 50, minimum: 0}\n"),
+              {"parameters.flow_lpm.minimum", "unknown key", "value, min, max, doc"});
+}
+
+TEST(Scenario, AnExtendingSceneChangesTheValueOfARangedParameterAndKeepsItsRange) {
+  const fs::path dir = fs::temp_directory_path() / ("cosim-ranges-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "base.yaml") << rangedScene();
+  std::ofstream(dir / "small.yaml") << "extends: base.yaml\nparameters:\n  flow_lpm: 0.5\n";
+  std::ofstream(dir / "big.yaml") << "extends: base.yaml\nparameters:\n  flow_lpm: 400\n";
+  const Scenario small = loadScenario(dir / "small.yaml");
+  EXPECT_DOUBLE_EQ(small.parameters.at("flow_lpm"), 0.5);
+  EXPECT_EQ(small.resolved["parameters"]["flow_lpm"].Scalar(), "0.5");
+  try {
+    loadScenario(dir / "big.yaml");
+    ADD_FAILURE() << "accepted flow_lpm 400 above the base's cap of 300";
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(
+        msg.rfind((dir / "big.yaml").string() + ":3: parameters.flow_lpm: 400 is outside [0, 300]",
+                  0),
+        0u)
+        << msg;
+  }
+  fs::remove_all(dir);
+}
+
+// The coating bed states the ranges its mesh and models hold for: a careless --set is refused
+// before anything starts, in every size of the scene (the sizes extend it).
+TEST(ScenarioErrors, TheCoatingBedRefusesValuesOutsideItsRanges) {
+  const fs::path bed = fs::path(COSIM_SOURCE_DIR) / "scenarios" / "plasma-coating-bed";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"flow_lpm=-5", "outside [0, inf]"},
+      {"cg=0.5", "outside [1, 13.3333]"},  // a parcel is at least one real grain
+      {"cg=14", "outside [1, 13.3333]"},   // and at most one 4 mm cell across (300 um grains)
+      {"n=0.1", "outside [0.004, "},       // wider than the vessel less a cell on each side
+      {"Y_nozzle=1.5", "outside [0, 1]"},
+      {"n_grains=0", "outside [1, inf]"},
+      {"insert_seed=7", "outside [10001, inf]"}};
+  for (const char* size : {"scenario.yaml", "ci.yaml", "study.yaml", "paper.yaml"}) {
+    EXPECT_NO_THROW(loadScenario(bed / size)) << size;
+    for (const auto& [set, range] : cases) {
+      try {
+        loadScenario(bed / size, {set});
+        ADD_FAILURE() << size << " accepted --set " << set;
+      } catch (const ScenarioError& e) {
+        const std::string msg = e.what();
+        EXPECT_EQ(msg.rfind("command line --set " + set + ": parameters.", 0), 0u) << msg;
+        EXPECT_NE(msg.find(range), std::string::npos) << msg;
+      }
+    }
+  }
+}
