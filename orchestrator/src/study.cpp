@@ -293,11 +293,24 @@ int runStudy(const StudyOptions& opt) {
         ": observables: the scenario defines no observables, so a study has nothing to measure; "
         "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
   }
+
+  std::vector<Variant> variants = combinations(opt);
+  // Every variant's scene is read before the first one runs: a value outside a parameter's range
+  // in the last of four hour-long variants is refused now, not after three of them.
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    std::vector<std::string> sets = opt.sets;
+    sets.insert(sets.end(), variants[i].sets.begin(), variants[i].sets.end());
+    try {
+      loadScenario(opt.scenario, sets, opt.unsets);
+    } catch (const ScenarioError& e) {
+      throw ScenarioError(fmt::format("study variant {} of {} ({}): {}", i + 1, variants.size(),
+                                      variants[i].label, e.what()));
+    }
+  }
   const fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study")
                                              : fs::absolute(opt.output);
   fs::create_directories(folder);
 
-  std::vector<Variant> variants = combinations(opt);
   for (std::size_t i = 0; i < variants.size(); ++i) {
     auto& v = variants[i];
     v.folder = folder / fmt::format("variant-{:02d}", i);

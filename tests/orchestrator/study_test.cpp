@@ -12,6 +12,7 @@
 
 #include "cosim/analysis/report.h"
 #include "observables.h"
+#include "scenario.h"
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
@@ -177,4 +178,28 @@ TEST(Study, ShellSyntaxInTheStudyFolderIsNeverRun) {
   EXPECT_TRUE(fs::exists(folder / "error_vs_runtime.png")) << "the plot script got the folder "
                                                               "name verbatim";
   fs::remove_all(sandbox);
+}
+
+// A study reads every variant's scene before the first runs: a bad last value is refused at once,
+// naming the variant, and no run (nor the study folder) is made.
+TEST(Study, AVariantOutsideTheSceneIsRefusedBeforeAnyRuns) {
+  StudyOptions o = settlingSphereStudy("cosim-study-refused-");
+  o.sets = {"d={value: 5.0e-5, min: 1.0e-6, max: 1.0e-3, doc: \"particle diameter [m]\"}"};
+  o.vary = {parseVary("d=5e-5,2e-3")};
+  try {
+    runStudy(o);
+    ADD_FAILURE() << "the study ran with d = 2e-3 outside [1e-6, 1e-3]";
+  } catch (const ScenarioError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("study variant 2 of 2 (d=2e-3): command line --set d=2e-3: parameters.d: "
+                        "0.002 is outside [1e-06, 0.001]",
+                        0),
+              0u)
+        << msg;
+  }
+  EXPECT_FALSE(fs::exists(o.output));
+  o.sets.clear();
+  o.vary = {parseVary("coupling.dt=1e-4,-1")};
+  EXPECT_THROW(runStudy(o), ScenarioError);
+  EXPECT_FALSE(fs::exists(o.output));
 }
