@@ -330,7 +330,14 @@ void Coupler::reportInitialState() {
   initial_count_ = state_.size();
   record_.snapshot(time_, state_, true);
   if (auto wrong = checkParticleCount(sc_, state_)) throw RunFailure("particles", *wrong);
-  refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_, reported_dt_over_rayleigh_));
+  StabilityReport report = checkBeforeRun(sc_, models_, plan_, state_, reported_dt_over_rayleigh_);
+  std::error_code ec;
+  const auto space = std::filesystem::space(record_.folder(), ec);
+  if (!ec) {
+    if (auto w = checkDiskSpace(sc_, plan_, state_, time_, static_cast<double>(space.available)))
+      report.lines.push_back(*w);
+  }
+  refuseOrWarn(report);
 }
 
 void Coupler::beginStep(std::uint64_t k) {

@@ -61,6 +61,18 @@ std::optional<std::string> checkParticleState(const link::ParticleData& state,
 std::optional<std::string> checkParticleCount(const Scenario& sc,
                                               const link::ParticleData& initial_state);
 
+// What particles.h5 grows by from t = `from` to the run's end [bytes]: one snapshot per
+// output.interval (every coupling step when it is shorter), each the ids and the recorded fields
+// (plan.particles_send) of `state`'s particles as doubles, plus a few kB of groups and attributes.
+double particleOutputBytes(const Scenario& sc, const Plan& plan, const link::ParticleData& state,
+                           double from);
+// A warning when that growth exceeds 80 % of `available` bytes on the run folder's disk (the run
+// would stop with the disk full, keeping what it wrote), with an output.interval that would fit;
+// nullopt when it fits.
+std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
+                                          const link::ParticleData& state, double from,
+                                          double available);
+
 // Per-step monitors that need memory across steps.
 class StepMonitor {
  public:

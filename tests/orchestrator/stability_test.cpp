@@ -283,3 +283,37 @@ TEST(Stability, ACheckpointIntervalBelowTheCouplingStepIsNamedBeforeTheRun) {
   sc.checkpoint.interval = 0.0;
   EXPECT_EQ(said().find("checkpoint.interval"), std::string::npos) << said();
 }
+
+// particles.h5's growth, by hand: 1,000 particles with position (3) and radius (1) recorded, the
+// ids beside them: 5,000 doubles = 40,000 bytes plus 4,096 of group and attributes a snapshot.
+// 1 s at output.interval 0.01 s: 101 snapshots (the one at the start too) = 4,453,696 bytes;
+// from t = 0.5 s (a resumed run), 51 = 2,248,896. An interval below the coupling step records
+// every step (10,001 snapshots).
+TEST(Stability, AnOutputLargerThanTheFreeDiskIsNamedBeforeTheRunWithAnIntervalThatFits) {
+  Scenario sc = baseScenario();
+  sc.coupling.start_time = 0.0;
+  sc.coupling.end_time = 1.0;
+  sc.output.interval = 0.01;
+  Plan plan;
+  plan.particles_send = {field::position, field::radius, "not_reported"};
+  link::ParticleData s;
+  for (int i = 1; i <= 1000; ++i) s.ids.push_back(i);
+  s.field(field::position).assign(3000, 0.0);
+  s.field(field::radius).assign(1000, 1e-3);
+  s.field(field::velocity).assign(3000, 0.0);  // reported, not recorded: not counted
+  EXPECT_DOUBLE_EQ(particleOutputBytes(sc, plan, s, 0.0), 101 * 44096.0);
+  EXPECT_DOUBLE_EQ(particleOutputBytes(sc, plan, s, 0.5), 51 * 44096.0);
+  EXPECT_FALSE(checkDiskSpace(sc, plan, s, 0.0, 1e9));                  // 4.5 MB of 1 GB
+  EXPECT_FALSE(checkDiskSpace(sc, plan, s, 0.0, 101 * 44096.0 / 0.8));  // just fits
+  const auto w = checkDiskSpace(sc, plan, s, 0.0, 1e6);
+  ASSERT_TRUE(w);
+  EXPECT_NE(w->find("warning: particles.h5 will grow by about 0.00445 GB over the run (101 "
+                    "snapshots of 1000 particles, output.interval 0.01 s), but only 0.001 GB"),
+            std::string::npos)
+      << *w;
+  // half of 1 MB is 1 / 8.91 of that: one snapshot every 8.91 x 0.01 s
+  EXPECT_NE(w->find("output.interval: 0.0891 would take half of the free space"), std::string::npos)
+      << *w;
+  sc.output.interval = 0.0;
+  EXPECT_DOUBLE_EQ(particleOutputBytes(sc, plan, s, 0.0), 10001 * 44096.0);
+}

@@ -46,7 +46,7 @@ CouplingSection parseCoupling(const YAML::Node& coupling, const Context& ctx) {
     double n = ctx.number(coupling["dem_steps"], "coupling.dem_steps");
     if (n < 1 || n != std::floor(n) || n > 1e7) {
       ctx.fail(coupling["dem_steps"], "coupling.dem_steps",
-               "expected a whole number of DEM steps per coupling interval (>= 1), got " +
+               "expected a whole number of DEM steps per coupling interval, 1 to 1e7, got " +
                    coupling["dem_steps"].Scalar());
     }
     c.dem_steps = static_cast<unsigned>(n);
