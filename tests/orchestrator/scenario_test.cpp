@@ -555,7 +555,8 @@ TEST(ScenarioErrors, TheCoatingBedRefusesValuesOutsideItsRanges) {
       {"cg=14", "outside [1, 13.3333]"},   // and at most one 4 mm cell across (300 um grains)
       {"n=0.1", "outside [0.004, "},       // wider than the vessel less a cell on each side
       {"Y_nozzle=1.5", "outside [0, 1]"},
-      {"n_grains=0", "outside [1, inf]"},
+      {"n_grains=0", "outside [1, "},
+      {"n_grains=1e6", "outside [1, "},  // more than 0.6 of the vessel above the nozzle holds
       {"insert_seed=7", "outside [10001, inf]"}};
   for (const char* size : {"scenario.yaml", "ci.yaml", "study.yaml", "paper.yaml"}) {
     EXPECT_NO_THROW(loadScenario(bed / size)) << size;
