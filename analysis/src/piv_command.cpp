@@ -49,6 +49,12 @@ double pick(const std::optional<double>& given, const std::map<std::string, doub
   if (given) return *given;
   const auto it = scene.find(parameter);
   if (it != scene.end()) return it->second;
+  if (!fs::exists(run / "scenario.resolved.yaml")) {
+    throw std::runtime_error(fmt::format(
+        "cosim piv: {} holds no scenario.resolved.yaml, so it is not a folder `cosim run` wrote "
+        "(give the run's folder), or give {} on the command line",
+        run.string(), option));
+  }
   throw std::runtime_error(fmt::format(
       "cosim piv: {} gives no scene parameter '{}': give {} on the command line (or add the "
       "parameter to the scene)",

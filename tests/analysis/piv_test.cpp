@@ -246,6 +246,8 @@ TEST(PivCommand, TakesTheWindowAndTheDiscardedTimeFromTheScene) {
     FAIL() << "a run without a PIV window was accepted";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("--wall-y"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("holds no scenario.resolved.yaml"), std::string::npos)
+        << e.what();
   }
 }
 
