@@ -185,7 +185,7 @@ double parameterValue(const YAML::Node& v, const std::string& key, const Variabl
                       const Context& ctx) {
   if (!v.IsScalar()) ctx.fail(v, key, "expected a number or ${expression}");
   try {
-    const std::string s = v.Scalar();
+    const std::string& s = v.Scalar();
     if (s.find("${") == std::string::npos) return ctx.number(v, key);
     if (!isSingleExpression(s)) ctx.fail(v, key, "expected one ${expression}");
     const auto b = s.find("${");
