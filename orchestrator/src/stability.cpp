@@ -21,15 +21,22 @@ namespace {
 std::string g(double v) { return fmt::format("{:.3g}", v); }
 }  // namespace
 
+namespace {
+// Snapshots from t = `from` to the run's end, the one at `from` included: one per output.interval,
+// every coupling step when that is shorter.
+double snapshotsLeft(const Scenario& sc, double from) {
+  const double every = std::max(sc.output.interval, sc.coupling.dt);
+  return std::floor(std::max(0.0, sc.coupling.end_time - from) / every) + 1;
+}
+}  // namespace
+
 double particleOutputBytes(const Scenario& sc, const Plan& plan, const link::ParticleData& state,
                            double from) {
   double values = static_cast<double>(state.size());  // the ids
   for (const auto& name : plan.particles_send)
     if (state.has(name)) values += static_cast<double>(state.get(name).size());
   constexpr double kSnapshotOverhead = 4096.0;  // group, attributes, descriptions [bytes]
-  const double every = std::max(sc.output.interval, sc.coupling.dt);
-  const double snapshots = std::floor(std::max(0.0, sc.coupling.end_time - from) / every) + 1;
-  return snapshots * (8.0 * values + kSnapshotOverhead);
+  return snapshotsLeft(sc, from) * (8.0 * values + kSnapshotOverhead);
 }
 
 std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
@@ -42,9 +49,9 @@ std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
   const double fits = every * bytes / (0.5 * std::max(available, 1.0));
   const auto gb = [](double b) { return fmt::format("{:.3g} GB", b / 1e9); };
   return "warning: particles.h5 will grow by about " + gb(bytes) + " over the run (" +
-         fmt::format("{:.0f}", std::floor(std::max(0.0, sc.coupling.end_time - from) / every) + 1) +
-         " snapshots of " + std::to_string(state.size()) + " particles, output.interval " +
-         g(sc.output.interval) + " s), but only " + gb(available) +
+         fmt::format("{:.0f}", snapshotsLeft(sc, from)) + " snapshots of " +
+         std::to_string(state.size()) + " particles, output.interval " + g(sc.output.interval) +
+         " s), but only " + gb(available) +
          " are free on the run folder's disk: the run would stop when the disk is full (what it "
          "wrote stays readable; with checkpoint.interval set it resumes from the last one); free "
          "space, or record less often (output.interval: " +

@@ -161,11 +161,16 @@ fs::path keepAside(const fs::path& folder) {
   }
 }
 
-// Runs one variant in its folder, or reads it back when it completed before with the same scene.
-void runVariant(const StudyOptions& opt, Variant& v) {
+// The variant's scene: the study's --set overrides, then the variant's own values.
+Scenario variantScene(const StudyOptions& opt, const Variant& v) {
   std::vector<std::string> sets = opt.sets;
   sets.insert(sets.end(), v.sets.begin(), v.sets.end());
-  Scenario sc = loadScenario(opt.scenario, sets, opt.unsets);
+  return loadScenario(opt.scenario, sets, opt.unsets);
+}
+
+// Runs one variant in its folder, or reads it back when it completed before with the same scene.
+void runVariant(const StudyOptions& opt, Variant& v) {
+  Scenario sc = variantScene(opt, v);
   if (!opt.rerun && reuseCompleted(v.folder, sc, v)) {
     if (!opt.quiet) printOutcome(v, "done before (" + v.folder.string() + "): ");
     return;
@@ -298,10 +303,8 @@ int runStudy(const StudyOptions& opt) {
   // Every variant's scene is read before the first one runs: a value outside a parameter's range
   // in the last of four hour-long variants is refused now, not after three of them.
   for (std::size_t i = 0; i < variants.size(); ++i) {
-    std::vector<std::string> sets = opt.sets;
-    sets.insert(sets.end(), variants[i].sets.begin(), variants[i].sets.end());
     try {
-      loadScenario(opt.scenario, sets, opt.unsets);
+      variantScene(opt, variants[i]);
     } catch (const ScenarioError& e) {
       throw ScenarioError(fmt::format("study variant {} of {} ({}): {}", i + 1, variants.size(),
                                       variants[i].label, e.what()));
