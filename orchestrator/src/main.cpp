@@ -18,6 +18,7 @@
 #include "launchers.h"
 #include "link_security.h"
 #include "plan.h"
+#include "run_pack.h"
 #include "scenario.h"
 #include "study.h"
 
@@ -34,29 +35,6 @@ namespace {
 void onSignal(int sig) {
   g_stop_signal = sig;
   ++g_stop_count;
-}
-
-// The scene a run folder was run with: its scenario.resolved.yaml, read with the original
-// scenario file as origin (relative paths in it are relative to that file's folder).
-Scenario loadRunScene(const std::filesystem::path& run, const std::vector<std::string>& sets) {
-  const auto file = run / "scenario.resolved.yaml";
-  std::ifstream in(file);
-  if (!in)
-    throw ScenarioError("cosim resume: " + run.string() +
-                        " is not a run folder (no scenario.resolved.yaml in it)");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string first;
-  std::getline(text, first);
-  const std::string prefix = "# ", suffix = " as run";
-  const auto end = first.find(suffix);
-  if (first.rfind(prefix, 0) != 0 || end == std::string::npos)
-    throw ScenarioError(file.string() +
-                        ": its first line must name the scenario it was made "
-                        "from ('# <file> as run ...'); was it edited?");
-  text.clear();
-  text.seekg(0);
-  return parseScenario(text.str(), first.substr(prefix.size(), end - prefix.size()), sets);
 }
 
 std::string join(const std::vector<std::string>& v) {
@@ -160,6 +138,15 @@ int main(int argc, char** argv) {
       "--from", resume_from,
       "continue from the checkpoint at this time [s] instead of the newest (ls RUN/checkpoints); "
       "newer ones are moved to RUN/checkpoints/superseded/");
+
+  auto* pack = app.add_subcommand(
+      "pack",
+      "Copy a stopped run to DEST so that it continues there (another machine or disk): the "
+      "scene, the records and the newest checkpoint; logs, older checkpoints, the fluid's time "
+      "folders and the particles' dumps left out. Then: cosim resume DEST");
+  std::string pack_run, pack_dest;
+  pack->add_option("run", pack_run, "run folder (stopped: Ctrl-C writes a checkpoint)")->required();
+  pack->add_option("dest", pack_dest, "new folder for the copy (must not exist)")->required();
 
   auto* val = app.add_subcommand(
       "validate", "Check a scenario and show what it would start and send, without running");
@@ -375,6 +362,24 @@ int main(int argc, char** argv) {
       return cosim::analysis::runPivCompareCommand(pivc_opt, std::cout);
     }
 #endif
+    if (*pack) {
+      PackResult p;
+      try {
+        p = packRun(pack_run, pack_dest, loadRunScene(pack_run));
+      } catch (const std::exception& e) {
+        std::cerr << "cosim pack: " << e.what() << "\n";
+        return 1;
+      }
+      std::cout << "cosim: packed " << pack_run << " into " << pack_dest << ": "
+                << byteText(p.copied_bytes) << " in " << p.copied_files
+                << " files, continuing from the checkpoint at t = "
+                << p.checkpoint.filename().string() << " s\n";
+      for (const auto& [kind, bytes] : p.left_out)
+        std::cout << "  left out " << kind << ": " << byteText(bytes) << "\n";
+      std::cout << "  continue it with: cosim resume " << pack_dest
+                << " (the same cosim and solvers; add --set coupling.end_time=T to go further)\n";
+      return 0;
+    }
     if (*resume) {
       Scenario sc = loadRunScene(resume_folder, sets);
       std::signal(SIGINT, onSignal);

@@ -28,6 +28,21 @@ RunRecord::RunRecord(const Scenario& sc, const Plan& plan, RunLog& log)
 
 RunRecord::~RunRecord() { release(); }
 
+// A live run holds the lock file: the kernel drops a run's flock when the run ends in any way
+// (kill -9 included), so a lock left behind by a dead run is free.
+std::optional<std::string> runFolderInUse(const fs::path& folder) {
+  const fs::path lock = folder / ".cosim-run.lock";
+  const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);
+  if (!held) return std::nullopt;
+  std::ifstream in(lock);
+  long pid = 0;
+  in >> pid;
+  return pid > 0 ? "pid " + std::to_string(pid) : "pid unknown";
+}
+
 namespace {
 
 constexpr const char* kLockFile = ".cosim-run.lock";
@@ -40,15 +55,7 @@ long lockHolder(const fs::path& lock) {
   return pid;
 }
 
-// Whether a live run holds the lock file: the kernel drops a run's flock when the run ends in
-// any way (kill -9 included), so a lock left behind by a dead run is free.
-bool lockIsHeld(const fs::path& lock) {
-  const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return false;
-  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
-  ::close(fd);
-  return held;
-}
+bool lockIsHeld(const fs::path& lock) { return runFolderInUse(lock.parent_path()).has_value(); }
 
 std::string holderText(const fs::path& lock) {
   const long pid = lockHolder(lock);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,9 @@ namespace cosim::orchestrator {
 
 // A time-series row by column name; a column without a value is recorded as 0.
 using Row = std::map<std::string, double>;
+
+// Whether a run that is alive holds `folder` (its lock file): the holder ("pid 1234") if so.
+std::optional<std::string> runFolderInUse(const std::filesystem::path& folder);
 
 class RunRecord {
  public:

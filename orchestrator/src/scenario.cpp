@@ -380,4 +380,22 @@ Scenario loadScenario(const fs::path& file, const std::vector<std::string>& sets
   return parseScenario(readScenarioFile(path), path, sets, unsets);
 }
 
+Scenario loadRunScene(const fs::path& run, const std::vector<std::string>& sets) {
+  const auto file = run / "scenario.resolved.yaml";
+  std::ifstream in(file);
+  if (!in)
+    throw ScenarioError(run.string() + " is not a run folder (no scenario.resolved.yaml in it)");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string first;
+  std::getline(text, first);
+  const std::string prefix = "# ", suffix = " as run";
+  const auto end = first.find(suffix);
+  if (first.rfind(prefix, 0) != 0 || end == std::string::npos)
+    throw ScenarioError(file.string() +
+                        ": its first line must name the scenario it was made "
+                        "from ('# <file> as run ...'); was it edited?");
+  return parseScenario(text.str(), first.substr(prefix.size(), end - prefix.size()), sets);
+}
+
 }  // namespace cosim::orchestrator

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "expression.h"
+#include "scenario/checkpoint_section.h"
 #include "scenario/checks_section.h"
 #include "scenario/constants_section.h"
-#include "scenario/checkpoint_section.h"
 #include "scenario/context.h"
 #include "scenario/coupling_section.h"
 #include "scenario/models_section.h"
@@ -56,5 +56,10 @@ Scenario loadScenario(const std::filesystem::path& file, const std::vector<std::
 Scenario parseScenario(const std::string& text, const std::filesystem::path& origin,
                        const std::vector<std::string>& sets = {},
                        const std::vector<std::string>& unsets = {});
+
+// The scene a run folder was run with: RUN/scenario.resolved.yaml, read with the original
+// scenario file as origin (relative paths in it are relative to that file's folder), `sets` on
+// top (cosim resume, cosim pack).
+Scenario loadRunScene(const std::filesystem::path& run, const std::vector<std::string>& sets = {});
 
 }  // namespace cosim::orchestrator

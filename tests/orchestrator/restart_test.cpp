@@ -600,3 +600,72 @@ TEST(RunFolder, AnExistingOutputFolderIsRefusedWithWhatToDo) {
   EXPECT_NE(text(w.dir / "file.out").find("exists and is not a folder"), std::string::npos)
       << text(w.dir / "file.out");
 }
+
+// cosim pack (docs/restarts.md, "Moving a run"): a copy of the stopped run, resumed where it now
+// is, gives the run that never stopped; the run folder itself is left as it was.
+TEST(Pack, APackedRunResumesElsewhereAsTheUninterruptedRun) {
+  Workspace w;
+  runLongAndShort(w);
+  if (::testing::Test::HasFatalFailure()) return;
+  const std::string before = text(w.dir / "ext" / "timeseries.csv");
+  auto pack = start(w, {"pack", "ext", "elsewhere/packed"}, "pack.out");
+  ASSERT_EQ(finish(pack), 0) << text(w.dir / "pack.out");
+  const std::string out = text(w.dir / "pack.out");
+  EXPECT_NE(out.find("continuing from the checkpoint at t = 0.12 s"), std::string::npos) << out;
+  EXPECT_NE(out.find("left out older checkpoints"), std::string::npos) << out;
+  EXPECT_NE(out.find("cosim resume elsewhere/packed"), std::string::npos) << out;
+  // only the newest checkpoint goes along (keep: 2 leaves 0.1 and 0.12 in the run)
+  EXPECT_TRUE(fs::exists(w.dir / "elsewhere/packed/checkpoints/0.12/orchestrator.json"));
+  EXPECT_FALSE(fs::exists(w.dir / "elsewhere/packed/checkpoints/0.1"));
+  EXPECT_FALSE(fs::exists(w.dir / "elsewhere/packed/.cosim-run.lock"));
+  EXPECT_TRUE(fs::exists(w.dir / "ext/checkpoints/0.1")) << "the run folder was changed";
+  EXPECT_EQ(text(w.dir / "ext" / "timeseries.csv"), before);
+  auto extend = start(
+      w, {"resume", "elsewhere/packed", "--quiet", "--set", "coupling.end_time=0.16"}, "r.out");
+  ASSERT_EQ(finish(extend), 0) << text(w.dir / "r.out");
+  expectSameRun(w.dir / "long", w.dir / "elsewhere" / "packed");
+}
+
+// What pack refuses, each with what to do, and nothing written: a destination that exists, one
+// inside the run, a folder that is not a run, a run without a checkpoint, a run still going.
+TEST(Pack, RefusalsNameTheReasonAndWriteNothing) {
+  Workspace w;
+  auto first = start(w, {"run", "scene.yaml", "-o", "ext", "--quiet"}, "ext.out");
+  ASSERT_EQ(finish(first), 0) << text(w.dir / "ext.out");
+  fs::create_directories(w.dir / "full");
+  std::ofstream(w.dir / "full" / "keep.txt") << "mine\n";
+  auto refused = [&](const std::vector<std::string>& args, const std::string& says) {
+    auto p = start(w, args, "refused.out");
+    EXPECT_EQ(finish(p), 1);
+    const std::string out = text(w.dir / "refused.out");
+    EXPECT_NE(out.find(says), std::string::npos) << out;
+  };
+  refused({"pack", "ext", "full"}, "full already exists and is not an empty folder");
+  EXPECT_EQ(text(w.dir / "full" / "keep.txt"), "mine\n");
+  refused({"pack", "ext", "ext/inside"}, "lies inside the run folder");
+  EXPECT_FALSE(fs::exists(w.dir / "ext" / "inside"));
+  refused({"pack", "full", "copy"}, "is not a run folder");
+  auto plain =
+      start(w, {"run", "scene.yaml", "-o", "plain", "--quiet", "--set", "checkpoint.interval=0"},
+            "plain.out");
+  ASSERT_EQ(finish(plain), 0) << text(w.dir / "plain.out");
+  refused({"pack", "plain", "copy"}, "holds no complete checkpoint");
+  EXPECT_FALSE(fs::exists(w.dir / "copy"));
+  // a run still going (its lock held): a slow one, packed while it runs
+  auto slow =
+      start(w, {"run", "scene.yaml", "-o", "slow", "--quiet", "--set", "coupling.end_time=1e3"},
+            "slow.out");
+  const auto written = [&] {
+    std::error_code ec;
+    return !fs::is_empty(w.dir / "slow/checkpoints", ec) && !ec;
+  };
+  for (int i = 0; i < 400 && !written(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  refused({"pack", "slow", "copy"}, "is writing into slow now: stop it first");
+  EXPECT_FALSE(fs::exists(w.dir / "copy"));
+  ::kill(slow.pid(), SIGKILL);
+  finish(slow);
+  for (const auto& e : fs::directory_iterator(w.dir))
+    EXPECT_EQ(e.path().filename().string().rfind(".partial-", 0), std::string::npos)
+        << "a partial copy was left: " << e.path();
+}

@@ -23,6 +23,7 @@
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/fields.h"
 #include "coupler.h"
+#include "run_pack.h"
 #include "scenario.h"
 
 using namespace cosim::orchestrator;
@@ -290,6 +291,66 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   std::map<long long, std::vector<double>> dumped;
   EXPECT_EQ(dumpStep(base / "cut/particles/post/grains_10000.dump", dumped), 10000);
   EXPECT_EQ(dumped.size(), b.size());
+  fs::remove_all(base);
+}
+
+// cosim pack with the real solvers (docs/restarts.md, "Moving a run"): the bed run to 0.02 s with
+// checkpoints every 0.01 s, packed (its fluid time folders, dumps and logs left out), and both the
+// copy and the run itself resumed to 0.03 s from that checkpoint: the copy continues exactly as
+// the run does (the same time series rows to the bit, the same final particle state), so what
+// pack leaves out is not needed to continue.
+TEST(PlasmaCoatingCi, APackedCopyContinuesAsTheRunItself) {
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-plasma-pack-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml";
+  const std::vector<std::string> sets = {"checkpoint.interval=0.01", "coupling.end_time=0.02",
+                                         "coupling.scheme=parallel", "write_interval=0.01"};
+  RunOptions o;
+  o.quiet = true;
+  o.output = base / "run";
+  RunResult first = Coupler(loadScenario(scene, sets), o).run();
+  ASSERT_EQ(first.exit_code, 0) << first.message;
+  ASSERT_TRUE(fs::exists(base / "run/fluid/0.01")) << "the fluid writes a time folder at 0.01 s";
+  ASSERT_FALSE(dumpFiles(base / "run").empty());
+
+  const PackResult p = packRun(base / "run", base / "moved", loadRunScene(base / "run"));
+  EXPECT_EQ(p.checkpoint.filename(), "0.02");
+  EXPECT_GT(p.left_out.at("older checkpoints"), 0u);
+  EXPECT_GT(p.left_out.at("the fluid's time folders after the first"), 0u);
+  EXPECT_GT(p.left_out.at("the particles' dump files"), 0u);
+  EXPECT_FALSE(fs::exists(base / "moved/fluid/0.01"));
+  EXPECT_TRUE(fs::exists(base / "moved/fluid/0"));
+  EXPECT_TRUE(fs::exists(base / "moved/fluid/constant/polyMesh"));
+  EXPECT_TRUE(fs::exists(base / "run/fluid/0.01")) << "pack changed the run folder";
+
+  const std::vector<std::string> longer = {"coupling.end_time=0.03"};
+  RunOptions ra;
+  ra.quiet = true;
+  ra.resume = base / "run";
+  RunResult a = Coupler(loadRunScene(base / "run", longer), ra).run();
+  ASSERT_EQ(a.exit_code, 0) << a.message;
+  RunOptions rb;
+  rb.quiet = true;
+  rb.resume = base / "moved";
+  RunResult b = Coupler(loadRunScene(base / "moved", longer), rb).run();
+  ASSERT_EQ(b.exit_code, 0) << b.message;
+
+  const auto ta = cosim::analysis::readTimeSeries(base / "run/timeseries.csv");
+  const auto tb = cosim::analysis::readTimeSeries(base / "moved/timeseries.csv");
+  ASSERT_EQ(ta.rows(), tb.rows());
+  for (const auto& c : ta.columns) {
+    if (c == "wall_seconds") continue;
+    for (std::size_t r = 0; r < ta.rows(); ++r) {
+      const double x = ta.at(c)[r], y = tb.at(c)[r];
+      if (std::isnan(x) && std::isnan(y)) continue;
+      ASSERT_EQ(x, y) << c << " row " << r;
+    }
+  }
+  ASSERT_EQ(a.final_state.ids, b.final_state.ids);
+  for (const char* f : {cosim::field::position, cosim::field::velocity, cosim::field::coating_mass})
+    EXPECT_EQ(a.final_state.get(f), b.final_state.get(f)) << f;
+  EXPECT_EQ(a.totals.at("coating_credited_kg"), b.totals.at("coating_credited_kg"));
   fs::remove_all(base);
 }
 
