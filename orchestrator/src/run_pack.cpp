@@ -94,7 +94,7 @@ class Packer {
       const auto t = e.is_directory() ? timeName(name) : std::nullopt;
       if (t && *t != *first) {
         leaveOut("the fluid's time folders after the first", e.path());
-      } else if (e.is_directory() && name.string().rfind("processor", 0) == 0) {
+      } else if (e.is_directory() && !e.is_symlink() && name.string().rfind("processor", 0) == 0) {
         copyFoamCase(e.path(), to / name);
       } else {
         copy(e.path(), to / name);
