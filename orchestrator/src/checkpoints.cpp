@@ -163,10 +163,13 @@ bool mayChange(const std::string& key) {
                         "checkpoint", "transport", "checks", "observables", "description"}) {
     if (under(key, p)) return true;
   }
-  // participants.<name>.timeout
-  const std::string t = ".timeout";
-  return key.rfind("participants.", 0) == 0 && key.size() > t.size() &&
-         key.compare(key.size() - t.size(), t.size(), t) == 0;
+  // participants.<name>.timeout, and how often the fluid's solver residuals are logged
+  for (const std::string t : {".timeout", ".options.solver_log_every"}) {
+    if (key.rfind("participants.", 0) == 0 && key.size() > t.size() &&
+        key.compare(key.size() - t.size(), t.size(), t) == 0)
+      return true;
+  }
+  return false;
 }
 
 // 1.0e-3 and 0.001 are the same setting.

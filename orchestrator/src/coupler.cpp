@@ -221,7 +221,8 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
     for (const auto& d : differences) msg += "\n  - " + d;
     msg +=
         "\n  (only coupling.end_time, coupling.scheme, coupling.cpus, output, checkpoint, "
-        "transport, checks, observables and timeouts may change; start a new run for anything "
+        "transport, checks, observables, timeouts and solver_log_every may change; start a new "
+        "run for anything "
         "else)";
     throw RunFailure("", msg);
   }

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <string>
+#include <utility>
 
 #include "foam_harness.h"
 #include "gas_constants.h"
@@ -82,6 +85,43 @@ TEST(OpenFoamEmptyColumn, HydrostaticStartKeepsGasAtRest) {
   // hydrostatic start: rest to far below a Stokes settling speed, equilibrium from step 1
   EXPECT_LT(resting, 1e-5);
   EXPECT_NEAR(dp_hydro, expected, 0.005 * expected);
+}
+
+// options.solver_log_every: the linear solvers' residual lines of every N-th gas step only, the
+// gas itself unchanged. 20 steps with N = 5: the p solver's lines appear in steps 5, 10, 15 and
+// 20 only, a fifth of those with N = 1, and the pressure drop after the 20 steps is the same to
+// the bit.
+std::pair<int, double> residualLines(const std::string& options) {
+  FoamRunConfig cfg;
+  cfg.substitute = {{"inlet_velocity", "0.2"},
+                    {"inlet_precursor", "0"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
+  cfg.options_yaml = options;
+  cfg.send = {"fluid_velocity", "voidage"};
+  cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
+  FoamRun run(cfg);
+  const cosim::link::ParticleData probe = makeParticles({0.0, 0.0, 0.05}, 1e-5);
+  double dp = 0;
+  for (int step = 0; step < 20; ++step) {
+    run.sample(probe);
+    dp = run.advance(2e-3, cosim::link::ParticleData{}).fluid().pressure_drop();
+  }
+  EXPECT_EQ(run.shutdown(), 0);
+  std::ifstream log(run.caseDir() + "/log.cosimFoam");
+  std::string line;
+  int n = 0;
+  while (std::getline(log, line)) n += line.find("Solving for p,") != std::string::npos;
+  return {n, dp};
+}
+
+TEST(OpenFoamEmptyColumn, SolverResidualsAreLoggedEveryNthStepOnly) {
+  const auto every = residualLines("{}");
+  const auto fifth = residualLines("{solver_log_every: 5}");
+  EXPECT_GT(every.first, 0);
+  EXPECT_EQ(every.first % 20, 0) << "the same number of p solves in each step";
+  EXPECT_EQ(fifth.first * 5, every.first);
+  EXPECT_EQ(fifth.second, every.second) << "logging changed the gas";
 }
 
 }  // namespace

@@ -37,6 +37,17 @@ TEST(OpenFoamSettings, UnknownOptionIsNamed) {
   EXPECT_NE(msg.find("unknown key 'min_viodage'"), std::string::npos) << msg;
 }
 
+TEST(OpenFoamSettings, ALogIntervalThatIsNotAWholeNumberOfStepsIsRefused) {
+  auto cfg = base();
+  cfg.options_yaml = "{solver_log_every: 2.5}";
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("solver_log_every: expected a whole number of gas steps"), std::string::npos)
+      << msg;
+  cfg.options_yaml = "{solver_log_every: 0}";
+  EXPECT_NE(firstError(cfg).find("solver_log_every: expected a value in [1, 1000000000], got 0"),
+            std::string::npos);
+}
+
 TEST(OpenFoamSettings, OutOfRangeValueSaysWhatIsExpected) {
   auto cfg = base();
   cfg.options_yaml = "{min_voidage: 1.5}";

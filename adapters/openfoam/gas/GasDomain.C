@@ -459,6 +459,15 @@ public:
 
         const auto wall0 = std::chrono::steady_clock::now();
 
+        // The linear solvers' residual lines: every solver_log_every-th step only (a switch of
+        // OpenFOAM's own, as DebugSwitches { SolverPerformance 0; } sets it for a whole run)
+        if (settings_.solver_log_every > 1)
+        {
+            const int logged = runTime.timeIndex() % settings_.solver_log_every == 0 ? 1 : 0;
+            SolverPerformance<scalar>::debug = logged;
+            SolverPerformance<vector>::debug = logged;
+        }
+
         // --- PIMPLE
         while (pimple.loop())
         {

@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstdio>
 #include <set>
 #include <stdexcept>
 
@@ -14,6 +15,12 @@ std::runtime_error bad(const std::string& key, const std::string& expected) {
   return std::runtime_error(std::string(kWhere) + "." + key + ": expected " + expected);
 }
 
+std::string shortest(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.12g", v);
+  return text;
+}
+
 double number(const YAML::Node& n, const std::string& key, double lo, double hi) {
   double v = 0;
   try {
@@ -22,8 +29,7 @@ double number(const YAML::Node& n, const std::string& key, double lo, double hi)
     throw bad(key, "a number, got '" + YAML::Dump(n) + "'");
   }
   if (!(v >= lo && v <= hi)) {
-    throw bad(key, "a value in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-                       std::to_string(v));
+    throw bad(key, "a value in [" + shortest(lo) + ", " + shortest(hi) + "], got " + shortest(v));
   }
   return v;
 }
@@ -58,15 +64,17 @@ AdapterSettings parseAdapterSettings(const std::string& yaml, bool species) {
   if (!root.IsMap()) throw std::runtime_error(std::string(kWhere) + ": expected a mapping");
 
   static const std::set<std::string> known{
-      "temperature", "molar_mass",     "viscosity",      "schmidt", "min_voidage",
-      "voidage_divisions", "inlet_patches", "outlet_patches", "mesh", "hydrostatic_start"};
+      "temperature", "molar_mass",        "viscosity",       "schmidt",
+      "min_voidage", "voidage_divisions", "inlet_patches",   "outlet_patches",
+      "mesh",        "hydrostatic_start", "solver_log_every"};
   for (const auto& kv : root) {
     const auto key = kv.first.as<std::string>();
     if (!known.count(key)) {
       throw std::runtime_error(
           std::string(kWhere) + ": unknown key '" + key +
           "' (cosimFoam knows temperature, molar_mass, viscosity, schmidt, min_voidage, "
-          "voidage_divisions, inlet_patches, outlet_patches, mesh, hydrostatic_start; see docs/openfoam.md)");
+          "voidage_divisions, inlet_patches, outlet_patches, mesh, hydrostatic_start, "
+          "solver_log_every; see docs/openfoam.md)");
     }
   }
   if (root["temperature"]) s.gas.temperature = number(root["temperature"], "temperature", 1, 1e4);
@@ -79,6 +87,12 @@ AdapterSettings parseAdapterSettings(const std::string& yaml, bool species) {
     if (d != static_cast<int>(d)) throw bad("voidage_divisions", "an integer from 1 to 9");
     s.gas.voidage_divisions = static_cast<int>(d);
   }
+  if (root["solver_log_every"]) {
+    const double d = number(root["solver_log_every"], "solver_log_every", 1, 1e9);
+    if (d != static_cast<int>(d))
+      throw bad("solver_log_every", "a whole number of gas steps >= 1 (1: every step)");
+    s.gas.solver_log_every = static_cast<int>(d);
+  }
   if (root["inlet_patches"]) s.gas.inlet_patches = names(root["inlet_patches"], "inlet_patches");
   if (root["outlet_patches"]) {
     s.gas.outlet_patches = names(root["outlet_patches"], "outlet_patches");
@@ -86,7 +100,8 @@ AdapterSettings parseAdapterSettings(const std::string& yaml, bool species) {
   if (root["hydrostatic_start"]) {
     const auto& n = root["hydrostatic_start"];
     bool v = false;
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v)) throw bad("hydrostatic_start", "true or false");
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v))
+      throw bad("hydrostatic_start", "true or false");
     s.gas.hydrostatic_start = v;
   }
   if (root["mesh"]) {
