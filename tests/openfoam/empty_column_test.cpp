@@ -46,19 +46,26 @@ TEST(OpenFoamEmptyColumn, OutflowEqualsInflowAndPressureIsHydrostatic) {
   EXPECT_EQ(run.shutdown(), 0);
 }
 
+// The test column (tests/openfoam/cases/column) with slip walls, gas entering at `inflow` [m/s],
+// the fluid options `options`.
+FoamRunConfig column(const std::string& inflow, const std::string& options) {
+  FoamRunConfig cfg;
+  cfg.substitute = {{"inlet_velocity", inflow},
+                    {"inlet_precursor", "0"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
+  cfg.options_yaml = options;
+  cfg.send = {"fluid_velocity", "voidage"};
+  cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
+  return cfg;
+}
+
 // Gas at rest (no inflow). Started from a uniform pressure the column falls under gravity and
 // rings; with options.hydrostatic_start it starts in equilibrium: the pressure difference is the
 // hydrostatic one from the first step and the gas stays at rest.
 double restingGasSpeed(bool hydrostatic, double* pressure_drop) {
-  FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0"},
-                    {"inlet_precursor", "0"},
-                    {"write_steps", "100000"},
-                    {"wall_U", "slip"}};
-  cfg.options_yaml = hydrostatic ? "{hydrostatic_start: true}" : "{hydrostatic_start: false}";
-  cfg.send = {"fluid_velocity", "voidage"};
-  cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
-  FoamRun run(cfg);
+  FoamRun run(
+      column("0", hydrostatic ? "{hydrostatic_start: true}" : "{hydrostatic_start: false}"));
   const cosim::link::ParticleData probe = makeParticles({0.0, 0.0, 0.05}, 1e-5);
   double speed = 0;
   for (int step = 0; step < 5; ++step) {
@@ -92,15 +99,7 @@ TEST(OpenFoamEmptyColumn, HydrostaticStartKeepsGasAtRest) {
 // 20 only, a fifth of those with N = 1, and the pressure drop after the 20 steps is the same to
 // the bit.
 std::pair<int, double> residualLines(const std::string& options) {
-  FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0.2"},
-                    {"inlet_precursor", "0"},
-                    {"write_steps", "100000"},
-                    {"wall_U", "slip"}};
-  cfg.options_yaml = options;
-  cfg.send = {"fluid_velocity", "voidage"};
-  cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
-  FoamRun run(cfg);
+  FoamRun run(column("0.2", options));
   const cosim::link::ParticleData probe = makeParticles({0.0, 0.0, 0.05}, 1e-5);
   double dp = 0;
   for (int step = 0; step < 20; ++step) {
