@@ -153,7 +153,8 @@ PackResult packRun(const fs::path& run, const fs::path& dest, const Scenario& sc
   PackResult result;
   result.checkpoint = *newest;
   Packer packer(result);
-  const fs::path target = fs::absolute(dest).lexically_normal();
+  fs::path target = fs::absolute(dest).lexically_normal();
+  if (target.filename().empty()) target = target.parent_path();  // "DEST/"
   const fs::path partial = target.parent_path() / (".partial-" + target.filename().string() + "-" +
                                                    std::to_string(::getpid()));
   try {

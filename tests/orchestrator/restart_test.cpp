@@ -608,7 +608,7 @@ TEST(Pack, APackedRunResumesElsewhereAsTheUninterruptedRun) {
   runLongAndShort(w);
   if (::testing::Test::HasFatalFailure()) return;
   const std::string before = text(w.dir / "ext" / "timeseries.csv");
-  auto pack = start(w, {"pack", "ext", "elsewhere/packed"}, "pack.out");
+  auto pack = start(w, {"pack", "ext", "elsewhere/packed/"}, "pack.out");  // a trailing /
   ASSERT_EQ(finish(pack), 0) << text(w.dir / "pack.out");
   const std::string out = text(w.dir / "pack.out");
   EXPECT_NE(out.find("continuing from the checkpoint at t = 0.12 s"), std::string::npos) << out;
