@@ -286,6 +286,9 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   next_checkpoint_ = saved.time + sc_.checkpoint.interval;
   log_.show("resumed from " + checkpoint->string() + " (t = " +
             analysis::formatShortest(saved.time) + " s, step " + std::to_string(saved.step) + ")");
+  std::error_code ec;
+  const auto space = std::filesystem::space(record_.folder(), ec);
+  if (!ec) disk_ = {time_, static_cast<double>(space.available)};
   return saved.step;
 }
 
@@ -320,6 +323,21 @@ void Coupler::writeCheckpoint() {
   const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint.keep);
   next_checkpoint_ = time_ + sc_.checkpoint.interval;
   log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());
+  // the disk's filling, measured over the run so far (said once)
+  std::error_code ec;
+  const auto space = std::filesystem::space(record_.folder(), ec);
+  if (!ec && disk_ && !disk_warned_) {
+    const auto [t0, free0] = *disk_;
+    const double free_now = static_cast<double>(space.available);
+    // the folder's largest parts are looked up only when there is something to warn of
+    if (checkDiskFilling(t0, free0, time_, free_now, sc_.coupling.end_time, "")) {
+      const auto w = checkDiskFilling(t0, free0, time_, free_now, sc_.coupling.end_time,
+                                      largestEntries(record_.folder(), 3));
+      if (progress_) progress_->abort();  // the warning on a line of its own
+      log_.warn(w->substr(std::string("warning: ").size()));
+      disk_warned_ = true;
+    }
+  }
   phases_.lap("checkpoint");
 }
 
@@ -337,6 +355,7 @@ void Coupler::reportInitialState() {
   if (!ec) {
     if (auto w = checkDiskSpace(sc_, plan_, state_, time_, static_cast<double>(space.available)))
       report.lines.push_back(*w);
+    disk_ = {time_, static_cast<double>(space.available)};
   }
   refuseOrWarn(report);
 }

@@ -136,6 +136,10 @@ class Coupler {
 
   std::optional<CheckpointStore> checkpoints_;
   double next_checkpoint_ = 0.0;
+  // Free bytes on the run folder's disk when coupling started (simulated time, bytes), and
+  // whether the disk's filling has been warned of (writeCheckpoint)
+  std::optional<std::pair<double, double>> disk_;
+  bool disk_warned_ = false;
   double wall_before_ = 0.0;  // wall seconds of the run before it was resumed
   bool resume_accepted_ = false;
   // The checkpoint a resume started from and its step: a failure before the run got past it

@@ -4,11 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <numbers>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "cosim/link/fields.h"
 #include "cosim/util/all_finite.h"
@@ -56,6 +60,46 @@ std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
          "wrote stays readable; with checkpoint.interval set it resumes from the last one); free "
          "space, or record less often (output.interval: " +
          g(fits) + " would take half of the free space)";
+}
+
+std::optional<std::string> checkDiskFilling(double t0, double free0, double t, double free_now,
+                                            double end, const std::string& largest) {
+  const double used = free0 - free_now;
+  if (!(t > t0) || !(used > 0)) return std::nullopt;
+  const double rate = used / (t - t0);  // bytes per simulated second
+  const double full = t + free_now / rate;
+  if (!(full < end)) return std::nullopt;
+  const auto mb = [](double b) { return fmt::format("{:.3g} MB", b / 1e6); };
+  return "warning: the run folder's disk has been filling by " + mb(rate) +
+         " per simulated second since t = " + g(t0) +
+         " s; at that rate it is full at t = " + g(full) + " s, before the run's end at " + g(end) +
+         " s (" + mb(free_now) + " free now). The largest parts of the run folder: " + largest +
+         ". Free space, or write less: output.interval (particles.h5), the fluid's writeInterval "
+         "and the particles' dumps (the shipped scenes' write_interval), the fluid's "
+         "options.solver_log_every (docs/openfoam.md); the run stops with its records kept when "
+         "the disk is full, and resumes from its last checkpoint";
+}
+
+std::string largestEntries(const std::filesystem::path& folder, std::size_t n) {
+  namespace fs = std::filesystem;
+  std::vector<std::pair<std::uintmax_t, std::string>> sizes;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(folder, ec)) {
+    std::uintmax_t bytes = 0;
+    if (e.is_directory(ec) && !e.is_symlink(ec)) {
+      for (const auto& f : fs::recursive_directory_iterator(e.path(), ec))
+        if (f.is_regular_file(ec)) bytes += f.file_size(ec);
+      sizes.emplace_back(bytes, e.path().filename().string() + "/");
+    } else if (e.is_regular_file(ec)) {
+      sizes.emplace_back(e.file_size(ec), e.path().filename().string());
+    }
+  }
+  std::sort(sizes.begin(), sizes.end(), std::greater<>());
+  std::string out;
+  for (std::size_t i = 0; i < std::min(n, sizes.size()); ++i)
+    out += (out.empty() ? "" : ", ") + sizes[i].second + " " +
+           fmt::format("{:.3g} MB", static_cast<double>(sizes[i].first) / 1e6);
+  return out.empty() ? "(nothing)" : out;
 }
 
 StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/,

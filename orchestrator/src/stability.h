@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <filesystem>
 #include <optional>
 #include <set>
 #include <string>
@@ -72,6 +73,17 @@ double particleOutputBytes(const Scenario& sc, const Plan& plan, const link::Par
 std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
                                           const link::ParticleData& state, double from,
                                           double available);
+
+// The disk filling while the run goes (checked at every checkpoint): the run folder's disk had
+// `free0` bytes free at simulated time `t0` and has `free_now` at `t`. When at that rate
+// (everything the disk lost since t0: logs, time folders, dumps, snapshots, other programs) it is
+// full before `end`, a warning with the rate, the time it is full and `largest` (what takes the
+// most room in the run folder, "fluid.log 530 MB, ..."); nullopt otherwise.
+std::optional<std::string> checkDiskFilling(double t0, double free0, double t, double free_now,
+                                            double end, const std::string& largest);
+
+// The `n` largest entries of a run folder with their sizes: "fluid.log 530 MB, particles/ 90 MB".
+std::string largestEntries(const std::filesystem::path& folder, std::size_t n);
 
 // Per-step monitors that need memory across steps.
 class StepMonitor {

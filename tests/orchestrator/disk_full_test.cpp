@@ -163,6 +163,29 @@ TEST_F(FullDisk, RecordingRunOutOfSpaceStillWritesTheSummaryAndLeavesNoTmpFiles)
     EXPECT_NEAR(ts.at("time")[i], 1e-4 * static_cast<double>(i + 1), 1e-12);
 }
 
+// The disk filling while the run goes is said at the first checkpoint at which, at the rate the
+// disk has been filling since the start, it would be full before the run's end: with the rate,
+// the time it is full and the folder's largest parts, long before the disk is full. (The
+// numbers are unit-tested in stability_test.cpp.)
+TEST_F(FullDisk, ADiskFillingBeforeTheRunsEndIsSaidWhileThereIsStillRoom) {
+  RunOptions o;
+  o.quiet = true;
+  o.output = dir_ / "run";
+  Coupler c(loadScenario(kSphere, {"coupling.end_time=1", "output.interval=1e-4",
+                                   "checkpoint.interval=5e-4", "checkpoint.keep=1"}),
+            o);
+  const RunResult r = c.run();
+  ASSERT_EQ(r.exit_code, 2) << r.message;
+  const std::string log = readFile(o.output / "cosim.log");
+  expectFragments(log, {"warning: the run folder's disk has been filling by",
+                        "per simulated second since t = 0 s", "before the run's end at 1 s",
+                        "The largest parts of the run folder: ", "particles.h5 "});
+  // said once, at the first checkpoint (t = 5e-4 s), before the disk was full
+  const auto at = log.find("has been filling by");
+  EXPECT_EQ(log.find("has been filling by", at + 1), std::string::npos);
+  EXPECT_LT(at, log.find("No space left on device"));
+}
+
 // Without a tmpfs: a case file beyond the file size limit fails with EFBIG, named, and no
 // truncated copy is left.
 TEST(FileSizeLimitTest, CaseFileBeyondTheLimitIsNamedAndNotLeftHalfWritten) {

@@ -317,3 +317,33 @@ TEST(Stability, AnOutputLargerThanTheFreeDiskIsNamedBeforeTheRunWithAnIntervalTh
   sc.output.interval = 0.0;
   EXPECT_DOUBLE_EQ(particleOutputBytes(sc, plan, s, 0.0), 10001 * 44096.0);
 }
+
+// The disk's filling during a run, by hand: 1000 MB free at t = 0, 900 MB at t = 10 s is 10 MB
+// per simulated second, so the 900 MB left last 90 s more: full at t = 100 s. A run to 200 s is
+// warned; one to 100 s (full exactly at its end) or 50 s is not, nor a disk that did not fill.
+TEST(Stability, ADiskFillingBeforeTheRunsEndIsNamedWithItsRateAndTime) {
+  const auto w = checkDiskFilling(0, 1000e6, 10, 900e6, 200, "fluid.log 80 MB");
+  ASSERT_TRUE(w);
+  for (const char* f : {"filling by 10 MB per simulated second since t = 0 s",
+                        "it is full at t = 100 s, before the run's end at 200 s (900 MB free now)",
+                        "The largest parts of the run folder: fluid.log 80 MB", "solver_log_every"})
+    EXPECT_NE(w->find(f), std::string::npos) << f << " in: " << *w;
+  EXPECT_FALSE(checkDiskFilling(0, 1000e6, 10, 900e6, 100, ""));
+  EXPECT_FALSE(checkDiskFilling(0, 1000e6, 10, 900e6, 50, ""));
+  EXPECT_FALSE(checkDiskFilling(0, 900e6, 10, 1000e6, 200, ""));   // space was freed
+  EXPECT_FALSE(checkDiskFilling(10, 1000e6, 10, 900e6, 200, ""));  // no time has passed
+}
+
+// The largest entries of a folder, folders with their contents' size, largest first.
+TEST(Stability, TheLargestPartsOfARunFolderAreNamedWithTheirSizes) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("cosim-largest-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "fluid" / "0.1");
+  std::ofstream(dir / "fluid.log") << std::string(3'000'000, 'x');
+  std::ofstream(dir / "fluid" / "0.1" / "U") << std::string(2'000'000, 'u');
+  std::ofstream(dir / "summary.json") << std::string(1'000, 's');
+  EXPECT_EQ(largestEntries(dir, 2), "fluid.log 3 MB, fluid/ 2 MB");
+  EXPECT_EQ(largestEntries(dir, 5), "fluid.log 3 MB, fluid/ 2 MB, summary.json 0.001 MB");
+  std::filesystem::remove_all(dir);
+}
