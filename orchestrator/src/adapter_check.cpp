@@ -115,9 +115,20 @@ std::vector<std::string> checkAdapters(const Scenario& sc, const Plan& plan, dou
     for (auto at = said.find(copy); at != std::string::npos; at = said.find(copy, at))
       said.replace(at, copy.size(), origin), at += origin.size();
     if (child.exitCode() != 0) {
+      // the settings may be the command line's rather than the file's: say which
+      std::string given;
+      for (const auto& o : sc.overrides) {
+        if (o.rfind("participants." + name + ".", 0) == 0 ||
+            o.rfind("participants." + name + "=", 0) == 0)
+          given += (given.empty() ? "" : ", ") + std::string("--set ") + o;
+      }
       throw ScenarioError(where + ": adapter '" + spec.adapter + "' refuses the scene (" +
                           child.exitDescription() + "):\n  " +
-                          (said.empty() ? std::string("(it said nothing)") : said));
+                          (said.empty() ? std::string("(it said nothing)") : said) +
+                          (given.empty() ? std::string()
+                                         : "\n  (this participant's settings include the command "
+                                           "line's " +
+                                               given + ")"));
     }
     lines.push_back(name + ": adapter '" + spec.adapter + "' accepts the options and files" +
                     (spec.mpi > 1 ? " on " + std::to_string(spec.mpi) + " MPI ranks" : ""));

@@ -299,6 +299,7 @@ Scenario parseTree(YAML::Node root, const fs::path& origin, const std::vector<st
                  "models", "output", "transport", "checks", "observables", "checkpoint"});
   for (const auto& u : unsets) applyUnset(root, u, ctx);
   for (const auto& s : sets) applySet(root, s, ctx);
+  sc.overrides = sets;
 
   reading = "parameters";
   sc.parameters = parseParameters(root["parameters"], ctx);

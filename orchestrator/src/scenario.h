@@ -44,6 +44,9 @@ struct Scenario {
   ObservablesSection observables;  // measured at the end, with analytic references
 
   YAML::Node resolved;  // the scenario after templating and --set, as run
+  // The command line's --set overrides it was loaded with ("key.path=value"), so that a check
+  // made later (the adapters' own) can say which of them touched what it refuses
+  std::vector<std::string> overrides;
 };
 
 // Loads and validates. `sets` are "key.path=value" overrides (a bare name sets a parameter; a

@@ -119,7 +119,9 @@ TEST_F(AdapterCheck, TheFluidsPatchesMeshAndRanksAreChecked) {
   expectFragments(refusal(kBed, {"participants.fluid.mpi=3"}),
                   {"numberOfSubdomains is 2", "3 MPI ranks", "make them equal"});
   expectFragments(refusal(kBed, {"participants.fluid.options.min_voidage=2"}),
-                  {"participants.fluid", "min_voidage"});
+                  {"participants.fluid", "min_voidage",
+                   "(this participant's settings include the command line's --set "
+                   "participants.fluid.options.min_voidage=2)"});
   // The shipped decomposition (2 subdomains) on 2 ranks is accepted
   expectFragments(accepted(kBed, {"participants.fluid.mpi=2"})[0], {"on 2 MPI ranks"});
 }
