@@ -286,9 +286,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   next_checkpoint_ = saved.time + sc_.checkpoint.interval;
   log_.show("resumed from " + checkpoint->string() + " (t = " +
             analysis::formatShortest(saved.time) + " s, step " + std::to_string(saved.step) + ")");
-  std::error_code ec;
-  const auto space = std::filesystem::space(record_.folder(), ec);
-  if (!ec) disk_ = {time_, static_cast<double>(space.available)};
+  if (const auto free_now = freeBytes()) disk_ = {time_, *free_now};
   return saved.step;
 }
 
@@ -324,21 +322,24 @@ void Coupler::writeCheckpoint() {
   next_checkpoint_ = time_ + sc_.checkpoint.interval;
   log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());
   // the disk's filling, measured over the run so far (said once)
-  std::error_code ec;
-  const auto space = std::filesystem::space(record_.folder(), ec);
-  if (!ec && disk_ && !disk_warned_) {
+  if (const auto free_now = freeBytes(); free_now && disk_ && !disk_warned_) {
     const auto [t0, free0] = *disk_;
-    const double free_now = static_cast<double>(space.available);
-    // the folder's largest parts are looked up only when there is something to warn of
-    if (checkDiskFilling(t0, free0, time_, free_now, sc_.coupling.end_time, "")) {
-      const auto w = checkDiskFilling(t0, free0, time_, free_now, sc_.coupling.end_time,
-                                      largestEntries(record_.folder(), 3));
+    const auto w = checkDiskFilling(t0, free0, time_, *free_now, sc_.coupling.end_time,
+                                    [&] { return largestEntries(record_.folder(), 3); });
+    if (w) {
       if (progress_) progress_->abort();  // the warning on a line of its own
       log_.warn(w->substr(std::string("warning: ").size()));
       disk_warned_ = true;
     }
   }
   phases_.lap("checkpoint");
+}
+
+std::optional<double> Coupler::freeBytes() const {
+  std::error_code ec;
+  const auto space = std::filesystem::space(record_.folder(), ec);
+  if (ec) return std::nullopt;
+  return static_cast<double>(space.available);
 }
 
 void Coupler::reportInitialState() {
@@ -350,12 +351,9 @@ void Coupler::reportInitialState() {
   record_.snapshot(time_, state_, true);
   if (auto wrong = checkParticleCount(sc_, state_)) throw RunFailure("particles", *wrong);
   StabilityReport report = checkBeforeRun(sc_, models_, plan_, state_, reported_dt_over_rayleigh_);
-  std::error_code ec;
-  const auto space = std::filesystem::space(record_.folder(), ec);
-  if (!ec) {
-    if (auto w = checkDiskSpace(sc_, plan_, state_, time_, static_cast<double>(space.available)))
-      report.lines.push_back(*w);
-    disk_ = {time_, static_cast<double>(space.available)};
+  if (const auto free_now = freeBytes()) {
+    if (auto w = checkDiskSpace(sc_, plan_, state_, time_, *free_now)) report.lines.push_back(*w);
+    disk_ = {time_, *free_now};
   }
   refuseOrWarn(report);
 }

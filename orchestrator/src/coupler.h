@@ -139,6 +139,8 @@ class Coupler {
   // Free bytes on the run folder's disk when coupling started (simulated time, bytes), and
   // whether the disk's filling has been warned of (writeCheckpoint)
   std::optional<std::pair<double, double>> disk_;
+  // Bytes free on the run folder's disk (nullopt if it cannot be asked)
+  std::optional<double> freeBytes() const;
   bool disk_warned_ = false;
   double wall_before_ = 0.0;  // wall seconds of the run before it was resumed
   bool resume_accepted_ = false;

@@ -11,42 +11,13 @@
 
 #include "checkpoints.h"
 #include "run_record.h"
+#include "stability.h"
 
 namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
 
-std::string byteText(std::uintmax_t bytes) {
-  const double b = static_cast<double>(bytes);
-  char text[32];
-  if (b >= 1e9) {
-    std::snprintf(text, sizeof text, "%.2f GB", b / 1e9);
-  } else if (b >= 1e6) {
-    std::snprintf(text, sizeof text, "%.1f MB", b / 1e6);
-  } else if (b >= 1e3) {
-    std::snprintf(text, sizeof text, "%.1f kB", b / 1e3);
-  } else {
-    std::snprintf(text, sizeof text, "%ju B", bytes);
-  }
-  return text;
-}
-
 namespace {
-
-// The size of a file, or of everything below a folder (links not followed)
-std::uintmax_t sizeOf(const fs::path& p) {
-  std::error_code ec;
-  if (fs::is_symlink(fs::symlink_status(p))) return 0;
-  if (!fs::is_directory(p)) {
-    const auto s = fs::file_size(p, ec);
-    return ec ? 0 : s;
-  }
-  std::uintmax_t total = 0;
-  for (const auto& e : fs::recursive_directory_iterator(p, ec)) {
-    if (e.is_regular_file(ec) && !e.is_symlink(ec)) total += e.file_size(ec);
-  }
-  return total;
-}
 
 // An OpenFOAM time folder's name: a number ("0", "0.25", "1e-05")
 std::optional<double> timeName(const fs::path& name) {
@@ -56,11 +27,6 @@ std::optional<double> timeName(const fs::path& name) {
   const double t = std::strtod(s.c_str(), &end);
   if (end != s.c_str() + s.size()) return std::nullopt;
   return t;
-}
-
-bool within(const fs::path& a, const fs::path& b) {
-  const fs::path rel = fs::weakly_canonical(a).lexically_relative(fs::weakly_canonical(b));
-  return !rel.empty() && *rel.begin() != "..";
 }
 
 class Packer {
@@ -75,10 +41,10 @@ class Packer {
     }
     // files as they are, links as links (never followed out of the run)
     fs::copy(from, to, fs::copy_options::copy_symlinks);
-    r_.copied_bytes += sizeOf(from);
+    r_.copied_bytes += bytesOnDisk(from);
     ++r_.copied_files;
   }
-  void leaveOut(const std::string& kind, const fs::path& p) { r_.left_out[kind] += sizeOf(p); }
+  void leaveOut(const std::string& kind, const fs::path& p) { r_.left_out[kind] += bytesOnDisk(p); }
 
   // A fluid case (OpenFOAM): its time folders after the first one left out, in the case and in
   // each processorN folder of a decomposed one; the rest (mesh, settings, initial fields) copied

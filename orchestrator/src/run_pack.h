@@ -31,7 +31,4 @@ struct PackResult {
 PackResult packRun(const std::filesystem::path& run, const std::filesystem::path& dest,
                    const Scenario& sc);
 
-// "52.3 MB"
-std::string byteText(std::uintmax_t bytes);
-
 }  // namespace cosim::orchestrator

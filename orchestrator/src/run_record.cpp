@@ -28,21 +28,6 @@ RunRecord::RunRecord(const Scenario& sc, const Plan& plan, RunLog& log)
 
 RunRecord::~RunRecord() { release(); }
 
-// A live run holds the lock file: the kernel drops a run's flock when the run ends in any way
-// (kill -9 included), so a lock left behind by a dead run is free.
-std::optional<std::string> runFolderInUse(const fs::path& folder) {
-  const fs::path lock = folder / ".cosim-run.lock";
-  const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return std::nullopt;
-  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
-  ::close(fd);
-  if (!held) return std::nullopt;
-  std::ifstream in(lock);
-  long pid = 0;
-  in >> pid;
-  return pid > 0 ? "pid " + std::to_string(pid) : "pid unknown";
-}
-
 namespace {
 
 constexpr const char* kLockFile = ".cosim-run.lock";
@@ -55,7 +40,15 @@ long lockHolder(const fs::path& lock) {
   return pid;
 }
 
-bool lockIsHeld(const fs::path& lock) { return runFolderInUse(lock.parent_path()).has_value(); }
+// Whether a live run holds the lock file: the kernel drops a run's flock when the run ends in
+// any way (kill -9 included), so a lock left behind by a dead run is free.
+bool lockIsHeld(const fs::path& lock) {
+  const int fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  const bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+  ::close(fd);
+  return held;
+}
 
 std::string holderText(const fs::path& lock) {
   const long pid = lockHolder(lock);
@@ -94,13 +87,6 @@ std::string refusal(const fs::path& folder) {
   return what + ", and cosim never records a run over another one: " + how;
 }
 
-// Whether `a` is `b` or lies inside it (paths made absolute and normalised, links resolved as
-// far as they exist).
-bool within(const fs::path& a, const fs::path& b) {
-  const fs::path rel = fs::weakly_canonical(a).lexically_relative(fs::weakly_canonical(b));
-  return !rel.empty() && *rel.begin() != "..";
-}
-
 // Why recording a run in `folder` would write over the scene itself (its folder, its scenario
 // file, a participant's files: folder, which the run copies into folder/<participant>), or
 // nothing if it would not.
@@ -123,6 +109,19 @@ std::optional<std::string> overScene(const fs::path& folder, const Scenario& sc)
 }
 
 }  // namespace
+
+std::optional<std::string> runFolderInUse(const fs::path& folder) {
+  const fs::path lock = folder / kLockFile;
+  if (!lockIsHeld(lock)) return std::nullopt;
+  return holderText(lock);
+}
+
+// Whether `a` is `b` or lies inside it (paths made absolute and normalised, links resolved as
+// far as they exist).
+bool within(const fs::path& a, const fs::path& b) {
+  const fs::path rel = fs::weakly_canonical(a).lexically_relative(fs::weakly_canonical(b));
+  return !rel.empty() && *rel.begin() != "..";
+}
 
 // The run folder is claimed with an exclusive flock on its lock file, held for the whole run:
 // two runs can never share a folder, and the lock of a run that died (kill -9) is free again

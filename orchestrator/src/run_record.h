@@ -30,6 +30,10 @@ using Row = std::map<std::string, double>;
 // Whether a run that is alive holds `folder` (its lock file): the holder ("pid 1234") if so.
 std::optional<std::string> runFolderInUse(const std::filesystem::path& folder);
 
+// Whether `a` is `b` or lies inside it (paths made absolute and normalised, links resolved as
+// far as they exist).
+bool within(const std::filesystem::path& a, const std::filesystem::path& b);
+
 class RunRecord {
  public:
   RunRecord(const Scenario& sc, const Plan& plan, RunLog& log);

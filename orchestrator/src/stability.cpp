@@ -62,18 +62,49 @@ std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
          g(fits) + " would take half of the free space)";
 }
 
+std::string byteText(std::uintmax_t bytes) {
+  const double b = static_cast<double>(bytes);
+  char text[32];
+  if (b >= 1e9) {
+    std::snprintf(text, sizeof text, "%.2f GB", b / 1e9);
+  } else if (b >= 1e6) {
+    std::snprintf(text, sizeof text, "%.1f MB", b / 1e6);
+  } else if (b >= 1e3) {
+    std::snprintf(text, sizeof text, "%.1f kB", b / 1e3);
+  } else {
+    std::snprintf(text, sizeof text, "%ju B", bytes);
+  }
+  return text;
+}
+
+std::uintmax_t bytesOnDisk(const std::filesystem::path& p) {
+  std::error_code ec;
+  if (std::filesystem::is_symlink(std::filesystem::symlink_status(p))) return 0;
+  if (!std::filesystem::is_directory(p)) {
+    const auto s = std::filesystem::file_size(p, ec);
+    return ec ? 0 : s;
+  }
+  std::uintmax_t total = 0;
+  for (const auto& e : std::filesystem::recursive_directory_iterator(p, ec)) {
+    if (e.is_regular_file(ec) && !e.is_symlink(ec)) total += e.file_size(ec);
+  }
+  return total;
+}
+
 std::optional<std::string> checkDiskFilling(double t0, double free0, double t, double free_now,
-                                            double end, const std::string& largest) {
+                                            double end,
+                                            const std::function<std::string()>& largest) {
   const double used = free0 - free_now;
   if (!(t > t0) || !(used > 0)) return std::nullopt;
   const double rate = used / (t - t0);  // bytes per simulated second
   const double full = t + free_now / rate;
   if (!(full < end)) return std::nullopt;
-  const auto mb = [](double b) { return fmt::format("{:.3g} MB", b / 1e6); };
-  return "warning: the run folder's disk has been filling by " + mb(rate) +
+  const auto bytes = [](double b) { return byteText(static_cast<std::uintmax_t>(b)); };
+  return "warning: the run folder's disk has been filling by " + bytes(rate) +
          " per simulated second since t = " + g(t0) +
          " s; at that rate it is full at t = " + g(full) + " s, before the run's end at " + g(end) +
-         " s (" + mb(free_now) + " free now). The largest parts of the run folder: " + largest +
+         " s (" + bytes(free_now) +
+         " free now). The largest parts of the run folder: " + largest() +
          ". Free space, or write less: output.interval (particles.h5), the fluid's writeInterval "
          "and the particles' dumps (the shipped scenes' write_interval), the fluid's "
          "options.solver_log_every (docs/openfoam.md); the run stops with its records kept when "
@@ -85,20 +116,13 @@ std::string largestEntries(const std::filesystem::path& folder, std::size_t n) {
   std::vector<std::pair<std::uintmax_t, std::string>> sizes;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(folder, ec)) {
-    std::uintmax_t bytes = 0;
-    if (e.is_directory(ec) && !e.is_symlink(ec)) {
-      for (const auto& f : fs::recursive_directory_iterator(e.path(), ec))
-        if (f.is_regular_file(ec)) bytes += f.file_size(ec);
-      sizes.emplace_back(bytes, e.path().filename().string() + "/");
-    } else if (e.is_regular_file(ec)) {
-      sizes.emplace_back(e.file_size(ec), e.path().filename().string());
-    }
+    const bool dir = e.is_directory(ec) && !e.is_symlink(ec);
+    sizes.emplace_back(bytesOnDisk(e.path()), e.path().filename().string() + (dir ? "/" : ""));
   }
   std::sort(sizes.begin(), sizes.end(), std::greater<>());
   std::string out;
   for (std::size_t i = 0; i < std::min(n, sizes.size()); ++i)
-    out += (out.empty() ? "" : ", ") + sizes[i].second + " " +
-           fmt::format("{:.3g} MB", static_cast<double>(sizes[i].first) / 1e6);
+    out += (out.empty() ? "" : ", ") + sizes[i].second + " " + byteText(sizes[i].first);
   return out.empty() ? "(nothing)" : out;
 }
 

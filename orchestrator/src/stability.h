@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
 #include <string>
@@ -74,13 +75,19 @@ std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
                                           const link::ParticleData& state, double from,
                                           double available);
 
+// "52.3 MB", "1.0 kB"
+std::string byteText(std::uintmax_t bytes);
+// The size of a file, or of everything below a folder (links not followed) [bytes]
+std::uintmax_t bytesOnDisk(const std::filesystem::path& p);
+
 // The disk filling while the run goes (checked at every checkpoint): the run folder's disk had
 // `free0` bytes free at simulated time `t0` and has `free_now` at `t`. When at that rate
 // (everything the disk lost since t0: logs, time folders, dumps, snapshots, other programs) it is
 // full before `end`, a warning with the rate, the time it is full and `largest` (what takes the
-// most room in the run folder, "fluid.log 530 MB, ..."); nullopt otherwise.
+// most room in the run folder, "fluid.log 530.0 MB, ...", asked for only then); nullopt otherwise.
 std::optional<std::string> checkDiskFilling(double t0, double free0, double t, double free_now,
-                                            double end, const std::string& largest);
+                                            double end,
+                                            const std::function<std::string()>& largest);
 
 // The `n` largest entries of a run folder with their sizes: "fluid.log 530 MB, particles/ 90 MB".
 std::string largestEntries(const std::filesystem::path& folder, std::size_t n);
