@@ -48,15 +48,34 @@ std::unique_ptr<T> make(const M& m, const std::string& kind, const std::string& 
 // never sees the key.
 std::unique_ptr<DragLaw> Registry::makeDrag(const std::string& n, const Parameters& p) const {
   const std::string key = "undisturbed_velocity";
+  const std::string gain = "self_disturbance_gain", offset = "self_disturbance_offset";
+  // The calibration describes the gas solver, so an explicit `none` keeps it (a scene calibrated
+  // once can be run without the correction from the command line); given without any choice it
+  // is refused: the correction it calibrates is off by default.
+  if (!p.has(key) && (p.has(gain) || p.has(offset))) {
+    throw ModelError(p.owner() + ": " + (p.has(gain) ? gain : offset) +
+                     " calibrates the undisturbed gas velocity, which is off unless " + key +
+                     " is 'self_disturbance' or 'self_disturbance_transient': set one of them "
+                     "(or 'none' to keep the calibration and run without it), or remove the key");
+  }
   if (!p.has(key)) return make<DragLaw>(drag_, "drag law", n, p);
   const std::string choice = p.text(key);
-  auto law = make<DragLaw>(drag_, "drag law", n, p.without(key, p.owner()));
+  const double gamma =
+      p.has(gain) ? p.number(gain, CalibrationBounds::kMinGain, CalibrationBounds::kMaxGain) : 1.0;
+  const double beta =
+      p.has(offset) ? p.number(offset, CalibrationBounds::kMinOffset, CalibrationBounds::kMaxOffset)
+                    : 0.0;
+  auto law =
+      make<DragLaw>(drag_, "drag law", n,
+                    p.without(key, p.owner()).without(gain, p.owner()).without(offset, p.owner()));
   if (choice == "none") return law;
-  if (choice == "self_disturbance")
-    return std::make_unique<UndisturbedVelocityDrag>(std::move(law));
+  if (choice == "self_disturbance") {
+    return std::make_unique<UndisturbedVelocityDrag>(
+        std::move(law), UndisturbedVelocityDrag::Estimate::steady, gamma, beta);
+  }
   if (choice == "self_disturbance_transient") {
-    return std::make_unique<UndisturbedVelocityDrag>(std::move(law),
-                                                     UndisturbedVelocityDrag::Estimate::transient);
+    return std::make_unique<UndisturbedVelocityDrag>(
+        std::move(law), UndisturbedVelocityDrag::Estimate::transient, gamma, beta);
   }
   std::string known;
   for (const auto& k : undisturbedVelocityNames()) known += (known.empty() ? "" : ", ") + k;

@@ -14,12 +14,15 @@ and, from the two runs together, the split of the operator's answer into
 response per unit force against the lattice's G = c_v / (eps_f mu Delta) with its advective
 part, as models/include/cosim/models/drag/undisturbed_velocity.h writes it).
 
-Run each scene copy as held (remove `fix gravi` from COPY/dem/in.sphere; in
-COPY/cfd/system/controlDict `writeInterval 100;`), for example
-  cosim run COPY -o NONE --set models.drag.undisturbed_velocity=none --set end_time=1.0 \\
-      --set cfd_dt=1e-3 --set rho_p=1e15
-  cosim run COPY -o STEADY --set models.drag.undisturbed_velocity=self_disturbance (same --set)
+Run the scene held (no gravity, a density no drag moves; `g`, `rho_p` and `write_steps` are
+parameters of scenario.yaml), at the time step and solver settings to calibrate, for example
+  cosim run scenarios/verify-wake -o NONE --set models.drag.undisturbed_velocity=none \\
+      --set end_time=1.0 --set g=0 --set rho_p=1e15 --set write_steps=250
+  cosim run scenarios/verify-wake -o STEADY --set models.drag.undisturbed_velocity=self_disturbance \\
+      (same --set)
   scenarios/verify-wake/held_forms.py NONE STEADY --n-d 2
+It ends with gamma and beta as the two keys of models.drag that calibrate the estimate for this
+mesh, particle and solver settings (docs/models.md, "Calibrating for the gas solver").
 
 Needs numpy (Debian's python3-numpy) for disturbance.py's reader.
 """
@@ -63,6 +66,7 @@ def main():
     def G(U):
         return 1.0 / (eps_f * mu * Delta / C_V + eps * a.rho * abs(U) * Delta ** 2)
 
+    rows = []
     print("| t [s] | U_P/u_up none | F/(K u_up) - 1 none | U_P/u_up steady | F/(K u_up) - 1 steady "
           "| gamma | beta | beta/(1 - eps) |")
     print("|---:|---:|---:|---:|---:|---:|---:|---:|")
@@ -76,6 +80,17 @@ def main():
         print("| %.2f | %.5f | %+.2f %% | %.5f | %+.2f %% | %.4f | %.4f | %.2f |"
               % (t, Un / u, 100 * (Fn / (K * u) - 1), Us / u, 100 * (Fs / (K * u) - 1), gamma, beta,
                  beta / (1.0 - eps)))
+        rows.append((gamma, beta))
+    if rows:
+        gamma, beta = rows[-1]
+        print("\nthe calibration of this mesh, particle and solver settings (docs/models.md,"
+              " \"Calibrating for the gas solver\"), from the last written time:")
+        print("  models.drag.self_disturbance_gain: %.4f" % gamma)
+        print("  models.drag.self_disturbance_offset: %.4f" % beta)
+        if len(rows) > 1:
+            print("  (change over the last %d written times: gain %.1e, offset %.1e: the held runs"
+                  " must have reached their steady state)"
+                  % (len(rows), abs(rows[-1][0] - rows[0][0]), abs(rows[-1][1] - rows[0][1])))
 
 
 if __name__ == "__main__":

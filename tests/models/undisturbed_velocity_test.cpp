@@ -222,5 +222,87 @@ TEST(UndisturbedVelocity, TransientFadesInAPackedCellAsTheSteadyOne) {
   EXPECT_NEAR(K, steady, 1e-9 * steady);
 }
 
+// Calibrated for the gas solver (self_disturbance_gain gamma, self_disturbance_offset beta):
+// K_eff = K / (1 + beta f - gamma a), f = a / (K G). Numbers by python3 from those formulas.
+std::unique_ptr<DragLaw> calibrated(const std::string& choice, double gamma, double beta) {
+  Parameters p("models.drag");
+  p.setText("undisturbed_velocity", choice);
+  p.set("self_disturbance_gain", gamma);
+  p.set("self_disturbance_offset", beta);
+  return Registry::instance().makeDrag("stokes", p);
+}
+
+TEST(UndisturbedVelocity, CalibratedGainAndOffsetOfTheGasSolver) {
+  // the Stokes sphere in cells of two diameters: a = 0.8175274862942198; gamma 1.02, beta 0.01:
+  // K_eff = K / (1.01 - 1.02 a) = 1.9264604988531e-08 (the lattice's 1.85941432875076e-08)
+  const double d = 20e-6, Delta = 40e-6;
+  const double eps = 1.0 - kPi / 6.0 * std::pow(d / Delta, 3);
+  double K = 0.0;
+  Batch b = lone(d, Delta, eps, 0.01, 0.0);
+  calibrated("self_disturbance", 1.02, 0.01)->coefficients(b.view(), constants(1.0), &K);
+  EXPECT_NEAR(K, 1.9264604988531e-08, 1e-12 * 1.9e-8);
+  // the same slip seen from a moving parcel (gas 0.005, parcel -0.005): the same factor on K,
+  // since both corrections act on the slip (G is evaluated at |u_f| = 0.005, so compare with
+  // gamma 1, beta 0 at that state)
+  Batch m = lone(d, Delta, eps, 0.005, -0.005);
+  double Kc = 0.0, K0 = 0.0;
+  calibrated("self_disturbance", 1.02, 0.01)->coefficients(m.view(), constants(1.0), &Kc);
+  calibrated("self_disturbance", 1.0, 0.0)->coefficients(m.view(), constants(1.0), &K0);
+  corrected("stokes")->coefficients(m.view(), constants(1.0), &K);
+  EXPECT_NEAR(K0, K, 1e-14 * K);  // gamma 1, beta 0 is the lattice estimate
+  const double kStokes = 3.0 * kPi * kMu * d;
+  const double a = 1.0 - kStokes / K0;
+  EXPECT_NEAR(Kc, kStokes / (1.01 - 1.02 * a), 1e-12 * Kc);
+  // gamma a is capped at 0.9 as a is: gamma 2, beta 0.05 gives K / 0.15
+  calibrated("self_disturbance", 2.0, 0.05)->coefficients(b.view(), constants(1.0), &K);
+  EXPECT_NEAR(K / kStokes, 1.0 / 0.15, 1e-12);
+}
+
+TEST(UndisturbedVelocity, CalibratedTransientAndDenseFade) {
+  // transient, half of the lattice's steady force built up (H = 0.5 K_eff 0.01):
+  // u_und = (0.01 + gamma G H) / (1 + beta), K_eff = K u_und / 0.01 = 1.1035191989018426e-08
+  const double d = 20e-6, Delta = 40e-6;
+  const double eps = 1.0 - kPi / 6.0 * std::pow(d / Delta, 3);
+  Batch b = lone(d, Delta, eps, 0.01, 0.0);
+  const double H[3] = {0.0, 0.0, 0.5 * 1.85941432875076e-08 * 0.01};
+  ParcelBatch v = b.view();
+  v.built_up_force = H;
+  double K = 0.0;
+  calibrated("self_disturbance_transient", 1.02, 0.01)->coefficients(v, constants(1.0), &K);
+  EXPECT_NEAR(K, 1.1035191989018426e-08, 1e-9 * 1.1e-8);
+  // in a dense cell the offset fades as a does: d = 300 um in a 4 mm cell at eps 0.5, u = 0.3,
+  // f = 1.1248654590227135e-05, a = 1.9028984645579644e-07; gamma 1.5, beta 0.2:
+  // K_eff / K = 1 / (1 + 0.2 f - 1.5 a) = 0.9999980357077101 (without the fade it would be 0.83)
+  Batch dense = lone(300e-6, 4e-3, 0.5, 0.3, 0.0);
+  calibrated("self_disturbance", 1.5, 0.2)->coefficients(dense.view(), constants(1.0), &K);
+  EXPECT_NEAR(K / (3.0 * kPi * kMu * 300e-6), 0.9999980357077101, 1e-13);
+}
+
+TEST(UndisturbedVelocity, CalibrationKeysAreCheckedAndNeedACorrection) {
+  auto message = [](const std::string& choice, const std::string& key, double value) {
+    Parameters p("models.drag");
+    if (!choice.empty()) p.setText("undisturbed_velocity", choice);
+    p.set(key, value);
+    try {
+      Registry::instance().makeDrag("stokes", p);
+    } catch (const ModelError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  // without a choice (the correction off by default): refused, named, with what to do
+  std::string m = message("", "self_disturbance_offset", 0.01);
+  EXPECT_NE(m.find("self_disturbance_offset"), std::string::npos) << m;
+  EXPECT_NE(m.find("'self_disturbance'"), std::string::npos) << m;
+  // with an explicit `none` the calibration is kept and the law is the law itself
+  EXPECT_EQ(message("none", "self_disturbance_gain", 1.02), "");
+  // out of range: the key and the range
+  m = message("self_disturbance", "self_disturbance_gain", 5.0);
+  EXPECT_NE(m.find("self_disturbance_gain"), std::string::npos) << m;
+  m = message("self_disturbance_transient", "self_disturbance_offset", -0.5);
+  EXPECT_NE(m.find("self_disturbance_offset"), std::string::npos) << m;
+  EXPECT_EQ(message("self_disturbance", "self_disturbance_offset", 0.02), "");
+}
+
 }  // namespace
 }  // namespace cosim::models::test

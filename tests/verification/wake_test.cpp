@@ -9,8 +9,10 @@
 //   none                         as sampled (asserted to be far off: what the others correct)
 //   self_disturbance             the steady estimate
 //   self_disturbance_transient   the estimate built up in time (wake_buildup.h)
-// Tolerances: 1.5-3 x what each reaches (docs/verification.md section 4 has the table). About
-// 60-70 s per test on a loaded 2-core machine (three runs of 23^3 cells).
+// These three use the lattice estimate (self_disturbance_gain 1, _offset 0); the scenes carry
+// their calibration for cosimFoam, which CalibratedSphereKeepsItsTerminalVelocity checks over
+// 0.1 s. Tolerances: 1.5-3 x what each reaches (docs/verification.md section 4 has the tables).
+// About 60-70 s per test on a loaded 2-core machine (three runs of 23^3 cells).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,7 +45,8 @@ struct Errors {
 
 Errors errors(const char* scene, const char* tag) {
   auto with = [&](const char* choice) {
-    return slip(scene, {std::string("models.drag.undisturbed_velocity=") + choice},
+    return slip(scene,
+                {std::string("models.drag.undisturbed_velocity=") + choice, "gain=1", "offset=0"},
                 std::string(tag) + "-" + choice) /
                kWt -
            1.0;
@@ -77,6 +80,23 @@ TEST(Wake, SphereInCellsOfFiveDiameters) {
   const Errors e = errors("verify-wake/cells5.yaml", "cells-5d");
   EXPECT_NEAR(e.steady, 0.0, 0.014);     // -0.95 %
   EXPECT_NEAR(e.transient, 0.0, 0.004);  // -0.15 % (met)
+}
+
+// The scenes as shipped: the estimate built up in time and calibrated for cosimFoam with each
+// scene's mesh, sphere, solver settings and time step (gain, offset: two held-sphere runs and
+// held_forms.py, docs/models.md "Calibrating for the gas solver"). Calibrated on a sphere held
+// still to 1 s; checked here on the free sphere, which starts at rest, must build its wake up and
+// keep its terminal slip. 0.1 s (81 tau_p, 500 steps) per scene: by then the lattice estimate has
+// crept to +1.2 % in cells of 2 diameters (section 4); reached: +0.15 / +0.21 / +0.19 %.
+TEST(Wake, CalibratedSphereKeepsItsTerminalVelocity) {
+  int n = 0;
+  for (const char* scene :
+       {"verify-wake/scenario.yaml", "verify-wake/cells3.yaml", "verify-wake/cells5.yaml"}) {
+    const double e =
+        slip(scene, {"end_time=0.1"}, std::string("calibrated-") + std::to_string(n++)) / kWt - 1.0;
+    std::printf("%s, calibrated, 0.1 s: terminal slip error %+.3f %%\n", scene, 100 * e);
+    EXPECT_NEAR(e, 0.0, 0.005) << scene;  // the 0.5 % the issue asks for
+  }
 }
 
 // The wake history is the coupler's state: the checkpoint holds it (per parcel id, with the

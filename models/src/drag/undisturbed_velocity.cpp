@@ -28,8 +28,9 @@ double SelfDisturbance::share(double parcel_radius, double voidage, double Delta
   return parcel / solid;
 }
 
-UndisturbedVelocityDrag::UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner, Estimate estimate)
-    : inner_(std::move(inner)), estimate_(estimate) {}
+UndisturbedVelocityDrag::UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner, Estimate estimate,
+                                                 double gamma, double beta)
+    : inner_(std::move(inner)), estimate_(estimate), gamma_(gamma), beta_(beta) {}
 
 std::vector<std::string> UndisturbedVelocityDrag::requiredFields() const {
   std::vector<std::string> f = inner_->requiredFields();
@@ -70,7 +71,7 @@ void UndisturbedVelocityDrag::coefficients(const ParcelBatch& p, const SceneCons
   checkOutputs(owner, "drag coefficient K", K, p.n);
 }
 
-// Fixed point K = K(u_und), u_und - v = (u_s - v) / (1 - a)
+// Fixed point K = K(u_und), u_und - v = (u_s - v) / (1 + beta f - gamma a)
 void UndisturbedVelocityDrag::steadyCoefficients(const ParcelBatch& p, const SceneConstants& c,
                                                  const double* G, const double* w,
                                                  double* K) const {
@@ -78,14 +79,18 @@ void UndisturbedVelocityDrag::steadyCoefficients(const ParcelBatch& p, const Sce
   std::vector<double> u_und(3 * p.n);
   ParcelBatch q = p;
   q.fluid_velocity = u_und.data();
-  auto coupling = [&](std::size_t i) {
-    return std::min(SelfDisturbance::coupling(K[i], G[i], w[i]), SelfDisturbance::kMaxSelfCoupling);
+  // 1 + beta f - gamma a, f = a / (K G) (1 for a lone parcel), gamma a capped as a is
+  auto denominator = [&](std::size_t i) {
+    const double a = SelfDisturbance::coupling(K[i], G[i], w[i]);
+    const double f = K[i] * G[i] > 0.0 ? a / (K[i] * G[i]) : 1.0;
+    return std::max(1.0 + beta_ * f - std::min(gamma_ * a, SelfDisturbance::kMaxSelfCoupling),
+                    CalibrationBounds::kMinDenominator);
   };
   std::vector<double> previous(p.n);
   for (int pass = 1; pass < SelfDisturbance::kMaxPasses; ++pass) {
     for (std::size_t i = 0; i < p.n; ++i) {
       previous[i] = K[i];
-      const double amplify = 1.0 / (1.0 - coupling(i));
+      const double amplify = 1.0 / denominator(i);
       for (int j = 0; j < 3; ++j) {
         const double v = p.velocity[3 * i + j];
         u_und[3 * i + j] = v + (p.fluid_velocity[3 * i + j] - v) * amplify;
@@ -98,11 +103,12 @@ void UndisturbedVelocityDrag::steadyCoefficients(const ParcelBatch& p, const Sce
     }
     if (converged) break;
   }
-  for (std::size_t i = 0; i < p.n; ++i) K[i] /= 1.0 - coupling(i);
+  for (std::size_t i = 0; i < p.n; ++i) K[i] /= denominator(i);
 }
 
-// u_und = u_s + w G_eff(K) H, K = K(u_und) (fixed point through G_eff only), then the factor
-// K_eff / K = 1 + x that gives K (u_und - v) along the sampled slip.
+// u_und - v = (u_s - v + gamma w G_eff(K) H) / (1 + beta f), K = K(u_und) (fixed point through
+// G_eff and f only), then the factor K_eff / K = 1 + x that gives K (u_und - v) along the sampled
+// slip.
 void UndisturbedVelocityDrag::transientCoefficients(const std::string& owner, const ParcelBatch& p,
                                                     const SceneConstants& c, const double* G,
                                                     const double* w, double* K) const {
@@ -120,9 +126,13 @@ void UndisturbedVelocityDrag::transientCoefficients(const std::string& owner, co
   for (int pass = 1; pass < SelfDisturbance::kMaxPasses; ++pass) {
     for (std::size_t i = 0; i < p.n; ++i) {
       previous[i] = K[i];
-      const double scale = p.isLost(i) ? 0.0 : w[i] / (1.0 / G[i] + K[i] * (1.0 - w[i]) / w[i]);
+      const double G_eff = p.isLost(i) ? 0.0 : 1.0 / (1.0 / G[i] + K[i] * (1.0 - w[i]) / w[i]);
+      const double offset = 1.0 + beta_ * G_eff * w[i] / G[i];  // 1 + beta f, f = w G_eff / G
+      const double scale = gamma_ * w[i] * G_eff;
       for (int j = 0; j < 3; ++j) {
-        u_und[3 * i + j] = p.fluid_velocity[3 * i + j] + scale * p.built_up_force[3 * i + j];
+        const double v = p.velocity[3 * i + j];
+        u_und[3 * i + j] =
+            v + (p.fluid_velocity[3 * i + j] - v + scale * p.built_up_force[3 * i + j]) / offset;
       }
     }
     inner_->coefficients(q, c, K);

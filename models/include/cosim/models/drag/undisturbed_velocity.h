@@ -59,6 +59,21 @@
 // factor on K, applied by both solvers: momentum stays conserved and the drag stays implicit.
 // Bounds: K_eff in [0.1 K, 10 K], as the steady cap (a <= 0.9); x < 0 when the parcel's old
 // wake runs against its slip (a reversal). Built up (H = F) it is the steady estimate.
+//
+// Calibrated for the gas solver (`self_disturbance_gain` gamma, `self_disturbance_offset` beta,
+// defaults 1 and 0: the lattice above). The gas solver's own discrete operator, with its
+// solver settings and time step, answers a lone parcel as
+//
+//   u_s - v = (1 + beta f) (u_und - v) - gamma w G_eff F,     f = w G_eff / G  (1 when lone)
+//
+// gamma: its response per unit force against the lattice's G; beta: the parcel's own cell
+// running ahead of the undisturbed gas with no force at all (its velocity reconstructed from face
+// fluxes over a voidage below 1). Both are measured with a held parcel in the scene's own mesh and
+// solver settings (docs/verification.md, section 4, "Calibrating"); f fades beta in dense cells as
+// a is faded. Then
+//
+//   steady:     K_eff = K(u_und) / (1 + beta f - gamma a)    (gamma a capped at 0.9, as a)
+//   transient:  u_und - v = (u_s - v + gamma w G_eff H) / (1 + beta f), K_eff as above
 #pragma once
 
 #include <memory>
@@ -96,8 +111,10 @@ struct SelfDisturbance {
 class UndisturbedVelocityDrag final : public DragLaw {
  public:
   enum class Estimate { steady, transient };
+  // gamma, beta: the calibration of the gas solver's operator (above; 1 and 0: the lattice)
   explicit UndisturbedVelocityDrag(std::unique_ptr<DragLaw> inner,
-                                   Estimate estimate = Estimate::steady);
+                                   Estimate estimate = Estimate::steady, double gamma = 1.0,
+                                   double beta = 0.0);
   std::string name() const override { return inner_->name(); }
   std::vector<std::string> requiredFields() const override;
   void coefficients(const ParcelBatch& p, const SceneConstants& c, double* K) const override;
@@ -114,6 +131,15 @@ class UndisturbedVelocityDrag final : public DragLaw {
 
   std::unique_ptr<DragLaw> inner_;
   Estimate estimate_;
+  double gamma_;
+  double beta_;
+};
+
+// Bounds on the calibration (models.drag.self_disturbance_gain / _offset).
+struct CalibrationBounds {
+  static constexpr double kMinGain = 0.5, kMaxGain = 2.0;
+  static constexpr double kMinOffset = -0.3, kMaxOffset = 0.3;
+  static constexpr double kMinDenominator = 0.1;  // 1 + beta f - gamma a: K_eff <= 10 K
 };
 
 // The cap on x of the transient estimate: K_eff / K in [1 + kMinGain, 1 + kMaxGain].
