@@ -322,6 +322,8 @@ int main(int argc, char** argv) {
       std::cout << "drag laws: " << join(r.dragNames())
                 << "\nundisturbed gas velocity (models.drag.undisturbed_velocity): "
                 << join(cosim::models::undisturbedVelocityNames())
+                << " (calibrated for the gas solver with models.drag.self_disturbance_gain, "
+                   "self_disturbance_offset)"
                 << "\nforce models: " << join(r.forceNames())
                 << "\nmass transfer laws: " << join(r.massTransferNames())
                 << "\ncoating zone shapes: " << join(r.zoneNames()) << "\n";
