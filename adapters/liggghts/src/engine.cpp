@@ -187,27 +187,47 @@ void Engine::resumeScript(const std::filesystem::path& script,
                              restart.string());
   script_ = script;
   keep_restored_forces_ = std::filesystem::exists(restart.parent_path() / kOtherForcesMarker);
+  // The script rewritten line for line (a left-out command becomes an empty line, a continued
+  // one keeps its continuation lines as empty ones), so that LIGGGHTS reads it as a file: its
+  // own flow control (label, jump SELF, next, if) works as in the run that wrote the
+  // checkpoint, and every line keeps its number. Only rank 0 reads the file (LIGGGHTS
+  // broadcasts its lines), so only rank 0 writes it.
   std::ifstream in(script);
+  std::ostringstream out;
   std::string logical, line;
+  int continued = 0;
   std::set<std::string> dropped;
   auto flush = [&] {
     const auto hash = logical.find('#');
     const std::string cmd = trim(hash == std::string::npos ? logical : logical.substr(0, hash));
     logical.clear();
-    if (cmd.empty()) return;
-    const std::string now = forResume(cmd, restart, dropped);
-    if (!now.empty()) command(now);
+    out << (cmd.empty() ? std::string() : forResume(cmd, restart, dropped)) << "\n";
+    for (; continued > 0; --continued) out << "\n";
   };
   while (std::getline(in, line)) {
     const std::string t = trim(line);
     if (!t.empty() && t.back() == '&') {
       logical += t.substr(0, t.size() - 1) + " ";
+      ++continued;
       continue;
     }
     logical += line;
     flush();
   }
-  flush();
+  if (!logical.empty() || continued > 0) flush();
+  const std::filesystem::path resumed =
+      script.parent_path() / (script.filename().string() + ".resume");
+  if (rank_ == 0) {
+    std::ofstream f(resumed);
+    f << out.str();
+    if (!f.flush())
+      throw std::runtime_error("cannot resume: cannot write " + resumed.string() +
+                               " (the script rewritten for the resume) in the participant's "
+                               "folder; is the disk full or the folder read-only?");
+  }
+  const std::string path = resumed.string();
+  guarded("running " + script.string() + " for the resume (as " + path + ")",
+          [&] { lmp_->input->file(path.c_str()); });
   need_setup_ = true;
 }
 

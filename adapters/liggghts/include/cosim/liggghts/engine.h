@@ -69,7 +69,8 @@ class Engine {
   // insertions `insert_every once` and their `unfix`, run, reset_timestep and write_restart left
   // out), so the particles, their coating, their contact history and the step counter continue
   // from the restart file. Other fixes, walls, continuous insertions and dumps are defined again
-  // as written and pick up their restart data.
+  // as written and pick up their restart data. The rewritten script is written beside the
+  // script as SCRIPT.resume and run as a file, so its flow control (label, jump SELF, if) works.
   void resumeScript(const std::filesystem::path& script, const std::filesystem::path& restart);
   // One LIGGGHTS command.
   void command(const std::string& line);
