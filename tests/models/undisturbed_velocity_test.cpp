@@ -131,6 +131,17 @@ TEST(UndisturbedVelocity, NoneIsTheLawItselfAndLostParcelsGetNoDrag) {
   double K = 1.0;
   corrected("schiller_naumann")->coefficients(v, constants(1.0), &K);
   EXPECT_EQ(K, 0.0);
+  // the transient estimate too, lattice and calibrated (a lost parcel has no cell, G = 0)
+  const double H[3] = {0.0, 0.0, 1e-9};
+  v.built_up_force = H;
+  for (double beta : {0.0, 0.01}) {
+    Parameters t("models.drag");
+    t.setText("undisturbed_velocity", "self_disturbance_transient");
+    t.set("self_disturbance_offset", beta);
+    K = 1.0;
+    Registry::instance().makeDrag("schiller_naumann", t)->coefficients(v, constants(1.0), &K);
+    EXPECT_EQ(K, 0.0) << "beta " << beta;
+  }
 }
 
 TEST(UndisturbedVelocity, DeclaresCellSizeAndRejectsUnknownChoices) {

@@ -126,7 +126,11 @@ void UndisturbedVelocityDrag::transientCoefficients(const std::string& owner, co
   for (int pass = 1; pass < SelfDisturbance::kMaxPasses; ++pass) {
     for (std::size_t i = 0; i < p.n; ++i) {
       previous[i] = K[i];
-      const double G_eff = p.isLost(i) ? 0.0 : 1.0 / (1.0 / G[i] + K[i] * (1.0 - w[i]) / w[i]);
+      if (p.isLost(i)) {  // in no cell (G = 0): no disturbance to remove
+        for (int j = 0; j < 3; ++j) u_und[3 * i + j] = p.fluid_velocity[3 * i + j];
+        continue;
+      }
+      const double G_eff = 1.0 / (1.0 / G[i] + K[i] * (1.0 - w[i]) / w[i]);
       const double offset = 1.0 + beta_ * G_eff * w[i] / G[i];  // 1 + beta f, f = w G_eff / G
       const double scale = gamma_ * w[i] * G_eff;
       for (int j = 0; j < 3; ++j) {
