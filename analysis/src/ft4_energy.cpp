@@ -16,7 +16,9 @@
 namespace cosim::analysis {
 namespace {
 
-const char* kHeader = "time_s,height_m,force_N,torque_Nm";
+// The scene writes the fifth column since the resume fix; files of earlier runs have four.
+const char* kHeader = "time_s,height_m,force_N,torque_Nm,averaged";
+const char* kHeaderWithoutAveraged = "time_s,height_m,force_N,torque_Nm";
 
 std::vector<std::string> splitComma(const std::string& line) {
   std::vector<std::string> out;
@@ -42,7 +44,8 @@ double parseNumber(const std::string& text, const std::filesystem::path& file, i
 
 }  // namespace
 
-std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv) {
+std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv,
+                                    std::vector<double>* cut_windows) {
   std::ifstream in(csv);
   if (!in)
     throw std::runtime_error(csv.string() +
@@ -51,30 +54,40 @@ std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv) {
   std::vector<BladeRow> rows;
   std::string line;
   int n = 0;
-  bool header = false;
+  std::size_t columns = 0;  // 0 until a header line was read
   while (std::getline(in, line)) {
     ++n;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
-    if (line == kHeader) {
-      header = true;
+    if (line == kHeader || line == kHeaderWithoutAveraged) {
+      columns = line == kHeader ? 5 : 4;
       continue;
     }
-    if (!header)
+    if (columns == 0)
       throw std::runtime_error(
           fmt::format("{}:{}: expected the header line '{}' first", csv.string(), n, kHeader));
     const auto cells = splitComma(line);
-    if (cells.size() != 4)
-      throw std::runtime_error(fmt::format("{}:{}: expected 4 columns ({}), found {}", csv.string(),
-                                           n, kHeader, cells.size()));
+    if (cells.size() != columns)
+      throw std::runtime_error(
+          fmt::format("{}:{}: expected {} columns ({}), found {}", csv.string(), n, columns,
+                      columns == 5 ? kHeader : kHeaderWithoutAveraged, cells.size()));
     BladeRow r{parseNumber(cells[0], csv, n, "time_s"), parseNumber(cells[1], csv, n, "height_m"),
                parseNumber(cells[2], csv, n, "force_N"),
                parseNumber(cells[3], csv, n, "torque_Nm")};
     // a resumed run writes again from its checkpoint: its rows replace the stopped run's
     while (!rows.empty() && rows.back().time_s >= r.time_s) rows.pop_back();
+    if (cut_windows != nullptr)
+      while (!cut_windows->empty() && cut_windows->back() >= r.time_s) cut_windows->pop_back();
+    // LIGGGHTS' fix ave/time averages whole windows only: the window in which a run resumed
+    // has no average (all columns 0, averaged 0); the row carries no measurement
+    if (columns == 5 && parseNumber(cells[4], csv, n, "averaged") < 0.5) {
+      if (cut_windows != nullptr) cut_windows->push_back(r.time_s);
+      continue;
+    }
     rows.push_back(r);
   }
-  if (!header) throw std::runtime_error(csv.string() + ": empty (no header '" + kHeader + "')");
+  if (columns == 0)
+    throw std::runtime_error(csv.string() + ": empty (no header '" + kHeader + "')");
   return rows;
 }
 
@@ -128,11 +141,22 @@ EnergyProfile flowEnergy(const std::vector<BladeRow>& rows, double blade_radius_
     if (i > 0) {
       const auto& prev = p.points.back();
       const double dh = prev.height_m - e.height_m;
-      if (dh < -1e-12)
+      if (dh < -1e-12) {
+        // files written before the `averaged` column: the window a resume cut reads as a row
+        // of height, force and torque exactly 0
+        const auto& cut = rows[i - 1];
+        const bool looks_cut = cut.height_m == 0 && cut.force_N == 0 && cut.torque_Nm == 0;
         throw std::invalid_argument(fmt::format(
             "the blade rises from {:.9g} m to {:.9g} m at t = {} s: the flow energy of Eq. 11 "
-            "is that of a downward test",
-            prev.height_m, e.height_m, rows[i].time_s));
+            "is that of a downward test{}",
+            prev.height_m, e.height_m, rows[i].time_s,
+            looks_cut ? fmt::format(" (the row at t = {} s has height, force and torque 0: the "
+                                    "averaging window in which a run written without the "
+                                    "'averaged' column resumed; delete that line of "
+                                    "ft4_blade.csv)",
+                                    rows[i - 1].time_s)
+                      : std::string()));
+      }
       e.energy_J =
           prev.energy_J + (dh > 0 ? 0.5 * (prev.gradient_J_per_m + e.gradient_J_per_m) * dh : 0.0);
     }
@@ -172,9 +196,12 @@ Ft4RunParameters readFt4RunParameters(const std::filesystem::path& run,
 
 EnergyProfile runFlowEnergy(const std::filesystem::path& run) {
   const auto par = readFt4RunParameters(run);
-  const auto rows = readBladeRows(run / "particles" / "ft4_blade.csv");
+  std::vector<double> cut;
+  const auto rows = readBladeRows(run / "particles" / "ft4_blade.csv", &cut);
   try {
-    return flowEnergy(rows, par.blade_radius_m, par.helix_deg);
+    auto profile = flowEnergy(rows, par.blade_radius_m, par.helix_deg);
+    profile.cut_windows_s = std::move(cut);
+    return profile;
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(run.string() + ": " + e.what());
   }

@@ -52,6 +52,14 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
           "mm, helix {:.4g} deg)\nprofile: {}\n",
           profile.total_J() * 1e3, profile.highest_m() * 1e3, profile.lowest_m() * 1e3,
           profile.blade_radius_m * 1e3, profile.helix_deg, file.string());
+      if (!profile.cut_windows_s.empty()) {
+        std::string times;
+        for (const double t : profile.cut_windows_s) times += fmt::format(" {:g}", t);
+        out << fmt::format(
+            "left out {} row(s) without a mean (the output interval in which the run resumed; "
+            "the profile joins the rows on either side): t ={} s\n",
+            profile.cut_windows_s.size(), times);
+      }
       return 0;
     }
     const auto measured = a::readMeasuredEnergy(o.measured);

@@ -107,6 +107,67 @@ TEST(Ft4Energy, ResumedRunRowsReplaceTheStoppedRunsFromTheCheckpoint) {
   fs::remove_all(d);
 }
 
+// The scene's file since the `averaged` column: the interval in which a resumed run started has
+// no mean (LIGGGHTS' ave/time writes 0 for it) and is left out; the profile joins its
+// neighbours by the trapezoid rule. Files with four columns still read; there a resume's zero
+// row makes the blade "rise", and the refusal says which line to delete.
+TEST(Ft4Energy, ARowWithoutAMeanIsLeftOutAndTheOldFilesZeroRowIsNamed) {
+  const auto d = tempDir("cut");
+  // stopped after 0.3 (rows 0.1 .. 0.3 kept up to the checkpoint at 0.25: 0.3 replaced),
+  // resumed at 0.25: the row at 0.3 has no mean
+  write(d / "ft4_blade.csv",
+        "time_s,height_m,force_N,torque_Nm,averaged\n0.1,0.040,1,0.001,1\n0.2,0.039,2,0.002,1\n"
+        "0.3,0.038,3,0.003,1\ntime_s,height_m,force_N,torque_Nm,averaged\n0.3,0,0,0,0\n"
+        "0.4,0.036,5,0.005,1\n");
+  std::vector<double> cut;
+  const auto rows = readBladeRows(d / "ft4_blade.csv", &cut);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_DOUBLE_EQ(rows[2].time_s, 0.4);
+  ASSERT_EQ(cut.size(), 1u);
+  EXPECT_DOUBLE_EQ(cut[0], 0.3);
+  // R 24 mm, helix 5 deg: lever R tan(5 deg) = 2.0997e-3 m; gradients M/lever + F =
+  // 1.476252, 2.952504, 7.381261 N (hand-computed); trapezoids over 1 mm and 3 mm
+  const auto p = flowEnergy(rows, 0.024, 5);
+  const double lever = 0.024 * std::tan(5 * std::numbers::pi / 180);
+  const double g1 = 0.001 / lever + 1, g2 = 0.002 / lever + 2, g4 = 0.005 / lever + 5;
+  EXPECT_NEAR(p.total_J(), 0.5 * (g1 + g2) * 0.001 + 0.5 * (g2 + g4) * 0.003, 1e-15);
+  EXPECT_NEAR(p.total_J(),
+              0.5 * (1.476252 + 2.952504) * 0.001 + 0.5 * (2.952504 + 7.381261) * 0.003, 1e-8);
+  // a cut window at the end of the file: kept out, nothing after it
+  write(d / "end.csv",
+        "time_s,height_m,force_N,torque_Nm,averaged\n0.1,0.040,1,0,1\n0.2,0,0,0,0\n");
+  cut.clear();
+  EXPECT_EQ(readBladeRows(d / "end.csv", &cut).size(), 1u);
+  EXPECT_EQ(cut.size(), 1u);
+  // a later resume from before the cut row replaces it (newest rows win): not cut any more
+  write(d / "again.csv",
+        "time_s,height_m,force_N,torque_Nm,averaged\n0.1,0.040,1,0,1\n0.2,0,0,0,0\n"
+        "time_s,height_m,force_N,torque_Nm,averaged\n0.2,0.039,1,0,1\n");
+  cut.clear();
+  EXPECT_EQ(readBladeRows(d / "again.csv", &cut).size(), 2u);
+  EXPECT_TRUE(cut.empty());
+  // five columns promised, four given
+  write(d / "short.csv", "time_s,height_m,force_N,torque_Nm,averaged\n0.1,0.04,1,0\n");
+  try {
+    (void)readBladeRows(d / "short.csv");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("short.csv:2: expected 5 columns"), std::string::npos)
+        << e.what();
+  }
+  // the four-column file of a run resumed before the fix
+  const std::vector<BladeRow> old{{0.78, 0.0077, 1, 0.001}, {0.79, 0, 0, 0}, {0.8, 0.0076, 1, 0}};
+  try {
+    (void)flowEnergy(old, 0.024, 5);
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the row at t = 0.79 s has height, force and torque 0"),
+              std::string::npos)
+        << e.what();
+  }
+  fs::remove_all(d);
+}
+
 TEST(Ft4Calibration, LineFitInversionAndUncertaintyAgainstClosedForm) {
   // mu 0.3, 0.5, 0.7 with W 1.0, 2.1, 3.0 J: by hand, b = Sxy/Sxx = 0.4/0.08 = 5,
   // a = 2.0333.. - 2.5, s^2 = SSE/(n-2) = 0.0066667; measured 2.5 J:

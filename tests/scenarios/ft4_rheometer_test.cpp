@@ -14,11 +14,13 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <numbers>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cosim/analysis/ft4_energy.h"
 #include "cosim/link/fields.h"
 #include "coupler.h"
 #include "scenario.h"
@@ -35,14 +37,18 @@ std::vector<Row> readRows(const fs::path& csv) {
   std::ifstream in(csv);
   std::string line;
   std::getline(in, line);
-  EXPECT_EQ(line, "time_s,height_m,force_N,torque_Nm");
+  EXPECT_EQ(line, "time_s,height_m,force_N,torque_Nm,averaged");
   std::vector<Row> rows;
   while (std::getline(in, line)) {
     for (auto& c : line)
       if (c == ',') c = ' ';
     std::istringstream r(line);
     Row x{};
-    if (r >> x.t >> x.h >> x.f >> x.m) rows.push_back(x);
+    double averaged = 0;
+    if (r >> x.t >> x.h >> x.f >> x.m >> averaged) {
+      EXPECT_EQ(averaged, 1.0) << "t = " << x.t << ": a run that went through averages every row";
+      rows.push_back(x);
+    }
   }
   return rows;
 }
@@ -260,5 +266,60 @@ TEST(Ft4RheometerTiny, ARunWithPoursResumesOnTwoRanks) {
   double worst = 0;
   for (std::size_t i = 0; i < a.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
   EXPECT_LT(worst, 1e-12) << "largest position difference [m]";
+  fs::remove_all(o.output);
+}
+
+// A run resumed from a checkpoint between two blade rows (a Ctrl-C stop writes one at any step)
+// starts LIGGGHTS' fix ave/time in the middle of an output interval; ave/time averages whole
+// intervals only, so the row that ends it has no mean: before the `averaged` column it read as a
+// blade at height 0 with no force, and `cosim ft4 energy` refused the run as a rising blade.
+// Here: the blade descending from the start (no aeration), rows every 10 ms, a checkpoint at
+// 15 ms; resumed from it, the row at 20 ms is written with averaged 0 and left out, and every
+// other row equals the through run's (the resume gives the state back exactly).
+TEST(Ft4RheometerTiny, AResumeBetweenTwoRowsLeavesOutTheIntervalItCut) {
+  const auto scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/ft4-rheometer/tiny.yaml";
+  const std::vector<std::string> sets = {"aeration_time=0", "coupling.end_time=0.04",
+                                         "checkpoint.interval=0.015", "checkpoint.keep=3"};
+  RunOptions o;
+  o.quiet = true;
+  o.output = fs::temp_directory_path() / ("cosim-ft4-cut-" + std::to_string(getpid()));
+  fs::remove_all(o.output);
+  RunResult whole = Coupler(loadScenario(scene, sets), o).run();
+  ASSERT_EQ(whole.exit_code, 0) << whole.message;
+  ASSERT_TRUE(fs::exists(o.output / "checkpoints/0.015"));
+  const fs::path through = o.output.string() + "-through.csv";
+  fs::copy_file(o.output / "particles/ft4_blade.csv", through,
+                fs::copy_options::overwrite_existing);
+  const auto expected = cosim::analysis::readBladeRows(through);
+  ASSERT_EQ(expected.size(), 4u);  // 10, 20, 30, 40 ms
+
+  RunOptions r;
+  r.quiet = true;
+  r.resume = o.output;
+  r.resume_from = 0.015;
+  RunResult resumed = Coupler(loadScenario(scene, sets), r).run();
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
+  std::vector<double> cut;
+  const auto rows = cosim::analysis::readBladeRows(o.output / "particles/ft4_blade.csv", &cut);
+  ASSERT_EQ(cut.size(), 1u);
+  EXPECT_NEAR(cut[0], 0.02, 1e-9);
+  ASSERT_EQ(rows.size(), 3u);  // 10 ms from before the stop, 30 and 40 ms after the resume
+  const std::size_t kept[] = {0, 2, 3};
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto& want = expected[kept[i]];
+    EXPECT_NEAR(rows[i].time_s, want.time_s, 1e-12);
+    EXPECT_NEAR(rows[i].height_m, want.height_m, 1e-12) << "t = " << want.time_s;
+    EXPECT_EQ(rows[i].force_N, want.force_N) << "t = " << want.time_s;
+    EXPECT_EQ(rows[i].torque_Nm, want.torque_Nm) << "t = " << want.time_s;
+  }
+  // the energy command reads the resumed run and names the row it left out
+  const std::string cmd = std::string(COSIM_BINARY_DIR) + "/cosim ft4 energy " + o.output.string() +
+                          " > " + (o.output / "energy.txt").string() + " 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  std::ifstream text(o.output / "energy.txt");
+  const std::string said((std::istreambuf_iterator<char>(text)), std::istreambuf_iterator<char>());
+  EXPECT_NE(said.find("left out 1 row(s) without a mean"), std::string::npos) << said;
+  EXPECT_NE(said.find("t = 0.02 s"), std::string::npos) << said;
+  fs::remove(through);
   fs::remove_all(o.output);
 }

@@ -12,7 +12,10 @@
 namespace cosim::analysis {
 
 // One row of RUN/particles/ft4_blade.csv (written by the scene's LIGGGHTS script): means over
-// the output interval ending at time_s.
+// the output interval ending at time_s. The file's fifth column `averaged` is 1 for a row that
+// holds a mean and 0 for the interval in which a resumed run started (LIGGGHTS' fix ave/time
+// averages whole intervals only, so that one has none); files of runs made before that column
+// have four.
 struct BladeRow {
   double time_s = 0;
   double height_m = 0;   // blade reference point above the vessel base
@@ -22,9 +25,12 @@ struct BladeRow {
 
 // Reads ft4_blade.csv. A resumed run appends to the file from its checkpoint, so a header line
 // may repeat and times may go back: a row replaces every earlier row of the same or a later
-// time (the newest rows win). Throws std::runtime_error naming the file, line and what was
-// expected for anything else (missing columns, a number that is not one).
-std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv);
+// time (the newest rows win). Rows with `averaged` 0 are left out (their times go to
+// cut_windows when given); the profile then joins the rows on either side. Throws
+// std::runtime_error naming the file, line and what was expected for anything else (missing
+// columns, a number that is not one).
+std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv,
+                                    std::vector<double>* cut_windows = nullptr);
 
 // A point of the energy profile: the work done from the first row down to this row's height.
 struct EnergyPoint {
@@ -38,7 +44,8 @@ struct EnergyPoint {
 struct EnergyProfile {
   double blade_radius_m = 0;
   double helix_deg = 0;
-  std::vector<EnergyPoint> points;  // the rows in time order; only descending steps add work
+  std::vector<EnergyPoint> points;    // the rows in time order; only descending steps add work
+  std::vector<double> cut_windows_s;  // times of rows left out: intervals a resume cut
   double total_J() const { return points.empty() ? 0.0 : points.back().energy_J; }
   // Work done while the blade's height went from h_high down to h_low (the cumulative energy
   // interpolated linearly in height). Throws std::invalid_argument when the profile does not
