@@ -85,6 +85,7 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
   o.depth = c.depth;
   o.cell = c.cell;
   o.heights = c.heights;
+  o.blocks = c.blocks;
   const ParticleFile file(c.run / kParticlesFile);
   const PivResult r = pivField(file, o);
   const fs::path folder = c.output.empty() ? c.run / kPivFolder : c.output;
@@ -96,12 +97,16 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
       o.depth ? "centre within " + mm(*o.depth) + " mm" : std::string("centre within its diameter"),
       r.samples, r.grid.nx, r.grid.nz, mm(o.cell));
   for (const auto& p : r.profiles) {
-    out << fmt::format("  profile at z = {} mm: x [mm] : vz [m/s] (samples)\n", mm(p.height));
+    out << fmt::format(
+        "  profile at z = {} mm: x [mm] : vz [m/s] +- standard error ({} blocks) (samples)\n",
+        mm(p.height), r.blocks);
     std::string line;
     for (std::size_t i = 0; i < p.x.size(); ++i) {
       line +=
-          fmt::format("    {:>7} : {:>7} ({})\n", mm(p.x[i]),
-                      std::isfinite(p.vz[i]) ? fmt::format("{:.3f}", p.vz[i]) : "-", p.samples[i]);
+          fmt::format("    {:>7} : {:>7} +- {:<6} ({})\n", mm(p.x[i]),
+                      std::isfinite(p.vz[i]) ? fmt::format("{:.3f}", p.vz[i]) : "-",
+                      std::isfinite(p.stderr_vz[i]) ? fmt::format("{:.3f}", p.stderr_vz[i]) : "-",
+                      p.samples[i]);
     }
     out << line;
   }
@@ -138,10 +143,11 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
                      core_rule);
   out << "  mean absolute error of vz [m/s] (points)\n";
   out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", "height [mm]", "all", "core", "sides");
-  std::string csv = "height_m,region,points,mae_m_s\n";
+  std::string csv = "height_m,region,points,mae_m_s,noise_mae_m_s\n";
   auto row = [&](const std::string& h, const MaeEntry& e, const char* region) {
-    csv += fmt::format("{},{},{},{}\n", h, region, e.points,
-                       e.points ? formatShortest(e.mae) : std::string());
+    csv += fmt::format("{},{},{},{},{}\n", h, region, e.points,
+                       e.points ? formatShortest(e.mae) : std::string(),
+                       e.noise_points ? formatShortest(e.noise_mae) : std::string());
   };
   for (const auto& p : r.profiles) {
     out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}", mm(p.height), maeText(p.all),
@@ -160,6 +166,21 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
   row("all", r.all, "all");
   row("all", r.core, "core");
   row("all", r.sides, "sides");
+  if (r.all.noise_points > 0) {
+    // the same table for the sampling noise alone: an error near it is not resolved
+    out << "  from the sampling noise alone (standard errors of the profiles) [m/s] (points "
+           "with one)\n";
+    auto noiseText = [](const MaeEntry& e) {
+      return e.noise_points == 0 ? std::string("-")
+                                 : fmt::format("{:.3f} ({})", e.noise_mae, e.noise_points);
+    };
+    for (const auto& p : r.profiles)
+      out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", mm(p.height), noiseText(p.all),
+                         noiseText(p.core), noiseText(p.sides));
+    out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", "all", noiseText(r.all),
+                       noiseText(r.core), noiseText(r.sides));
+    out << "  an error no larger than about this is what two runs of the same model differ by\n";
+  }
   const fs::path file = c.output.empty() ? sim.parent_path() / "comparison.csv" : c.output;
   writeFileAtomically(file, csv);
   out << "cosim piv-compare: written " << file.string() << "\n";

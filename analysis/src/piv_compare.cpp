@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <sstream>
 #include <stdexcept>
 
@@ -45,26 +46,44 @@ double parse(const std::string& text, bool empty_is_nan, const std::string& wher
   return v;
 }
 
-void addTo(MaeEntry& e, double err) {
-  e.mae += err;  // the sum until finish()
+// err: |v_sim - v_measured|; noise: the mean absolute error of noise alone at the point (NaN:
+// not known)
+void addTo(MaeEntry& e, double err, double noise) {
+  e.mae += err;  // the sums until finish()
   ++e.points;
+  if (std::isfinite(noise)) {
+    e.noise_mae += noise;
+    ++e.noise_points;
+  }
 }
 
-void finish(MaeEntry& e) { e.mae = e.points > 0 ? e.mae / static_cast<double>(e.points) : kNaN; }
+void finish(MaeEntry& e) {
+  e.mae = e.points > 0 ? e.mae / static_cast<double>(e.points) : kNaN;
+  e.noise_mae = e.noise_points > 0 ? e.noise_mae / static_cast<double>(e.noise_points) : kNaN;
+}
 
 // The simulated profile at one height: points with data, sorted by x.
+// The interpolated velocity at a point and its standard error (NaN: not known). Between two
+// points v = (1 - w) v_lo + w v_hi, whose standard error, the two bins' errors independent, is
+// sqrt((1 - w)^2 se_lo^2 + w^2 se_hi^2).
+struct Sample {
+  double v = 0, se = kNaN;
+};
+
 struct Curve {
-  std::vector<double> x, v;
+  std::vector<double> x, v, se;
   double spacing = 0;
-  std::optional<double> at(double xq) const {
-    if (x.size() == 1) return std::fabs(xq - x[0]) <= spacing ? std::optional(v[0]) : std::nullopt;
-    if (xq < x.front()) return x.front() - xq <= spacing ? std::optional(v.front()) : std::nullopt;
-    if (xq > x.back()) return xq - x.back() <= spacing ? std::optional(v.back()) : std::nullopt;
+  std::optional<Sample> at(double xq) const {
+    auto only = [&](std::size_t i) { return std::optional(Sample{v[i], se[i]}); };
+    if (x.size() == 1) return std::fabs(xq - x[0]) <= spacing ? only(0) : std::nullopt;
+    if (xq < x.front()) return x.front() - xq <= spacing ? only(0) : std::nullopt;
+    if (xq > x.back()) return xq - x.back() <= spacing ? only(x.size() - 1) : std::nullopt;
     const auto hi = static_cast<std::size_t>(std::upper_bound(x.begin(), x.end(), xq) - x.begin());
-    if (hi >= x.size()) return v.back();
+    if (hi >= x.size()) return only(x.size() - 1);
     const std::size_t lo = hi - 1;
     const double w = (xq - x[lo]) / (x[hi] - x[lo]);
-    return v[lo] + w * (v[hi] - v[lo]);
+    return Sample{v[lo] + w * (v[hi] - v[lo]),
+                  std::sqrt((1 - w) * (1 - w) * se[lo] * se[lo] + w * w * se[hi] * se[hi])};
   }
 };
 }  // namespace
@@ -109,6 +128,11 @@ std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
     p.height = parse(cell("height_m"), false, where + " column height_m");
     p.x = parse(cell("x_m"), false, where + " column x_m");
     p.vz = parse(cell("vz_m_s"), true, where + " column vz_m_s");
+    if (col.count("vz_stderr_m_s")) {
+      p.stderr_vz = parse(cell("vz_stderr_m_s"), true, where + " column vz_stderr_m_s");
+      if (p.stderr_vz < 0)
+        throw std::runtime_error(where + " column vz_stderr_m_s: a standard error is >= 0");
+    }
     out.push_back(p);
   }
   if (col.empty())
@@ -133,6 +157,7 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
     if (std::isfinite(p.vz)) {
       it->second.x.push_back(p.x);
       it->second.v.push_back(p.vz);
+      it->second.se.push_back(p.stderr_vz);
     }
   }
   std::string heights;
@@ -147,6 +172,7 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
     for (auto i : order) {
       s.x.push_back(c.x[i]);
       s.v.push_back(c.v[i]);
+      s.se.push_back(c.se[i]);
     }
     s.spacing = std::numeric_limits<double>::infinity();
     for (std::size_t i = 1; i < s.x.size(); ++i)
@@ -179,13 +205,17 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
       ++pc->without_simulation;
       continue;
     }
-    const double err = std::fabs(*sim - m.vz);
+    const double err = std::fabs(sim->v - m.vz);
+    // E|X| of X ~ N(0, se_sim^2 + se_measured^2): what noise alone gives where both agree
+    const double measured_se = std::isfinite(m.stderr_vz) ? m.stderr_vz : 0.0;
+    const double noise = std::sqrt(2.0 / std::numbers::pi) *
+                         std::sqrt(sim->se * sim->se + measured_se * measured_se);
     const bool core =
         o.core_band ? (m.x >= o.core_band->first && m.x <= o.core_band->second) : m.vz > 0;
-    addTo(pc->all, err);
-    addTo(core ? pc->core : pc->sides, err);
-    addTo(r.all, err);
-    addTo(core ? r.core : r.sides, err);
+    addTo(pc->all, err, noise);
+    addTo(core ? pc->core : pc->sides, err, noise);
+    addTo(r.all, err, noise);
+    addTo(core ? r.core : r.sides, err, noise);
   }
   for (auto& p : r.profiles) {
     finish(p.all);

@@ -3,6 +3,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -50,6 +51,7 @@ PivAccumulator::PivAccumulator(const PivOptions& options) : o_(options) {
   require(std::isfinite(o_.wall_y), "the front wall's y is not a number");
   require(!o_.depth || (std::isfinite(*o_.depth) && *o_.depth > 0),
           fmt::format("depth = {} m: must be > 0", o_.depth.value_or(0)));
+  require(o_.blocks >= 1, "blocks = 0: the standard errors need at least 2 blocks (1: none)");
   require(std::isfinite(o_.from) && !std::isnan(o_.to) && o_.to >= o_.from,
           fmt::format("time window [{}, {}] s: needs from <= to", o_.from, o_.to));
   for (double h : o_.heights)
@@ -71,6 +73,7 @@ PivAccumulator::PivAccumulator(const PivOptions& options) : o_(options) {
     for (std::size_t ix = 0; ix < g.nx; ++ix) p.x.push_back(g.xCentre(ix));
     p.vz.assign(g.nx, kNaN);
     p.samples.assign(g.nx, 0);
+    p.stderr_vz.assign(g.nx, kNaN);
     result_.profiles.push_back(std::move(p));
     profile_sums_.emplace_back(g.nx, 0.0);
   }
@@ -84,6 +87,9 @@ void PivAccumulator::add(double time, const std::vector<double>& position,
         "PIV snapshot at t = {} s: {} positions, {} velocities and {} radii do not match", time, n,
         velocity.size() / 3, radius.size()));
   auto& g = result_.grid;
+  const std::size_t bins = result_.profiles.size() * g.nx;
+  auto& snap_sum = snapshot_sums_.emplace_back(bins, 0.0);
+  auto& snap_samples = snapshot_samples_.emplace_back(bins, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const double x = position[3 * i], y = position[3 * i + 1], z = position[3 * i + 2];
     const double vz = velocity[3 * i + 2];
@@ -103,12 +109,57 @@ void PivAccumulator::add(double time, const std::vector<double>& position,
         profile_sums_[p][ix] += vz;
         ++prof.samples[ix];
         prof.vz[ix] = profile_sums_[p][ix] / static_cast<double>(prof.samples[ix]);
+        snap_sum[p * g.nx + ix] += vz;
+        ++snap_samples[p * g.nx + ix];
       }
     }
   }
   if (result_.snapshots == 0) result_.first_time = time;
   result_.last_time = time;
   ++result_.snapshots;
+}
+
+double batchMeansStandardError(const std::vector<double>& block_sums,
+                               const std::vector<double>& block_samples) {
+  double sum = 0, samples = 0;
+  std::size_t holding = 0;
+  for (std::size_t b = 0; b < block_sums.size(); ++b) {
+    sum += block_sums[b];
+    samples += block_samples[b];
+    if (block_samples[b] > 0) ++holding;
+  }
+  if (holding < 2) return kNaN;
+  const double ratio = sum / samples;
+  double squares = 0;
+  for (std::size_t b = 0; b < block_sums.size(); ++b) {
+    const double d = block_sums[b] - ratio * block_samples[b];
+    squares += d * d;
+  }
+  const auto nb = static_cast<double>(block_sums.size());
+  return std::sqrt(nb / (nb - 1) * squares) / samples;
+}
+
+const PivResult& PivAccumulator::result() {
+  const std::size_t snapshots = snapshot_sums_.size();
+  const std::size_t blocks = std::min(o_.blocks, snapshots);
+  result_.blocks = blocks;
+  const std::size_t nx = result_.grid.nx;
+  std::vector<double> block_sums(blocks), block_samples(blocks);
+  for (std::size_t p = 0; p < result_.profiles.size(); ++p) {
+    for (std::size_t ix = 0; ix < nx; ++ix) {
+      std::fill(block_sums.begin(), block_sums.end(), 0.0);
+      std::fill(block_samples.begin(), block_samples.end(), 0.0);
+      // block b holds the snapshots [b S / B, (b + 1) S / B)
+      for (std::size_t s = 0; s < snapshots; ++s) {
+        const std::size_t b = s * blocks / snapshots;
+        block_sums[b] += snapshot_sums_[s][p * nx + ix];
+        block_samples[b] += snapshot_samples_[s][p * nx + ix];
+      }
+      result_.profiles[p].stderr_vz[ix] =
+          blocks >= 2 ? batchMeansStandardError(block_sums, block_samples) : kNaN;
+    }
+  }
+  return result_;
 }
 
 PivResult pivField(const ParticleFile& file, const PivOptions& options) {
@@ -152,11 +203,11 @@ void writePiv(const PivResult& r, const PivOptions& o, const std::filesystem::pa
           fmt::format("{},{},{},{}\n", formatShortest(g.xCentre(ix)), formatShortest(g.zCentre(iz)),
                       number(g.mean(ix, iz)), g.samples[iz * g.nx + ix]);
   writeFileAtomically(folder / "grid.csv", grid);
-  std::string prof = "height_m,x_m,vz_m_s,samples\n";
+  std::string prof = "height_m,x_m,vz_m_s,samples,vz_stderr_m_s\n";
   for (const auto& p : r.profiles)
     for (std::size_t i = 0; i < p.x.size(); ++i)
-      prof += fmt::format("{},{},{},{}\n", formatShortest(p.height), formatShortest(p.x[i]),
-                          number(p.vz[i]), p.samples[i]);
+      prof += fmt::format("{},{},{},{},{}\n", formatShortest(p.height), formatShortest(p.x[i]),
+                          number(p.vz[i]), p.samples[i], number(p.stderr_vz[i]));
   writeFileAtomically(folder / "profiles.csv", prof);
   Json j;
   j["from_s"] = o.from;
@@ -171,6 +222,7 @@ void writePiv(const PivResult& r, const PivOptions& o, const std::filesystem::pa
   j["first_time_s"] = r.first_time;
   j["last_time_s"] = r.last_time;
   j["samples"] = r.samples;
+  j["stderr_blocks"] = r.blocks;
   writeJsonFile(folder / "piv.json", j, 2);
 }
 

@@ -273,6 +273,10 @@ int main(int argc, char** argv) {
                   "a parcel is seen when its centre lies within this distance of the front wall "
                   "[m] (default: within its own diameter)");
   piv->add_option("--cell", piv_opt.cell, "grid cell and profile band [m] (default 0.004)");
+  piv->add_option("--blocks", piv_opt.blocks,
+                  "blocks of consecutive snapshots for the profiles' standard errors (batch "
+                  "means; default 10)")
+      ->check(CLI::Range(2, 100000));
   piv->add_option("--heights", piv_opt.heights,
                   "profile heights above the bottom [m] (default 0.13,0.15)")
       ->delimiter(',');

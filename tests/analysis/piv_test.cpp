@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <numbers>
+#include <random>
 #include <sstream>
 
 #include "cosim/analysis/particle_file.h"
@@ -310,7 +312,7 @@ TEST(PivCompare, CommandWritesTheTableAndRefusesAHeightNotSimulated) {
   std::ostringstream out;
   EXPECT_EQ(runPivCompareCommand(c, out), 0);
   const std::string csv = readText(dir / "comparison.csv");
-  EXPECT_EQ(csv.rfind("height_m,region,points,mae_m_s\n", 0), 0u) << csv;
+  EXPECT_EQ(csv.rfind("height_m,region,points,mae_m_s,noise_mae_m_s\n", 0), 0u) << csv;
   // The value of a row that starts with `key`.
   auto value = [&](const std::string& key) {
     const auto at = csv.find("\n" + key);
@@ -352,4 +354,101 @@ TEST(PivCompare, MalformedCsvNamesFileLineAndColumn) {
     EXPECT_NE(std::string(e.what()).find("b.csv:3 column x_m"), std::string::npos) << e.what();
   }
   EXPECT_THROW(readProfileCsv(dir / "missing.csv"), std::runtime_error);
+}
+
+// Batch means by hand: ten snapshots with one parcel each in one bin, vz = 1, 2, ..., 10, in five
+// blocks of two: block sums 3, 7, 11, 15, 19 of 2 samples, mean 5.5; the blocks' means 1.5 ..
+// 9.5 have the standard deviation sqrt(40 / 4) = sqrt(10), so the mean's standard error is
+// sqrt(10 / 5) = sqrt(2). A bin sampled in one block only has none. Unequal counts: block sums
+// 1 (1 sample) and 8 (2), mean 3: sqrt(5/4 ((1 - 3)^2 + (8 - 6)^2)) / 3 = sqrt(10) / 3; in the
+// accumulator, 1 (1 sample) and 3 + 4 (2), mean 8/3: sqrt(5/4 ((5/3)^2 + (5/3)^2)) / 3 =
+// 5 sqrt(10) / 18.
+TEST(PivField, ProfileStandardErrorsByBatchMeansByHand) {
+  EXPECT_NEAR(batchMeansStandardError({3, 7, 11, 15, 19}, {2, 2, 2, 2, 2}), std::sqrt(2.0), 1e-14);
+  EXPECT_NEAR(batchMeansStandardError({1, 8, 0, 0, 0}, {1, 2, 0, 0, 0}), std::sqrt(10.0) / 3,
+              1e-14);
+  EXPECT_TRUE(std::isnan(batchMeansStandardError({5, 0}, {2, 0})));
+
+  PivOptions o = handOptions();
+  o.from = 0;
+  o.blocks = 5;
+  PivAccumulator acc(o);
+  for (int s = 0; s < 10; ++s) {
+    std::vector<Parcel> parcels{{0.001, kWall + 0.001, 0.131, s + 1.0}};  // bin x 5 at 0.13 m
+    if (s == 3) parcels.push_back({-0.045, kWall + 0.001, 0.131, 9.0});   // bin x 0: one block
+    if (s == 0) parcels.push_back({0.045, kWall + 0.001, 0.151, 1.0});    // bin x 9 at 0.15 m
+    if (s == 2 || s == 3) parcels.push_back({0.045, kWall + 0.001, 0.151, s + 1.0});
+    const auto snap = snapshot(parcels);
+    acc.add(0.1 * s, snap.get(cosim::field::position), snap.get(cosim::field::velocity),
+            snap.get(cosim::field::radius));
+  }
+  const auto& r = acc.result();
+  EXPECT_EQ(r.blocks, 5u);
+  EXPECT_NEAR(r.profiles[0].vz[5], 5.5, 1e-14);
+  EXPECT_NEAR(r.profiles[0].stderr_vz[5], std::sqrt(2.0), 1e-14);
+  EXPECT_NEAR(r.profiles[0].vz[0], 9.0, 1e-14);
+  EXPECT_TRUE(std::isnan(r.profiles[0].stderr_vz[0]));
+  EXPECT_TRUE(std::isnan(r.profiles[0].stderr_vz[4]));  // no sample
+  EXPECT_NEAR(r.profiles[1].vz[9], 8.0 / 3, 1e-14);
+  EXPECT_NEAR(r.profiles[1].stderr_vz[9], 5 * std::sqrt(10.0) / 18, 1e-14);
+}
+
+// Independent samples of known spread: in each of 10 bins, 8 parcels per snapshot over 200
+// snapshots with vz = 1 + N(0, 0.3^2); the mean's standard error is 0.3 / sqrt(1600) = 0.0075.
+// Ten blocks give each bin's estimate from 9 degrees of freedom (a relative spread of about
+// 24 %); over the 20 bins of the two heights the mean of se^2 / 0.0075^2 is 1 within about
+// sqrt(2 / 180) = 11 % (one standard deviation; the seed is fixed).
+TEST(PivField, StandardErrorsOfIndependentSamplesMatchSigmaOverRootN) {
+  PivOptions o = handOptions();
+  o.from = 0;
+  PivAccumulator acc(o);
+  std::mt19937_64 rng(20261204);
+  std::normal_distribution<double> noise(0.0, 0.3);
+  for (int s = 0; s < 200; ++s) {
+    std::vector<Parcel> parcels;
+    for (int ix = 0; ix < 10; ++ix)
+      for (int k = 0; k < 8; ++k)
+        for (const double z : {0.131, 0.151})
+          parcels.push_back({-0.045 + 0.01 * ix, kWall + 0.001, z, 1.0 + noise(rng)});
+    const auto snap = snapshot(parcels);
+    acc.add(0.01 * s, snap.get(cosim::field::position), snap.get(cosim::field::velocity),
+            snap.get(cosim::field::radius));
+  }
+  const auto& r = acc.result();
+  double ratio = 0;
+  int n = 0;
+  for (const auto& p : r.profiles)
+    for (std::size_t ix = 0; ix < p.x.size(); ++ix) {
+      ASSERT_EQ(p.samples[ix], 1600u);
+      ratio += p.stderr_vz[ix] * p.stderr_vz[ix] / (0.0075 * 0.0075);
+      ++n;
+    }
+  EXPECT_NEAR(ratio / n, 1.0, 0.3);
+}
+
+// The comparison's noise floor by hand: simulated points at x = 0 and 10 mm with standard errors
+// 0.3 and 0.4; measured at 0 mm (its own error 0.4 given) and at 5 mm (none given): at 0 mm
+// sqrt(2/pi) sqrt(0.09 + 0.16) = 0.5 sqrt(2/pi); at 5 mm the interpolated error
+// sqrt(0.25 * 0.09 + 0.25 * 0.16) = 0.25, so 0.25 sqrt(2/pi).
+TEST(PivCompare, NoiseFloorFromTheStandardErrors) {
+  const auto dir = freshDir("noise");
+  std::ofstream(dir / "sim.csv") << "height_m,x_m,vz_m_s,samples,vz_stderr_m_s\n"
+                                    "0.13,0,1.0,10,0.3\n0.13,0.01,2.0,10,0.4\n";
+  std::ofstream(dir / "measured.csv") << "height_m,x_m,vz_m_s,vz_stderr_m_s\n"
+                                         "0.13,0,1.5,0.4\n0.13,0.005,1.0,\n";
+  const auto r =
+      comparePiv(readProfileCsv(dir / "sim.csv"), readProfileCsv(dir / "measured.csv"), {});
+  const double k = std::sqrt(2.0 / std::numbers::pi);
+  EXPECT_NEAR(r.all.mae, (0.5 + 0.5) / 2, 1e-14);
+  EXPECT_EQ(r.all.noise_points, 2u);
+  EXPECT_NEAR(r.all.noise_mae, (0.5 * k + 0.25 * k) / 2, 1e-14);
+  // without standard errors: no noise floor
+  std::ofstream(dir / "plain.csv") << "height_m,x_m,vz_m_s\n0.13,0,1.0\n0.13,0.01,2.0\n";
+  const auto plain =
+      comparePiv(readProfileCsv(dir / "plain.csv"), readProfileCsv(dir / "measured.csv"), {});
+  EXPECT_EQ(plain.all.noise_points, 0u);
+  EXPECT_TRUE(std::isnan(plain.all.noise_mae));
+  std::ofstream(dir / "negative.csv") << "height_m,x_m,vz_m_s,vz_stderr_m_s\n0.13,0,1.0,-0.1\n";
+  EXPECT_THROW(readProfileCsv(dir / "negative.csv"), std::runtime_error);
+  fs::remove_all(dir);
 }

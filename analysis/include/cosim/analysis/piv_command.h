@@ -23,6 +23,7 @@ struct PivCommandOptions {
   std::optional<double> from, to, depth, wall_y, x_min, x_max, z_min, z_max;
   double cell = 0.004;
   std::vector<double> heights{0.13, 0.15};
+  std::size_t blocks = 10;       // time blocks for the profiles' standard errors (piv_field.h)
   std::filesystem::path output;  // default RUN/piv
 };
 
@@ -38,7 +39,8 @@ struct PivCompareCommandOptions {
 };
 
 // Prints the mean absolute error per profile and region and writes it as CSV
-// (height_m,region,points,mae_m_s; height "all" for every profile together).
+// (height_m,region,points,mae_m_s,noise_mae_m_s; height "all" for every profile together);
+// noise_mae_m_s is what the sampling noise alone gives (empty without standard errors).
 int runPivCompareCommand(const PivCompareCommandOptions& options, std::ostream& out);
 
 }  // namespace cosim::analysis

@@ -6,10 +6,13 @@
 // height_m, x_m and vz_m_s (any order, more columns allowed), then one row per point: the height
 // of the profile above the bottom [m], the position across the width [m, the vessel's centre
 // at 0] and the vertical velocity [m/s]; an empty vz_m_s is a point without data. Lines
-// starting with '#' are comments.
+// starting with '#' are comments. An optional column vz_stderr_m_s holds the standard error of
+// each vz (cosim piv writes it; a measurement may give its own): with it the comparison also
+// says what mean absolute error the sampling noise alone would give.
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <utility>
@@ -18,7 +21,8 @@
 namespace cosim::analysis {
 
 struct ProfilePoint {
-  double height = 0, x = 0, vz = 0;  // [m], [m], [m/s]; vz NaN: no data
+  double height = 0, x = 0, vz = 0;                             // [m], [m], [m/s]; vz NaN: no data
+  double stderr_vz = std::numeric_limits<double>::quiet_NaN();  // [m/s]; NaN: not known
 };
 
 // Reads a profile CSV. Throws std::runtime_error naming the file, line and column on any
@@ -35,6 +39,11 @@ struct PivCompareOptions {
 struct MaeEntry {
   double mae = 0;          // [m/s] mean |v_sim - v_measured|; NaN with no point
   std::size_t points = 0;  // points compared
+  // The mean absolute error the sampling noise alone gives where the two agree: the mean over
+  // the points whose simulated standard error is known of sqrt(2 / pi) * sqrt(se_sim^2 +
+  // se_measured^2) (a measured error not given counts as 0); NaN when no point has one.
+  double noise_mae = 0;          // [m/s]
+  std::size_t noise_points = 0;  // points with a known simulated standard error
 };
 
 struct ProfileComparison {
