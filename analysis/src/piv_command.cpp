@@ -63,8 +63,19 @@ double pick(const std::optional<double>& given, const std::map<std::string, doub
 
 std::string mm(double v) { return fmt::format("{:.1f}", 1e3 * v); }
 
-std::string maeText(const MaeEntry& e) {
-  return e.points == 0 ? std::string("-") : fmt::format("{:.3f} ({})", e.mae, e.points);
+// A table cell: a mean absolute error and its points, "-" without any.
+std::string maeText(double mae, std::size_t points) {
+  return points == 0 ? std::string("-") : fmt::format("{:.3f} ({})", mae, points);
+}
+std::string errorText(const MaeEntry& e) { return maeText(e.mae, e.points); }
+std::string noiseText(const MaeEntry& e) { return maeText(e.noise_mae, e.noise_points); }
+
+// A table row: the label and the three regions of a profile (or of all together) in one form.
+template <class Regions>
+std::string regionsRow(const std::string& label, const Regions& c,
+                       std::string (*text)(const MaeEntry&)) {
+  return fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}", label, text(c.all), text(c.core),
+                     text(c.sides));
 }
 }  // namespace
 
@@ -150,8 +161,7 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
                        e.noise_points ? formatShortest(e.noise_mae) : std::string());
   };
   for (const auto& p : r.profiles) {
-    out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}", mm(p.height), maeText(p.all),
-                       maeText(p.core), maeText(p.sides));
+    out << regionsRow(mm(p.height), p, errorText);
     if (p.without_simulation)
       out << fmt::format("  ({} measured points beyond the simulated profile)",
                          p.without_simulation);
@@ -161,8 +171,7 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
     row(h, p.core, "core");
     row(h, p.sides, "sides");
   }
-  out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", "all", maeText(r.all), maeText(r.core),
-                     maeText(r.sides));
+  out << regionsRow("all", r, errorText) << "\n";
   row("all", r.all, "all");
   row("all", r.core, "core");
   row("all", r.sides, "sides");
@@ -170,15 +179,8 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
     // the same table for the sampling noise alone: an error near it is not resolved
     out << "  from the sampling noise alone (standard errors of the profiles) [m/s] (points "
            "with one)\n";
-    auto noiseText = [](const MaeEntry& e) {
-      return e.noise_points == 0 ? std::string("-")
-                                 : fmt::format("{:.3f} ({})", e.noise_mae, e.noise_points);
-    };
-    for (const auto& p : r.profiles)
-      out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", mm(p.height), noiseText(p.all),
-                         noiseText(p.core), noiseText(p.sides));
-    out << fmt::format("  {:>12}  {:>14}  {:>14}  {:>14}\n", "all", noiseText(r.all),
-                       noiseText(r.core), noiseText(r.sides));
+    for (const auto& p : r.profiles) out << regionsRow(mm(p.height), p, noiseText) << "\n";
+    out << regionsRow("all", r, noiseText) << "\n";
     out << "  an error no larger than about this is what two runs of the same model differ by\n";
   }
   const fs::path file = c.output.empty() ? sim.parent_path() / "comparison.csv" : c.output;

@@ -62,7 +62,6 @@ void finish(MaeEntry& e) {
   e.noise_mae = e.noise_points > 0 ? e.noise_mae / static_cast<double>(e.noise_points) : kNaN;
 }
 
-// The simulated profile at one height: points with data, sorted by x.
 // The interpolated velocity at a point and its standard error (NaN: not known). Between two
 // points v = (1 - w) v_lo + w v_hi, whose standard error, the two bins' errors independent, is
 // sqrt((1 - w)^2 se_lo^2 + w^2 se_hi^2).
@@ -70,6 +69,7 @@ struct Sample {
   double v = 0, se = kNaN;
 };
 
+// The simulated profile at one height: points with data, sorted by x.
 struct Curve {
   std::vector<double> x, v, se;
   double spacing = 0;

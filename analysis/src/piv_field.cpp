@@ -183,14 +183,15 @@ PivResult pivField(const ParticleFile& file, const PivOptions& options) {
     acc.add(snaps[s].time, file.read(s, field::position), file.read(s, field::velocity),
             radii ? file.read(s, field::radius) : std::vector<double>{});
   }
-  if (acc.result().snapshots == 0)
+  const PivResult& result = acc.result();  // the standard errors computed once
+  if (result.snapshots == 0)
     throw std::runtime_error(fmt::format(
         "{}: no snapshot in {} <= t <= {} s (it holds {} snapshots{}): take another --from "
         "or --to",
         file.path().string(), options.from, options.to, snaps.size(),
         snaps.empty() ? std::string()
                       : fmt::format(" from {} to {} s", snaps.front().time, snaps.back().time)));
-  return acc.result();
+  return result;
 }
 
 void writePiv(const PivResult& r, const PivOptions& o, const std::filesystem::path& folder) {

@@ -31,6 +31,18 @@ void write(const fs::path& f, const std::string& text) {
   std::ofstream(f) << text;
 }
 
+// The message of the Error that call() throws ("" and a test failure when it throws none).
+template <class Error, class Call>
+std::string thrown(Call call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "nothing was thrown";
+  return "";
+}
+
 // A run folder of the FT4 scene as far as the analyses read it: the resolved parameters, a
 // completed summary and the blade rows F = force, M = torque while the blade falls from 0.04 m
 // to 0.01 m in steps of 1 mm (after three rows at rest at 0.04 m).
@@ -97,13 +109,8 @@ TEST(Ft4Energy, ResumedRunRowsReplaceTheStoppedRunsFromTheCheckpoint) {
   EXPECT_DOUBLE_EQ(rows[2].force_N, 2);
   EXPECT_DOUBLE_EQ(rows[3].force_N, 3);
   write(d / "bad.csv", "time_s,height_m,force_N,torque_Nm\n0.1,0.04,x,0\n");
-  try {
-    (void)readBladeRows(d / "bad.csv");
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("bad.csv:2: column force_N"), std::string::npos)
-        << e.what();
-  }
+  const auto bad = thrown<std::runtime_error>([&] { (void)readBladeRows(d / "bad.csv"); });
+  EXPECT_NE(bad.find("bad.csv:2: column force_N"), std::string::npos) << bad;
   fs::remove_all(d);
 }
 
@@ -148,23 +155,13 @@ TEST(Ft4Energy, ARowWithoutAMeanIsLeftOutAndTheOldFilesZeroRowIsNamed) {
   EXPECT_TRUE(cut.empty());
   // five columns promised, four given
   write(d / "short.csv", "time_s,height_m,force_N,torque_Nm,averaged\n0.1,0.04,1,0\n");
-  try {
-    (void)readBladeRows(d / "short.csv");
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("short.csv:2: expected 5 columns"), std::string::npos)
-        << e.what();
-  }
+  const auto short_row = thrown<std::runtime_error>([&] { (void)readBladeRows(d / "short.csv"); });
+  EXPECT_NE(short_row.find("short.csv:2: expected 5 columns"), std::string::npos) << short_row;
   // the four-column file of a run resumed before the fix
   const std::vector<BladeRow> old{{0.78, 0.0077, 1, 0.001}, {0.79, 0, 0, 0}, {0.8, 0.0076, 1, 0}};
-  try {
-    (void)flowEnergy(old, 0.024, 5);
-    FAIL();
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("the row at t = 0.79 s has height, force and torque 0"),
-              std::string::npos)
-        << e.what();
-  }
+  const auto rises = thrown<std::invalid_argument>([&] { (void)flowEnergy(old, 0.024, 5); });
+  EXPECT_NE(rises.find("the row at t = 0.79 s has height, force and torque 0"), std::string::npos)
+      << rises;
   fs::remove_all(d);
 }
 
@@ -223,12 +220,8 @@ TEST(Ft4Calibration, MeasuredTotalsAndProfilesInEitherUnit) {
   EXPECT_NEAR(*p.height_low_m, 0.010, 1e-15);
   EXPECT_NEAR(*p.height_high_m, 0.040, 1e-15);
   write(d / "bad.csv", "height_mm,work\n1,2\n");
-  try {
-    (void)readMeasuredEnergy(d / "bad.csv");
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("unknown column 'work'"), std::string::npos) << e.what();
-  }
+  const auto unknown = thrown<std::runtime_error>([&] { (void)readMeasuredEnergy(d / "bad.csv"); });
+  EXPECT_NE(unknown.find("unknown column 'work'"), std::string::npos) << unknown;
   fs::remove_all(d);
 }
 

@@ -87,6 +87,16 @@ constexpr double kRadius = 0.025, kTinyHeight = 0.05;
 double bedWeightOverArea() {
   return kParcels * kPi / 6 * kDp * kDp * kDp * (kRhoP - kRhoGas) * kG / (kPi * kRadius * kRadius);
 }
+
+// The run in `run` resumed from its checkpoint at t (quietly, with the same scene and sets).
+RunResult resumeFrom(const fs::path& scene, const std::vector<std::string>& sets,
+                     const fs::path& run, double t) {
+  RunOptions r;
+  r.quiet = true;
+  r.resume = run;
+  r.resume_from = t;
+  return Coupler(loadScenario(scene, sets), r).run();
+}
 }  // namespace
 
 TEST(Ft4RheometerTiny, BladeRowsAreZeroAboveTheBedResistingInItAndTheEnergyIsTheirIntegral) {
@@ -252,11 +262,7 @@ TEST(Ft4RheometerTiny, ARunWithPoursResumesOnTwoRanks) {
   RunResult whole = Coupler(loadScenario(scene, sets), o).run();
   ASSERT_EQ(whole.exit_code, 0) << whole.message;
   ASSERT_TRUE(fs::exists(o.output / "checkpoints/0.002"));
-  RunOptions r;
-  r.quiet = true;
-  r.resume = o.output;
-  r.resume_from = 0.002;
-  RunResult resumed = Coupler(loadScenario(scene, sets), r).run();
+  RunResult resumed = resumeFrom(scene, sets, o.output, 0.002);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
   EXPECT_TRUE(fs::exists(o.output / "particles/in.liggghts.resume"));
   ASSERT_EQ(resumed.final_state.ids, whole.final_state.ids);
@@ -293,11 +299,7 @@ TEST(Ft4RheometerTiny, AResumeBetweenTwoRowsLeavesOutTheIntervalItCut) {
   const auto expected = cosim::analysis::readBladeRows(through);
   ASSERT_EQ(expected.size(), 4u);  // 10, 20, 30, 40 ms
 
-  RunOptions r;
-  r.quiet = true;
-  r.resume = o.output;
-  r.resume_from = 0.015;
-  RunResult resumed = Coupler(loadScenario(scene, sets), r).run();
+  RunResult resumed = resumeFrom(scene, sets, o.output, 0.015);
   ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
   std::vector<double> cut;
   const auto rows = cosim::analysis::readBladeRows(o.output / "particles/ft4_blade.csv", &cut);
