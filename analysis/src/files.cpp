@@ -71,6 +71,33 @@ void writeJsonFile(const std::filesystem::path& path, const Json& json, int inde
   writeFileAtomically(path, jsonText(json, indent));
 }
 
+std::ifstream openUserFile(const std::filesystem::path& path, const std::string& expected) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw std::runtime_error(path.string() + ": is a folder; expected " + expected);
+  if (!std::filesystem::exists(path, ec))
+    throw std::runtime_error(path.string() + ": no such file; expected " + expected);
+  std::ifstream in(path);
+  if (!in)
+    throw std::runtime_error(fmt::format("{}: cannot be read ({}); expected {}", path.string(),
+                                         std::strerror(errno), expected));
+  return in;
+}
+
+std::string quotedCell(std::string_view text) {
+  constexpr std::size_t kMax = 40;
+  std::string out = "'";
+  for (std::size_t i = 0; i < text.size() && i < kMax; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f)
+      out += static_cast<char>(c);
+    else
+      out += fmt::format("\\x{:02x}", c);
+  }
+  out += text.size() > kMax ? "'..." : "'";
+  return out;
+}
+
 Json readJsonFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path.string());

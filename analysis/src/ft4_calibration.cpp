@@ -36,8 +36,8 @@ double number(const std::string& t, const std::filesystem::path& f, int line,
   double v = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
-    throw std::runtime_error(
-        fmt::format("{}:{}: column {}: '{}' is not a finite number", f.string(), line, column, t));
+    throw std::runtime_error(fmt::format("{}:{}: column {}: {} is not a finite number", f.string(),
+                                         line, column, quotedCell(t)));
   return v;
 }
 
@@ -61,12 +61,13 @@ double MeasuredEnergy::standard_error_J() const {
 }
 
 MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
-  std::ifstream in(csv);
-  if (!in) throw std::runtime_error(csv.string() + ": cannot be read");
   const std::string form =
       "expected a header with energy_J or energy_mJ (totals, one row per replicate), or "
       "height_m or height_mm and energy_J... / energy_mJ... columns (a cumulative profile, "
       "one column per replicate)";
+  auto in = openUserFile(csv,
+                         "a measured FT4 energy CSV: a header with energy_J or energy_mJ, "
+                         "or height_m / height_mm and energy columns");
   std::string line;
   int n = 0;
   std::vector<std::string> head;
@@ -95,7 +96,7 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
       energy_scale.push_back(1.0);
     } else {
       throw std::runtime_error(
-          fmt::format("{}:{}: unknown column '{}'; {}", csv.string(), n, h, form));
+          fmt::format("{}:{}: unknown column {}; {}", csv.string(), n, quotedCell(h), form));
     }
   }
   if (energy_cols.empty())
@@ -120,6 +121,12 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
   if (height_col < 0) {
     for (const auto& r : rows) m.replicates_J.push_back(r[energy_cols[0]] * energy_scale[0]);
     if (m.replicates_J.empty()) throw std::runtime_error(csv.string() + ": no rows");
+    for (std::size_t k = 0; k < m.replicates_J.size(); ++k)
+      if (m.replicates_J[k] < 0)
+        throw std::runtime_error(fmt::format(
+            "{}: replicate {} (column {}): {} is negative; the flow energy is the work the blade "
+            "does on the powder, >= 0 (check the sign convention of the export)",
+            csv.string(), k + 1, head[energy_cols[0]], rows[k][energy_cols[0]]));
     return m;
   }
   if (rows.size() < 2)
@@ -132,8 +139,16 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
     throw std::runtime_error(csv.string() + ": all rows have the same height");
   m.height_high_m = (*hi)[height_col] * height_scale;
   m.height_low_m = (*lo)[height_col] * height_scale;
-  for (std::size_t k = 0; k < energy_cols.size(); ++k)
-    m.replicates_J.push_back(((*lo)[energy_cols[k]] - (*hi)[energy_cols[k]]) * energy_scale[k]);
+  for (std::size_t k = 0; k < energy_cols.size(); ++k) {
+    const double e = ((*lo)[energy_cols[k]] - (*hi)[energy_cols[k]]) * energy_scale[k];
+    if (e < 0)
+      throw std::runtime_error(fmt::format(
+          "{}: column {}: the cumulative energy falls from {:g} at the highest row to {:g} at the "
+          "lowest; it is the work done from the top down, so it grows as the blade descends "
+          "(check the column's sign and that the heights are the blade's)",
+          csv.string(), head[energy_cols[k]], (*hi)[energy_cols[k]], (*lo)[energy_cols[k]]));
+    m.replicates_J.push_back(e);
+  }
   return m;
 }
 
@@ -235,6 +250,25 @@ std::vector<CalibrationPoint> calibrationPoints(const std::vector<std::filesyste
     points.push_back({run, par.parameter, w});
   }
   return points;
+}
+
+Json calibrationJson(const Calibration& c, const std::string& parameter) {
+  Json points = Json::array();
+  for (const auto& p : c.points)
+    points.push_back(
+        {{"run", p.run.string()}, {"parameter", p.parameter}, {"energy_J", p.energy_J}});
+  return {{"parameter_name", parameter},
+          {"parameter", c.parameter},
+          {"sigma", c.sigma},
+          {"sigma_study", c.sigma_study},
+          {"sigma_measurement", c.sigma_measurement},
+          {"extrapolated", c.extrapolated},
+          {"intercept_J", c.intercept_J},
+          {"slope_J", c.slope_J},
+          {"residual_sd_J", c.residual_sd_J},
+          {"measured_J", c.measured_J},
+          {"measured_se_J", c.measured_se_J},
+          {"points", points}};
 }
 
 std::string calibrationText(const Calibration& c, const std::string& parameter) {

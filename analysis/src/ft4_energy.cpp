@@ -37,8 +37,8 @@ double parseNumber(const std::string& text, const std::filesystem::path& file, i
   double v = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
-    throw std::runtime_error(fmt::format("{}:{}: column {}: '{}' is not a finite number",
-                                         file.string(), line, column, text));
+    throw std::runtime_error(fmt::format("{}:{}: column {}: {} is not a finite number",
+                                         file.string(), line, column, quotedCell(text)));
   return v;
 }
 

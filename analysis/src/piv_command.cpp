@@ -14,6 +14,7 @@
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/analysis/piv_compare.h"
 #include "cosim/analysis/piv_field.h"
+#include "cosim/analysis/report.h"
 
 namespace cosim::analysis {
 
@@ -129,6 +130,11 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
         "the width avoids that\n",
         mm(o.x_max - o.x_min), mm(o.cell), mm(o.x_max), mm(r.grid.xCentre(r.grid.nx - 1)));
   out << "cosim piv: grid.csv, profiles.csv and piv.json in " << folder.string() << "\n";
+  if (c.plots)
+    out << "cosim piv: "
+        << drawFigure("plot_piv.py", {"field", folder.string()}, folder / "piv.png",
+                      folder / "plot_piv.log")
+        << "\n";
   return 0;
 }
 
@@ -186,6 +192,17 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
   const fs::path file = c.output.empty() ? sim.parent_path() / "comparison.csv" : c.output;
   writeFileAtomically(file, csv);
   out << "cosim piv-compare: written " << file.string() << "\n";
+  if (c.plots) {
+    auto png = file;
+    png.replace_extension(".png");
+    auto log = file;
+    log.replace_extension(".plot.log");
+    out << "cosim piv-compare: "
+        << drawFigure("plot_piv.py",
+                      {"compare", sim.string(), c.measured.string(), file.string(), png.string()},
+                      png, log)
+        << "\n";
+  }
   return 0;
 }
 

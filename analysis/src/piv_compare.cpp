@@ -12,6 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cosim/analysis/files.h"
+
 namespace cosim::analysis {
 
 namespace {
@@ -42,7 +44,7 @@ double parse(const std::string& text, bool empty_is_nan, const std::string& wher
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(v))
-    throw std::runtime_error(where + ": '" + text + "' is not a finite number");
+    throw std::runtime_error(where + ": " + quotedCell(text) + " is not a finite number");
   return v;
 }
 
@@ -89,11 +91,7 @@ struct Curve {
 }  // namespace
 
 std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in)
-    throw std::runtime_error(path.string() +
-                             ": cannot be opened (a profile CSV with the columns height_m, x_m, "
-                             "vz_m_s was expected)");
+  auto in = openUserFile(path, "a profile CSV with the columns height_m, x_m, vz_m_s");
   std::string line;
   std::size_t lineno = 0;
   std::map<std::string, std::size_t> col;
@@ -107,7 +105,7 @@ std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
     if (col.empty()) {
       for (std::size_t i = 0; i < cells.size(); ++i) {
         if (!col.emplace(cells[i], i).second)
-          throw std::runtime_error(where + ": column '" + cells[i] + "' named twice");
+          throw std::runtime_error(where + ": column " + quotedCell(cells[i]) + " named twice");
       }
       for (const char* need : {"height_m", "x_m", "vz_m_s"}) {
         if (!col.count(need))
@@ -216,6 +214,18 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
     addTo(core ? pc->core : pc->sides, err, noise);
     addTo(r.all, err, noise);
     addTo(core ? r.core : r.sides, err, noise);
+  }
+  if (r.all.points == 0) {
+    std::size_t with_value = 0;
+    for (const auto& m : measured) with_value += std::isfinite(m.vz) ? 1 : 0;
+    throw std::runtime_error(
+        with_value == 0
+            ? std::string("the measured file has no point with a velocity (every vz_m_s is "
+                          "empty): nothing to compare")
+            : fmt::format("none of the {} measured points lies within the simulated profiles' "
+                          "x range (one bin width beyond the outermost bin): are the measured x "
+                          "in metres from the vessel's centre?",
+                          with_value));
   }
   for (auto& p : r.profiles) {
     finish(p.all);

@@ -61,12 +61,18 @@ std::optional<std::string> findPython(std::string& why_not) {
   }
   why_not = "no python3 with matplotlib and numpy found (tried";
   for (const auto& c : candidates) why_not += " " + c;
-  why_not += "): install them with `sudo apt-get install python3-matplotlib python3-numpy`, or set "
-             "COSIM_PYTHON to a python3 that has them, then run `cosim report` again";
+  why_not +=
+      "): install them with `sudo apt-get install python3-matplotlib python3-numpy`, or set "
+      "COSIM_PYTHON to a python3 that has them, then run the command again";
   return std::nullopt;
 }
 
 bool runPlotScript(const std::string& name, const std::filesystem::path& folder,
+                   const std::filesystem::path& log, std::string& message) {
+  return runPlotScript(name, std::vector<std::string>{folder.string()}, log, message);
+}
+
+bool runPlotScript(const std::string& name, const std::vector<std::string>& args,
                    const std::filesystem::path& log, std::string& message) {
   auto script = findScript(name);
   if (!script) {
@@ -78,13 +84,24 @@ bool runPlotScript(const std::string& name, const std::filesystem::path& folder,
   if (!python) return false;
   std::error_code ec;
   std::filesystem::remove(log, ec);  // the log of this drawing only
-  const int rc = run({*python, script->string(), folder.string()}, log, {{"MPLBACKEND", "Agg"}});
+  std::vector<std::string> argv{*python, script->string()};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const int rc = run(argv, log, {{"MPLBACKEND", "Agg"}});
   if (rc != 0) {
     message = script->string() + " failed (exit " + std::to_string(rc) + "); its output is in " +
               log.string() + ":\n" + util::tailOfFile(log, 15);
     return false;
   }
   return true;
+}
+
+std::string drawFigure(const std::string& script, const std::vector<std::string>& args,
+                       const std::filesystem::path& png, const std::filesystem::path& log) {
+  std::string why;
+  if (!runPlotScript(script, args, log, why)) return "no plot: " + why;
+  std::error_code ec;
+  std::filesystem::remove(log, ec);
+  return "plot: " + png.string();
 }
 
 bool drawPlots(const std::filesystem::path& folder, std::string& message) {
@@ -95,7 +112,8 @@ std::vector<std::string> pngsIn(const std::filesystem::path& dir) {
   std::vector<std::string> out;
   std::error_code ec;
   for (const auto& e : std::filesystem::directory_iterator(dir, ec)) {
-    if (e.is_regular_file() && e.path().extension() == ".png") out.push_back(e.path().filename().string());
+    if (e.is_regular_file() && e.path().extension() == ".png")
+      out.push_back(e.path().filename().string());
   }
   std::sort(out.begin(), out.end());
   return out;

@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/ft4_calibration.h"
 #include "cosim/analysis/ft4_energy.h"
+#include "cosim/analysis/report.h"
 
 namespace cosim::orchestrator {
 
@@ -23,7 +25,9 @@ CLI::App* addFt4Command(CLI::App& app, Ft4Options& o) {
   energy->add_option("run", o.run, "run folder of scenarios/ft4-rheometer")->required();
   energy->add_option("-o,--output", o.output,
                      "profile CSV (height_m, force_N, torque_Nm, gradient_J_per_m, energy_J; "
-                     "default RUN/ft4_energy.csv, rewritten from the run's rows each time)");
+                     "default RUN/ft4_energy.csv, rewritten from the run's rows each time); "
+                     "its plot has the same name ending .png");
+  energy->add_flag("--no-plots{false}", o.plots, "the CSV only, no PNG (matplotlib)");
   auto* cal = ft4->add_subcommand(
       "calibrate",
       "The value of a parameter (default mu_fric) that reproduces a measured flow energy: a "
@@ -36,6 +40,11 @@ CLI::App* addFt4Command(CLI::App& app, Ft4Options& o) {
   cal->add_option("runs", o.runs, "study folders (cosim study -o) or run folders")->required();
   cal->add_option("--parameter", o.parameter,
                   "the scene parameter varied by the study (default mu_fric)");
+  cal->add_option("-o,--output", o.calibration_output,
+                  "folder (created if missing) for ft4_calibration.json and its plot "
+                  "ft4_calibration.png: the runs' energies, the line, the measurement and the "
+                  "answer (default: print only)");
+  cal->add_flag("--no-plots{false}", o.plots, "with -o: the JSON only, no PNG");
   return ft4;
 }
 
@@ -52,6 +61,13 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
           "mm, helix {:.4g} deg)\nprofile: {}\n",
           profile.total_J() * 1e3, profile.highest_m() * 1e3, profile.lowest_m() * 1e3,
           profile.blade_radius_m * 1e3, profile.helix_deg, file.string());
+      if (o.plots) {
+        auto png = file, log = file;
+        png.replace_extension(".png");
+        log.replace_extension(".plot.log");
+        out << a::drawFigure("plot_ft4.py", {"energy", file.string(), png.string()}, png, log)
+            << "\n";
+      }
       if (!profile.cut_windows_s.empty()) {
         std::string times;
         for (const double t : profile.cut_windows_s) times += fmt::format(" {:g}", t);
@@ -71,6 +87,19 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
       out << fmt::format("energies over the measured heights {:.4g} .. {:.4g} mm\n",
                          *measured.height_low_m * 1e3, *measured.height_high_m * 1e3);
     out << a::calibrationText(c, o.parameter);
+    if (!o.calibration_output.empty()) {
+      const std::filesystem::path folder(o.calibration_output);
+      std::filesystem::create_directories(folder);
+      const auto json = folder / "ft4_calibration.json";
+      a::writeJsonFile(json, a::calibrationJson(c, o.parameter), 2);
+      out << "written " << json.string() << "\n";
+      if (o.plots)
+        out << a::drawFigure(
+                   "plot_ft4.py",
+                   {"calibration", json.string(), (folder / "ft4_calibration.png").string()},
+                   folder / "ft4_calibration.png", folder / "plot_ft4.log")
+            << "\n";
+    }
     return 0;
   } catch (const std::exception& e) {
     err << "cosim ft4: " << e.what() << "\n";

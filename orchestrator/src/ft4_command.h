@@ -1,6 +1,6 @@
 // `cosim ft4`: the FT4 rheometer scene's analyses (scenarios/ft4-rheometer).
 //   cosim ft4 energy RUN [-o CSV]                          flow energy of Eq. 11, total and profile
-//   cosim ft4 calibrate MEASURED.csv STUDY_OR_RUNS... [--parameter mu_fric]
+//   cosim ft4 calibrate MEASURED.csv STUDY_OR_RUNS... [--parameter mu_fric] [-o FOLDER]
 //                                                          the parameter value the measurement
 //                                                          matches
 #pragma once
@@ -18,6 +18,9 @@ struct Ft4Options {
   std::string measured;           // calibrate
   std::vector<std::string> runs;  // calibrate: study folders or run folders
   std::string parameter = "mu_fric";
+  std::string
+      calibration_output;  // calibrate: folder for ft4_calibration.json / .png (none: print only)
+  bool plots = true;       // energy: the profile as a PNG; calibrate: the fit as a PNG
 };
 
 // Adds `ft4` with its two subcommands to app; returns it.

@@ -286,7 +286,9 @@ int main(int argc, char** argv) {
   piv->add_option("--x-max", piv_opt.x_max, "grid's right edge [m] (default: piv_x_max)");
   piv->add_option("--z-min", piv_opt.z_min, "grid's bottom [m] (default 0)");
   piv->add_option("--z-max", piv_opt.z_max, "grid's top [m] (default: piv_z_max)");
-  piv->add_option("-o,--output", piv_opt.output, "folder of the CSV files (default RUN/piv)");
+  piv->add_option("-o,--output", piv_opt.output,
+                  "folder of the CSV files and piv.png (default RUN/piv)");
+  piv->add_flag("--no-plots{false}", piv_opt.plots, "the CSV files only, no piv.png");
 
   cosim::analysis::PivCompareCommandOptions pivc_opt;
   auto* pivc = app.add_subcommand(
@@ -304,7 +306,9 @@ int main(int argc, char** argv) {
       ->delimiter(',')
       ->expected(2);
   pivc->add_option("-o,--output", pivc_opt.output,
-                   "comparison CSV (default: comparison.csv beside the simulated profiles)");
+                   "comparison CSV (default: comparison.csv beside the simulated profiles); "
+                   "its plot has the same name ending .png");
+  pivc->add_flag("--no-plots{false}", pivc_opt.plots, "the CSV only, no PNG");
 #endif
 
   CLI11_PARSE(app, argc, argv);

@@ -8,11 +8,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <tuple>
 
 #include "cosim/analysis/ft4_calibration.h"
 #include "cosim/analysis/ft4_energy.h"
+#include "cosim/analysis/report.h"
 
 using namespace cosim::analysis;
 namespace fs = std::filesystem;
@@ -225,6 +228,34 @@ TEST(Ft4Calibration, MeasuredTotalsAndProfilesInEitherUnit) {
   fs::remove_all(d);
 }
 
+TEST(Ft4Calibration, CarelessMeasuredFilesAreRefusedWithTheirCause) {
+  const auto d = tempDir("careless");
+  auto refusal = [&](const std::string& name, const std::string& text) {
+    write(d / name, text);
+    return thrown<std::runtime_error>([&] { (void)readMeasuredEnergy(d / name); });
+  };
+  // A negative total (a sign convention of the export) and a cumulative energy that falls.
+  const auto negative = refusal("negative.csv", "energy_mJ\n10\n-12\n");
+  EXPECT_NE(negative.find("replicate 2"), std::string::npos) << negative;
+  EXPECT_NE(negative.find(">= 0"), std::string::npos) << negative;
+  const auto falling = refusal("falling.csv", "height_mm,energy_mJ\n40,9\n10,0\n");
+  EXPECT_NE(falling.find("grows as the blade descends"), std::string::npos) << falling;
+  // A binary file given by mistake: its bytes are escaped and cut, not printed raw.
+  std::string binary = "\x01\x9b[2J";
+  binary += std::string(100, '\xff');
+  const auto garbled = refusal("binary.csv", binary + "\n1\n");
+  EXPECT_NE(garbled.find("'\\x01\\x9b[2J"), std::string::npos) << garbled;
+  EXPECT_NE(garbled.find("'..."), std::string::npos) << garbled;
+  EXPECT_EQ(garbled.find('\x9b'), std::string::npos);
+  // A folder or a missing file is named as such.
+  const auto folder = thrown<std::runtime_error>([&] { (void)readMeasuredEnergy(d); });
+  EXPECT_NE(folder.find("is a folder"), std::string::npos) << folder;
+  const auto missing =
+      thrown<std::runtime_error>([&] { (void)readMeasuredEnergy(d / "none.csv"); });
+  EXPECT_NE(missing.find("no such file"), std::string::npos) << missing;
+  fs::remove_all(d);
+}
+
 TEST(Ft4Calibration, StudyFolderEndToEndRecoversTheFrictionOfASyntheticMeasurement) {
   // runs whose force grows linearly with mu: F = 4 mu N, M = 0.02 mu N m over 30 mm of descent
   // -> gradient g(mu) = 0.02 mu / (R tan a) + 4 mu from 39 mm down, and the step from the rest
@@ -257,4 +288,48 @@ TEST(Ft4Calibration, StudyFolderEndToEndRecoversTheFrictionOfASyntheticMeasureme
   EXPECT_NEAR(cp.parameter, 0.52, 1e-5);
   EXPECT_THROW((void)ft4Runs({study / "nothing"}), std::runtime_error);
   fs::remove_all(study);
+}
+
+// The figures of `cosim ft4 energy` and `cosim ft4 calibrate -o`: the JSON the calibration plot
+// reads holds the fit's numbers, and scripts/plot_ft4.py draws both (when a python3 with
+// matplotlib is there; without one the line says what to install).
+TEST(Ft4Plots, EnergyProfileAndCalibrationDrawnFromTheirFiles) {
+  const auto d = tempDir("plots");
+  for (int i = 0; i < 3; ++i)
+    syntheticRun(d / ("run" + std::to_string(i)), 0.3 + 0.2 * i, 4 * (0.3 + 0.2 * i), 0.01);
+  const auto profile = runFlowEnergy(d / "run1");
+  write(d / "ft4_energy.csv", energyProfileCsv(profile));
+  MeasuredEnergy m;
+  m.replicates_J = {runFlowEnergy(d / "run1").total_J()};
+  const auto c =
+      calibrate(calibrationPoints(ft4Runs({d / "run0", d / "run1", d / "run2"}), "mu_fric", m),
+                m.mean_J(), 0);
+  const auto json = calibrationJson(c, "mu_fric");
+  EXPECT_EQ(json.at("parameter_name"), "mu_fric");
+  EXPECT_NEAR(json.at("parameter").get<double>(), 0.5, 1e-9);  // the force is linear in mu
+  ASSERT_EQ(json.at("points").size(), 3u);
+  EXPECT_NEAR(json.at("points")[2].at("parameter").get<double>(), 0.7, 1e-12);
+  writeJsonFile(d / "ft4_calibration.json", json, 2);
+  std::string why;
+  if (findPython(why)) {
+    for (const auto& [kind, input, png] :
+         {std::tuple{"energy", d / "ft4_energy.csv", d / "ft4_energy.png"},
+          std::tuple{"calibration", d / "ft4_calibration.json", d / "ft4_calibration.png"}}) {
+      const auto line =
+          drawFigure("plot_ft4.py", {kind, input.string(), png.string()}, png, d / "plot.log");
+      EXPECT_EQ(line, "plot: " + png.string());
+      std::ifstream in(png, std::ios::binary);
+      char magic[4] = {};
+      in.read(magic, 4);
+      EXPECT_EQ(std::string(magic + 1, 3), "PNG") << png;
+    }
+  }
+  setenv("COSIM_PYTHON", "/nonexistent/python3", 1);
+  const auto line = drawFigure(
+      "plot_ft4.py", {"energy", (d / "ft4_energy.csv").string(), (d / "other.png").string()},
+      d / "other.png", d / "plot.log");
+  unsetenv("COSIM_PYTHON");
+  EXPECT_EQ(line.rfind("no plot: ", 0), 0u) << line;
+  EXPECT_NE(line.find("apt-get install python3-matplotlib"), std::string::npos) << line;
+  fs::remove_all(d);
 }

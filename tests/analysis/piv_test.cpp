@@ -16,6 +16,7 @@
 #include "cosim/analysis/piv_command.h"
 #include "cosim/analysis/piv_compare.h"
 #include "cosim/analysis/piv_field.h"
+#include "cosim/analysis/report.h"
 #include "cosim/link/fields.h"
 
 namespace fs = std::filesystem;
@@ -224,17 +225,27 @@ TEST(PivField, BadOptionsAndFilesSayWhatIsWrong) {
   EXPECT_THROW(PivAccumulator{o}, std::invalid_argument);
 }
 
-TEST(PivCommand, TakesTheWindowAndTheDiscardedTimeFromTheScene) {
-  const auto run = freshDir("command");
+namespace {
+// The hand run with the resolved scene a run of the spout would have: the PIV window and the
+// discarded start as parameters.
+void writeHandRunWithItsScene(const fs::path& run) {
   writeHandRun(run);
   std::ofstream(run / "scenario.resolved.yaml")
       << "# x.yaml as run\nname: x\nparameters:\n  piv_front_wall_y: -0.0125\n  piv_x_min: -0.05\n"
          "  piv_x_max: 0.05\n  piv_z_max: 0.2\n  piv_discard: 0.5\n";
+}
+}  // namespace
+
+TEST(PivCommand, TakesTheWindowAndTheDiscardedTimeFromTheScene) {
+  const auto run = freshDir("command");
+  writeHandRunWithItsScene(run);
   PivCommandOptions c;
   c.run = run;
   c.cell = 0.01;
+  c.plots = false;  // PivPlots draws them
   std::ostringstream out;
   EXPECT_EQ(runPivCommand(c, out), 0);
+  EXPECT_FALSE(fs::exists(run / "piv" / "piv.png"));
   const auto prof = readProfileCsv(run / "piv" / "profiles.csv");
   ASSERT_EQ(prof.size(), 20u);  // 10 bins at 0.13 and 0.15 m
   EXPECT_NEAR(prof[5].vz, 3.0, 1e-14);
@@ -309,6 +320,7 @@ TEST(PivCompare, CommandWritesTheTableAndRefusesAHeightNotSimulated) {
   PivCompareCommandOptions c;
   c.simulated = dir / "sim.csv";
   c.measured = dir / "measured.csv";
+  c.plots = false;  // PivPlots draws them
   std::ostringstream out;
   EXPECT_EQ(runPivCompareCommand(c, out), 0);
   const std::string csv = readText(dir / "comparison.csv");
@@ -354,6 +366,33 @@ TEST(PivCompare, MalformedCsvNamesFileLineAndColumn) {
     EXPECT_NE(std::string(e.what()).find("b.csv:3 column x_m"), std::string::npos) << e.what();
   }
   EXPECT_THROW(readProfileCsv(dir / "missing.csv"), std::runtime_error);
+  try {
+    readProfileCsv(dir);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a folder"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PivCompare, NothingToCompareIsAnErrorNotAnEmptyTable) {
+  const std::vector<ProfilePoint> simulated = {{0.13, -0.01, 1.0}, {0.13, 0.01, 2.0}};
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // every measured velocity empty
+  try {
+    (void)comparePiv(simulated, {{0.13, 0.0, nan}, {0.13, 0.01, nan}}, {});
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("no point with a velocity"), std::string::npos)
+        << e.what();
+  }
+  // measured x in millimetres: every point beyond the simulated bins (0.02 m of spacing)
+  try {
+    (void)comparePiv(simulated, {{0.13, -45.0, -0.6}, {0.13, 45.0, -0.6}}, {});
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("none of the 2 measured points"), std::string::npos)
+        << e.what();
+  }
 }
 
 // Batch means by hand: ten snapshots with one parcel each in one bin, vz = 1, 2, ..., 10, in five
@@ -451,4 +490,53 @@ TEST(PivCompare, NoiseFloorFromTheStandardErrors) {
   std::ofstream(dir / "negative.csv") << "height_m,x_m,vz_m_s,vz_stderr_m_s\n0.13,0,1.0,-0.1\n";
   EXPECT_THROW(readProfileCsv(dir / "negative.csv"), std::runtime_error);
   fs::remove_all(dir);
+}
+
+namespace {
+bool isPng(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  char magic[8] = {};
+  in.read(magic, 8);
+  return in && std::string(magic + 1, 3) == "PNG";
+}
+}  // namespace
+
+// The figures: the field and profiles of `cosim piv`, the comparison of `cosim piv-compare`;
+// without a python3 that has matplotlib the numbers still come out and the line says what to
+// install.
+TEST(PivPlots, FieldAndComparisonAsPngsOrWhatToInstall) {
+  const auto run = freshDir("plots");
+  writeHandRunWithItsScene(run);
+  writeCompareFiles(run);
+  PivCommandOptions field;
+  field.run = run;
+  field.cell = 0.01;
+  PivCompareCommandOptions compare;
+  compare.simulated = run / "sim.csv";
+  compare.measured = run / "measured.csv";
+  std::string why;
+  if (findPython(why)) {
+    std::ostringstream out;
+    ASSERT_EQ(runPivCommand(field, out), 0);
+    EXPECT_TRUE(isPng(run / "piv" / "piv.png")) << out.str();
+    ASSERT_EQ(runPivCompareCommand(compare, out), 0);
+    EXPECT_TRUE(isPng(run / "comparison.png")) << out.str();
+    EXPECT_NE(out.str().find("plot: " + (run / "comparison.png").string()), std::string::npos)
+        << out.str();
+  }
+  fs::remove(run / "piv" / "piv.png");
+  fs::remove(run / "comparison.png");
+  setenv("COSIM_PYTHON", "/nonexistent/python3", 1);
+  std::ostringstream out;
+  const int field_rc = runPivCommand(field, out);
+  const int compare_rc = runPivCompareCommand(compare, out);
+  unsetenv("COSIM_PYTHON");
+  EXPECT_EQ(field_rc, 0);
+  EXPECT_EQ(compare_rc, 0);
+  EXPECT_TRUE(fs::exists(run / "piv" / "profiles.csv"));
+  EXPECT_TRUE(fs::exists(run / "comparison.csv"));
+  EXPECT_FALSE(fs::exists(run / "piv" / "piv.png"));
+  EXPECT_NE(out.str().find("no plot: "), std::string::npos) << out.str();
+  EXPECT_NE(out.str().find("apt-get install python3-matplotlib"), std::string::npos) << out.str();
+  fs::remove_all(run);
 }

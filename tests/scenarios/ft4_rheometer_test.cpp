@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "cosim/analysis/ft4_energy.h"
+#include "cosim/analysis/report.h"
 #include "cosim/link/fields.h"
 #include "coupler.h"
 #include "scenario.h"
@@ -173,6 +174,14 @@ TEST(Ft4RheometerTiny, BladeRowsAreZeroAboveTheBedResistingInItAndTheEnergyIsThe
     if (!line.empty()) last = line;
   const double cosim_w = std::stod(last.substr(last.rfind(',') + 1));
   EXPECT_NEAR(cosim_w, w, 1e-12 * w);
+  // its figure beside the profile, or the line that says why there is none
+  std::ifstream said_file(out / "energy.txt");
+  const std::string said((std::istreambuf_iterator<char>(said_file)), {});
+  std::string why;
+  if (cosim::analysis::findPython(why))
+    EXPECT_TRUE(fs::exists(out / "ft4_energy.png")) << said;
+  else
+    EXPECT_NE(said.find("no plot: "), std::string::npos) << said;
   fs::remove_all(out);
 }
 

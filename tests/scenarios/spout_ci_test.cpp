@@ -14,6 +14,7 @@
 
 #include "cosim/analysis/piv_command.h"
 #include "cosim/analysis/piv_compare.h"
+#include "cosim/analysis/report.h"
 #include "coupler.h"
 #include "scenario.h"
 
@@ -54,6 +55,9 @@ TEST(SpoutCi, JetCarriesParcelsUpTheMiddleAndPivYieldsTheProfiles) {
   EXPECT_DOUBLE_EQ(profiles.front().height, 0.13);
   EXPECT_DOUBLE_EQ(profiles.back().height, 0.15);
   EXPECT_TRUE(fs::exists(out / "piv" / "grid.csv"));
+  std::string why;
+  if (cosim::analysis::findPython(why))
+    EXPECT_TRUE(fs::exists(out / "piv" / "piv.png")) << text.str();
 
   // The spout, seen over the whole depth (25 mm) in 12.5 mm bins at 62.5 and 87.5 mm, averaged
   // over 0.1 .. 0.2 s: the two middle bins rise, the two outermost fall.

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
+#include <string_view>
 
 namespace cosim::analysis {
 
@@ -31,6 +33,16 @@ std::string jsonText(const Json& json, int indent);
 // Writes json (indented by indent spaces, then a newline) atomically. Non-finite numbers become
 // null; bytes that are not UTF-8 (e.g. in a participant's log tail) are replaced, not an error.
 void writeJsonFile(const std::filesystem::path& path, const Json& json, int indent);
+
+// Opens a text file a user named (a measured CSV, a profile) for reading. Throws
+// std::runtime_error naming the path when it is a folder, missing or unreadable; `expected`
+// completes the message with what file was expected there.
+std::ifstream openUserFile(const std::filesystem::path& path, const std::string& expected);
+
+// A cell of a user's file as an error message quotes it: in single quotes, at most 40
+// characters (then "..."), bytes outside printable ASCII as \xNN, so a binary file given by
+// mistake cannot scramble the terminal.
+std::string quotedCell(std::string_view text);
 
 // Parses a JSON file. Throws std::runtime_error naming the path when it cannot be read or parsed.
 Json readJsonFile(const std::filesystem::path& path);

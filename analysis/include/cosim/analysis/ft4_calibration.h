@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/ft4_energy.h"
 
 namespace cosim::analysis {
@@ -71,5 +72,9 @@ std::vector<CalibrationPoint> calibrationPoints(const std::vector<std::filesyste
 
 // Readable summary (what `cosim ft4 calibrate` prints).
 std::string calibrationText(const Calibration& c, const std::string& parameter);
+
+// The calibration as JSON (ft4_calibration.json of `cosim ft4 calibrate -o`): parameter_name,
+// the value and its uncertainties, the line, the measurement and the runs' points.
+Json calibrationJson(const Calibration& c, const std::string& parameter);
 
 }  // namespace cosim::analysis

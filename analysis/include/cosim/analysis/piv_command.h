@@ -25,9 +25,10 @@ struct PivCommandOptions {
   std::vector<double> heights{0.13, 0.15};
   std::size_t blocks = 10;       // time blocks for the profiles' standard errors (piv_field.h)
   std::filesystem::path output;  // default RUN/piv
+  bool plots = true;             // piv.png (scripts/plot_piv.py) beside the CSV files
 };
 
-// Writes grid.csv, profiles.csv and piv.json (piv_field.h) and prints a summary with the
+// Writes grid.csv, profiles.csv, piv.json (piv_field.h) and piv.png and prints a summary with the
 // profiles. Returns the exit code; throws std::runtime_error with what to do on bad input.
 int runPivCommand(const PivCommandOptions& options, std::ostream& out);
 
@@ -36,11 +37,13 @@ struct PivCompareCommandOptions {
   std::filesystem::path measured;   // a profile CSV
   std::optional<std::pair<double, double>> core_band;
   std::filesystem::path output;  // default: comparison.csv beside the simulated profiles
+  bool plots = true;             // a PNG of the profiles beside it (comparison.png)
 };
 
 // Prints the mean absolute error per profile and region and writes it as CSV
 // (height_m,region,points,mae_m_s,noise_mae_m_s; height "all" for every profile together);
-// noise_mae_m_s is what the sampling noise alone gives (empty without standard errors).
+// noise_mae_m_s is what the sampling noise alone gives (empty without standard errors),
+// and the profiles as a PNG of the same name.
 int runPivCompareCommand(const PivCompareCommandOptions& options, std::ostream& out);
 
 }  // namespace cosim::analysis

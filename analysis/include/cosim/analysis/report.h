@@ -147,6 +147,14 @@ std::optional<std::string> findPython(std::string& why_not);
 // in log; returns true on success, else message says why (with the log's tail).
 bool runPlotScript(const std::string& script, const std::filesystem::path& folder,
                    const std::filesystem::path& log, std::string& message);
+// Runs `python3 <script> <args...>` the same way.
+bool runPlotScript(const std::string& script, const std::vector<std::string>& args,
+                   const std::filesystem::path& log, std::string& message);
+// For a command's one figure: runs `python3 <script> <args...>` with its output in log and
+// returns the line to print: "plot: <png>" (the log removed), or "no plot: <why>" (what to
+// install or the script's failure); the command's numbers are written either way.
+std::string drawFigure(const std::string& script, const std::vector<std::string>& args,
+                       const std::filesystem::path& png, const std::filesystem::path& log);
 // Runs plot_report.py on a report folder; returns true on success, else message says why.
 bool drawPlots(const std::filesystem::path& folder, std::string& message);
 
