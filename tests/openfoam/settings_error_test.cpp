@@ -102,5 +102,16 @@ TEST(OpenFoamSettings, ABlockWithoutCellsIsNamedBeforeBlockMeshCrashes) {
   }
 }
 
+TEST(OpenFoamSettings, AMeshThatCannotFitInMemoryIsRefusedBeforeBlockMesh) {
+  // 50,000^3 cells (a cell size far below the meant one): refused at once with the count, not
+  // left to blockMesh to swap the machine to a standstill
+  auto cfg = base();
+  cfg.edits.push_back({"system/blockMeshDict", "(5 5 25)", "(50000 50000 50000)"});
+  const auto msg = firstError(cfg);
+  EXPECT_NE(msg.find("system/blockMeshDict: the mesh would have 1.25e+14 cells"), std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("GB of memory"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace cosim::test

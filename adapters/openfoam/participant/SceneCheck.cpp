@@ -1,5 +1,8 @@
 #include "SceneCheck.h"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -65,8 +68,22 @@ std::string withoutComments(const std::string& text) {
 // at least 1, in each direction: blockMesh 1912 crashes with a segmentation fault on 0 or a
 // negative count, which a templated case gets from its parameters (a cell size larger than a
 // block, a block of zero or negative width).
-void checkBlockCellCounts(const fs::path& dict, const fs::path& dir) {
+// Also refuses a mesh that cannot fit in memory before blockMesh tries to make it: a cell size
+// far below what was meant (a templated case's parameter, --set cell=1e-5) would otherwise
+// swap the machine to a standstill or be killed hours later. The bound is sure to fail, not a
+// guess: at least kBytesPerCell per cell (OpenFOAM's mesh and the gas fields take 1-2 KB) against
+// the physical memory of this host times the ranks (each rank may have a host of its own).
+constexpr double kBytesPerCell = 1000;
+
+double physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
+}
+
+void checkBlockCellCounts(const fs::path& dict, const fs::path& dir, int ranks) {
   const std::string text = withoutComments(textOf(dict));
+  double cells = 0;
   static const std::regex hex(R"(\bhex\s*\(([^()]*)\)\s*(?:[A-Za-z_][\w.]*\s*)?\(([^()]*)\))");
   const std::string file = fs::relative(dict, dir).string();
   int block = 0;
@@ -95,6 +112,26 @@ void checkBlockCellCounts(const fs::path& dict, const fs::path& dir) {
             "than the block, or a block of zero or negative width (check the parameters the "
             "command line changed)");
     }
+    cells += std::stod(n[0]) * std::stod(n[1]) * std::stod(n[2]);
+  }
+  const double memory = physicalMemoryBytes() * std::max(1, ranks);
+  if (memory > 0 && cells * kBytesPerCell > memory) {
+    auto gb = [](double bytes) {
+      std::ostringstream o;
+      o.precision(3);
+      o << bytes / 1e9;
+      return o.str();
+    };
+    std::ostringstream count;
+    count.precision(3);
+    count << cells;
+    throw std::runtime_error(
+        "cosimFoam: " + file + ": the mesh would have " + count.str() + " cells, which need at " +
+        "least " + gb(cells * kBytesPerCell) + " GB (about 1 KB a cell) against " + gb(memory) +
+        " GB of memory (" + std::to_string(std::max(1, ranks)) + " rank(s) of this host's " +
+        gb(physicalMemoryBytes()) +
+        " GB): a cell size far smaller than meant? In a templated case the counts come from the "
+        "scene's parameters (check the parameters the command line changed)");
   }
 }
 
@@ -124,7 +161,7 @@ void checkCase(const AdapterSettings& settings, int ranks, const fs::path& dir) 
                              " has no mesh (constant/polyMesh) and no system/blockMeshDict to "
                              "make one");
   }
-  if (blockMesh) checkBlockCellCounts(dir / "system/blockMeshDict", dir);
+  if (blockMesh) checkBlockCellCounts(dir / "system/blockMeshDict", dir, ranks);
   if (!blockMesh && !haveMesh) {
     throw std::runtime_error("cosimFoam: options.mesh is 'existing' but " + dir.string() +
                              "/constant/polyMesh has no mesh");
