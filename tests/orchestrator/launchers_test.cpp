@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "scenario.h"
+#include "scenario/limits.h"
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
@@ -108,6 +109,22 @@ TEST(Launchers, LaunchKeysAreCheckedAndErrorsGiveTheRemedy) {
   EXPECT_NE(errorOf("workdir: scratch, ").find("expected an absolute folder"), std::string::npos);
   EXPECT_NE(errorOf("launch: external, workdir: /scratch, ").find("--workdir DIR"),
             std::string::npos);
+}
+
+TEST(Launchers, MoreRanksOnThisHostThanItsMemoryHoldsAreRefused) {
+  // 50 MB a rank at the least: the host's memory in MB, plus one, cannot start here
+  const long ranks = std::min(4096L, static_cast<long>(limits::hostMemoryBytes() / 50e6) + 1);
+  if (ranks * 50e6 <= limits::hostMemoryBytes()) GTEST_SKIP() << "a host with over 200 GB";
+  const std::string mpi = "mpi: " + std::to_string(ranks) + ", ";
+  const auto local = errorOf(mpi);
+  EXPECT_NE(local.find(std::to_string(ranks) + " MPI ranks on this host need at least"),
+            std::string::npos)
+      << local;
+  EXPECT_NE(local.find("launch: slurm"), std::string::npos) << local;
+  EXPECT_NE(errorOf("launch: mpirun, " + mpi).find("MPI ranks on this host"), std::string::npos);
+  // spread over nodes, the same count is the scheduler's to place
+  EXPECT_EQ(errorOf("launch: slurm, " + mpi), "(accepted)");
+  EXPECT_EQ(errorOf("launch: external, " + mpi), "(accepted)");
 }
 
 TEST(Launchers, AFolderOfItsOwnIsPassedAsWorkdirPerRunAndParticipant) {

@@ -1,5 +1,7 @@
 #include "scenario/participants_section.h"
 
+#include <unistd.h>
+
 #include <cmath>
 
 #include "scenario/limits.h"
@@ -7,6 +9,12 @@
 namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
+
+double limits::hostMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES);
+  const long size = sysconf(_SC_PAGE_SIZE);
+  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
+}
 
 const std::map<std::string, AdapterInfo>& knownAdapters() {
   static const std::map<std::string, AdapterInfo> m = {
@@ -143,6 +151,18 @@ ParticipantSpec parseParticipant(const std::string& pname, const YAML::Node& p, 
                "expected a whole number of MPI ranks >= 1, got " + p["mpi"].Scalar());
     }
     ps.mpi = static_cast<int>(n);
+    // Ranks started on this host must fit in its memory: a solver's rank takes at least
+    // kRankBytes (LIGGGHTS and OpenFOAM ranks hold 80-90 MB resident at the smallest scenes).
+    const bool this_host = ps.launch == "local" || (ps.launch == "mpirun" && !p["hostfile"]);
+    const double memory = limits::hostMemoryBytes();
+    if (this_host && memory > 0 && ps.mpi * limits::kRankBytes > memory)
+      ctx.fail(p["mpi"], key + ".mpi",
+               std::to_string(ps.mpi) + " MPI ranks on this host need at least " +
+                   std::to_string(static_cast<long>(ps.mpi * limits::kRankBytes / 1e9)) +
+                   " GB (50 MB a rank) and it has " +
+                   std::to_string(static_cast<long>(memory / 1e9)) +
+                   " GB: give fewer, or spread them over nodes (launch: slurm, or mpirun with a "
+                   "hostfile; docs/cluster.md)");
   }
   if (p["workdir"]) {
     ps.workdir = ctx.text(p["workdir"], key + ".workdir");
