@@ -2,9 +2,11 @@
 """Plots of `cosim ft4 energy` and `cosim ft4 calibrate` (matplotlib, Agg backend).
 
 usage:
-  plot_ft4.py energy PROFILE_CSV OUT_PNG
+  plot_ft4.py energy PROFILE_CSV [PROFILE_CSV...] OUT_PNG
       the energy gradient M / (R tan alpha) + F and the cumulative flow energy against the
-      blade's height (the rows of `cosim ft4 energy`'s profile CSV)
+      blade's height (the rows of `cosim ft4 energy`'s profile CSV); several profiles (runs of a
+      study, say) are drawn over each other, each named by its file (or its run folder when the
+      file is the default ft4_energy.csv)
   plot_ft4.py calibration CALIBRATION_JSON OUT_PNG
       the runs' energies against the parameter, the fitted line, the measured energy with its
       standard error and the value read back through the line
@@ -12,6 +14,7 @@ usage:
 import csv
 import json
 import sys
+from pathlib import Path
 
 import matplotlib
 
@@ -19,22 +22,39 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def energy(profile_csv, out_png) -> int:
+def read_profile(profile_csv):
     with open(profile_csv, newline="") as f:
         data = list(csv.DictReader(f))
     h = [1e3 * float(r["height_m"]) for r in data]
     g = [float(r["gradient_J_per_m"]) for r in data]  # J/m = mJ/mm
     w = [1e3 * float(r["energy_J"]) for r in data]
+    return h, g, w
+
+
+def label_of(profile_csv):
+    p = Path(profile_csv)
+    return p.parent.name if p.name == "ft4_energy.csv" else p.stem
+
+
+def energy(profile_csvs, out_png) -> int:
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(9, 4.5), sharey=True)
-    ax.plot(g, h, "-", lw=1)
+    titles = []
+    for k, path in enumerate(profile_csvs):
+        h, g, w = read_profile(path)
+        total = w[-1] if w else 0.0
+        label = f"{label_of(path)}: {total:.4g} mJ" if len(profile_csvs) > 1 else None
+        ax.plot(g, h, "-", lw=1, color=f"C{k}", label=label)
+        bx.plot(w, h, "-", lw=1.5, color=f"C{k}", label=label)
+        if h:
+            titles.append(f"flow energy {total:.4g} mJ from {max(h):.4g} down to {min(h):.4g} mm")
     ax.set_xlabel("energy gradient M / (R tan alpha) + F [mJ/mm]")
     ax.set_ylabel("blade height above the base [mm]")
     ax.axvline(0, color="gray", lw=0.6)
-    bx.plot(w, h, "-", lw=1.5, color="C1")
     bx.set_xlabel("flow energy from the top [mJ]")
-    total = w[-1] if w else 0.0
-    fig.suptitle(f"flow energy {total:.4g} mJ from {max(h):.4g} down to {min(h):.4g} mm"
-                 if h else "no rows")
+    if len(profile_csvs) > 1:
+        bx.legend(fontsize=8)
+    else:
+        fig.suptitle(titles[0] if titles else "no rows")
     fig.tight_layout()
     fig.savefig(out_png, dpi=110)
     return 0
@@ -73,8 +93,8 @@ def calibration(calibration_json, out_png) -> int:
 
 
 def main(argv) -> int:
-    if len(argv) == 4 and argv[1] == "energy":
-        return energy(argv[2], argv[3])
+    if len(argv) >= 4 and argv[1] == "energy":
+        return energy(argv[2:-1], argv[-1])
     if len(argv) == 4 and argv[1] == "calibration":
         return calibration(argv[2], argv[3])
     print(__doc__, file=sys.stderr)

@@ -323,6 +323,14 @@ TEST(Ft4Plots, EnergyProfileAndCalibrationDrawnFromTheirFiles) {
       in.read(magic, 4);
       EXPECT_EQ(std::string(magic + 1, 3), "PNG") << png;
     }
+    // several profiles over each other (the runs of a study)
+    write(d / "run2" / "ft4_energy.csv", energyProfileCsv(runFlowEnergy(d / "run2")));
+    const auto both = d / "both.png";
+    EXPECT_EQ(drawFigure("plot_ft4.py",
+                         {"energy", (d / "ft4_energy.csv").string(),
+                          (d / "run2" / "ft4_energy.csv").string(), both.string()},
+                         both, d / "plot.log"),
+              "plot: " + both.string());
   }
   setenv("COSIM_PYTHON", "/nonexistent/python3", 1);
   const auto line = drawFigure(
