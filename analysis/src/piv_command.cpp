@@ -190,11 +190,19 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
     out << "  an error no larger than about this is what two runs of the same model differ by\n";
   }
   const fs::path file = c.output.empty() ? sim.parent_path() / "comparison.csv" : c.output;
+  auto png = file;
+  png.replace_extension(".png");
+  for (const auto& input : {sim, c.measured}) {
+    std::error_code ec;
+    for (const auto& written : {file, png})
+      if (fs::equivalent(written, input, ec))
+        throw std::runtime_error("cosim piv-compare: " + written.string() +
+                                 " would overwrite the input " + input.string() +
+                                 ": give another -o");
+  }
   writeFileAtomically(file, csv);
   out << "cosim piv-compare: written " << file.string() << "\n";
   if (c.plots) {
-    auto png = file;
-    png.replace_extension(".png");
     auto log = file;
     log.replace_extension(".plot.log");
     out << "cosim piv-compare: "

@@ -342,6 +342,13 @@ TEST(PivCompare, CommandWritesTheTableAndRefusesAHeightNotSimulated) {
     EXPECT_NE(std::string(e.what()).find("0.14"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("--heights"), std::string::npos) << e.what();
   }
+  // An output that is one of the inputs is refused; the measured file stays as it was.
+  c.measured = dir / "measured.csv";
+  const std::string before = readText(c.measured);
+  c.output = c.measured;
+  EXPECT_THROW(runPivCompareCommand(c, out), std::runtime_error);
+  EXPECT_EQ(readText(c.measured), before);
+  c.output.clear();
   // The run folder form asks for cosim piv first.
   c.simulated = dir;
   c.measured = dir / "measured.csv";
