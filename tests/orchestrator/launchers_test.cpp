@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "cosim/util/host_memory.h"
 #include "scenario.h"
-#include "scenario/limits.h"
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
@@ -113,8 +113,8 @@ TEST(Launchers, LaunchKeysAreCheckedAndErrorsGiveTheRemedy) {
 
 TEST(Launchers, MoreRanksOnThisHostThanItsMemoryHoldsAreRefused) {
   // 50 MB a rank at the least: the host's memory in MB, plus one, cannot start here
-  const long ranks = std::min(4096L, static_cast<long>(limits::hostMemoryBytes() / 50e6) + 1);
-  if (ranks * 50e6 <= limits::hostMemoryBytes()) GTEST_SKIP() << "a host with over 200 GB";
+  const long ranks = std::min(4096L, static_cast<long>(cosim::util::hostMemoryBytes() / 50e6) + 1);
+  if (ranks * 50e6 <= cosim::util::hostMemoryBytes()) GTEST_SKIP() << "a host with over 200 GB";
   const std::string mpi = "mpi: " + std::to_string(ranks) + ", ";
   const auto local = errorOf(mpi);
   EXPECT_NE(local.find(std::to_string(ranks) + " MPI ranks on this host need at least"),

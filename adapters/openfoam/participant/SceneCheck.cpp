@@ -1,7 +1,5 @@
 #include "SceneCheck.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include "cosim/link/fields.h"
+#include "cosim/util/host_memory.h"
 
 namespace cosim::foam {
 namespace fs = std::filesystem;
@@ -64,23 +63,17 @@ std::string withoutComments(const std::string& text) {
   return out;
 }
 
+// checkBlockCellCounts also refuses a mesh that cannot fit in memory before blockMesh tries to make
+// it: a cell size far below what was meant (a templated case's parameter, --set cell=1e-5) would
+// otherwise swap the machine to a standstill or be killed hours later. The bound is sure to fail,
+// not a guess: at least kBytesPerCell per cell (OpenFOAM's mesh and the gas fields take 1-2 KB)
+// against the physical memory of this host times the ranks (each rank may have a host of its own).
+constexpr double kBytesPerCell = 1000;
+
 // Every `hex (8 vertices) [zone] (nx ny nz)` of a blockMeshDict has a whole number of cells,
 // at least 1, in each direction: blockMesh 1912 crashes with a segmentation fault on 0 or a
 // negative count, which a templated case gets from its parameters (a cell size larger than a
 // block, a block of zero or negative width).
-// Also refuses a mesh that cannot fit in memory before blockMesh tries to make it: a cell size
-// far below what was meant (a templated case's parameter, --set cell=1e-5) would otherwise
-// swap the machine to a standstill or be killed hours later. The bound is sure to fail, not a
-// guess: at least kBytesPerCell per cell (OpenFOAM's mesh and the gas fields take 1-2 KB) against
-// the physical memory of this host times the ranks (each rank may have a host of its own).
-constexpr double kBytesPerCell = 1000;
-
-double physicalMemoryBytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
-}
-
 void checkBlockCellCounts(const fs::path& dict, const fs::path& dir, int ranks) {
   const std::string text = withoutComments(textOf(dict));
   double cells = 0;
@@ -101,6 +94,7 @@ void checkBlockCellCounts(const fs::path& dict, const fs::path& dir, int ranks) 
     };
     if (n.size() != 3)
       throw std::runtime_error(where() + "expected 3 cell counts, got " + std::to_string(n.size()));
+    double block_cells = 1;
     for (int d = 0; d < 3; ++d) {
       char* end = nullptr;
       const long c = std::strtol(n[d].c_str(), &end, 10);
@@ -111,10 +105,11 @@ void checkBlockCellCounts(const fs::path& dict, const fs::path& dir, int ranks) 
             "templated case the count comes from the scene's parameters: a cell size larger "
             "than the block, or a block of zero or negative width (check the parameters the "
             "command line changed)");
+      block_cells *= static_cast<double>(c);
     }
-    cells += std::stod(n[0]) * std::stod(n[1]) * std::stod(n[2]);
+    cells += block_cells;
   }
-  const double memory = physicalMemoryBytes() * std::max(1, ranks);
+  const double memory = util::hostMemoryBytes() * std::max(1, ranks);
   if (memory > 0 && cells * kBytesPerCell > memory) {
     auto gb = [](double bytes) {
       std::ostringstream o;
@@ -129,7 +124,7 @@ void checkBlockCellCounts(const fs::path& dict, const fs::path& dir, int ranks) 
         "cosimFoam: " + file + ": the mesh would have " + count.str() + " cells, which need at " +
         "least " + gb(cells * kBytesPerCell) + " GB (about 1 KB a cell) against " + gb(memory) +
         " GB of memory (" + std::to_string(std::max(1, ranks)) + " rank(s) of this host's " +
-        gb(physicalMemoryBytes()) +
+        gb(util::hostMemoryBytes()) +
         " GB): a cell size far smaller than meant? In a templated case the counts come from the "
         "scene's parameters (check the parameters the command line changed)");
   }

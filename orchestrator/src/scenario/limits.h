@@ -15,7 +15,4 @@ inline constexpr double kMaxTimeout = 1e6;             // seconds (about 11 days
 inline constexpr std::size_t kMaxNameLength = 100;     // a scene name or output folder part
 inline constexpr double kRankBytes = 50e6;  // the least memory one MPI rank of a solver takes
 
-// Physical memory of this host [bytes]; 0 when it cannot be read.
-double hostMemoryBytes();
-
 }  // namespace cosim::orchestrator::limits

@@ -1,20 +1,13 @@
 #include "scenario/participants_section.h"
 
-#include <unistd.h>
-
 #include <cmath>
 
+#include "cosim/util/host_memory.h"
 #include "scenario/limits.h"
 
 namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
-
-double limits::hostMemoryBytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long size = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
-}
 
 const std::map<std::string, AdapterInfo>& knownAdapters() {
   static const std::map<std::string, AdapterInfo> m = {
@@ -154,7 +147,7 @@ ParticipantSpec parseParticipant(const std::string& pname, const YAML::Node& p, 
     // Ranks started on this host must fit in its memory: a solver's rank takes at least
     // kRankBytes (LIGGGHTS and OpenFOAM ranks hold 80-90 MB resident at the smallest scenes).
     const bool this_host = ps.launch == "local" || (ps.launch == "mpirun" && !p["hostfile"]);
-    const double memory = limits::hostMemoryBytes();
+    const double memory = util::hostMemoryBytes();
     if (this_host && memory > 0 && ps.mpi * limits::kRankBytes > memory)
       ctx.fail(p["mpi"], key + ".mpi",
                std::to_string(ps.mpi) + " MPI ranks on this host need at least " +
