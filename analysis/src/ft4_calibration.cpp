@@ -280,9 +280,14 @@ std::string calibrationText(const Calibration& c, const std::string& parameter) 
                    c.points.size());
   s += fmt::format("measured: {:.6g} mJ (standard error {:.3g} mJ)\n", c.measured_J * 1e3,
                    c.measured_se_J * 1e3);
+  // four decimals for the parameter's usual range; significant digits for a value a measurement
+  // far outside the runs extrapolates to (1e308 mJ printed 300 digits)
+  auto value = [](double x) {
+    return std::fabs(x) < 1e4 ? fmt::format("{:.4f}", x) : fmt::format("{:.4g}", x);
+  };
   s += fmt::format(
-      "{} = {:.4f} +- {:.4f} (study spread {:.4f}, measurement {:.4f}){}\n", parameter, c.parameter,
-      c.sigma, c.sigma_study, c.sigma_measurement,
+      "{} = {} +- {} (study spread {}, measurement {}){}\n", parameter, value(c.parameter),
+      value(c.sigma), value(c.sigma_study), value(c.sigma_measurement),
       c.extrapolated ? "; outside the studied values: extrapolated, extend the study" : "");
   return s;
 }

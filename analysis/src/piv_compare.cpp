@@ -18,6 +18,7 @@ namespace cosim::analysis {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kMaxSpeed = 343;  // m/s, sound in air at 20 C: above any particle velocity
 
 std::string trim(const std::string& s) {
   const auto b = s.find_first_not_of(" \t\r");
@@ -126,6 +127,12 @@ std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
     p.height = parse(cell("height_m"), false, where + " column height_m");
     p.x = parse(cell("x_m"), false, where + " column x_m");
     p.vz = parse(cell("vz_m_s"), true, where + " column vz_m_s");
+    // no particle in a bed outruns sound in air: a larger number is in other units
+    if (std::fabs(p.vz) > kMaxSpeed)
+      throw std::runtime_error(fmt::format(
+          "{} column vz_m_s: {} m/s is faster than sound in air; the column is in m/s (a PIV "
+          "export in mm/s or pixels per frame must be converted first)",
+          where, p.vz));
     if (col.count("vz_stderr_m_s")) {
       p.stderr_vz = parse(cell("vz_stderr_m_s"), true, where + " column vz_stderr_m_s");
       if (p.stderr_vz < 0)
@@ -187,8 +194,9 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
     if (it == curves.end())
       throw std::runtime_error(fmt::format(
           "the measured profile at {} m has no simulated profile (simulated heights: {}): run "
-          "`cosim piv RUN --heights ...` with that height",
-          m.height, heights.empty() ? "none" : heights));
+          "`cosim piv RUN --heights ...` with that height{}",
+          m.height, heights.empty() ? "none" : heights,
+          m.height > 2 ? " (heights are in metres above the bottom: given in mm?)" : ""));
     if (it->second.x.empty())
       throw std::runtime_error(fmt::format(
           "the simulated profile at {} m has no data (no parcel seen in that band)", it->first));

@@ -256,6 +256,20 @@ TEST(Ft4Calibration, CarelessMeasuredFilesAreRefusedWithTheirCause) {
   fs::remove_all(d);
 }
 
+TEST(Ft4Calibration, AFarExtrapolationIsPrintedInSignificantDigitsAndFlagged) {
+  // runs at mu 0.3 and 0.6 with W = 0.1 J x mu (and a third on the line): a measured 1e300 J lies
+  // at mu = 1e301, which four decimals would print as three hundred digits
+  const std::vector<CalibrationPoint> points = {
+      {"a", 0.3, 0.030}, {"b", 0.45, 0.0451}, {"c", 0.6, 0.060}};
+  const auto c = calibrate(points, 1e300, 0);
+  EXPECT_TRUE(c.extrapolated);
+  const auto text = calibrationText(c, "mu_fric");
+  const auto line = text.substr(text.find("mu_fric = "));
+  EXPECT_LT(line.size(), 200u) << line;
+  EXPECT_NE(line.find("e+301"), std::string::npos) << line;
+  EXPECT_NE(line.find("extrapolated"), std::string::npos) << line;
+}
+
 TEST(Ft4Calibration, StudyFolderEndToEndRecoversTheFrictionOfASyntheticMeasurement) {
   // runs whose force grows linearly with mu: F = 4 mu N, M = 0.02 mu N m over 30 mm of descent
   // -> gradient g(mu) = 0.02 mu / (R tan a) + 4 mu from 39 mm down, and the step from the rest

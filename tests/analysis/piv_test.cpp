@@ -372,6 +372,16 @@ TEST(PivCompare, MalformedCsvNamesFileLineAndColumn) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("b.csv:3 column x_m"), std::string::npos) << e.what();
   }
+  // a PIV export in mm/s: 500 mm/s read as m/s would be faster than sound
+  std::ofstream(dir / "mm.csv") << "height_m,x_m,vz_m_s\n0.13,0,120\n0.13,0.01,-500\n";
+  try {
+    readProfileCsv(dir / "mm.csv");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("mm.csv:3 column vz_m_s: -500 m/s is faster than sound"),
+              std::string::npos)
+        << e.what();
+  }
   EXPECT_THROW(readProfileCsv(dir / "missing.csv"), std::runtime_error);
   try {
     readProfileCsv(dir);
