@@ -311,3 +311,51 @@ TEST(HostileObservables, ColumnsOfThePlanAreTheRecordedOnes) {
   coating.fluid = coating.coating = true;
   EXPECT_EQ(timeSeriesColumns(coating).size(), 8u);
 }
+
+// ---- the shipped scenes' parameters ------------------------------------------------------------
+
+// A value that LIGGGHTS, blockMesh or the blade's mesh would fail on far from the command line
+// (a restitution of 0.05 or less, which LIGGGHTS stops on in its own log, a pour region above the
+// vessel, a blade wider than the vessel, an averaging window of zero steps) is refused by the
+// scene's parameter ranges, naming the parameter; a value that follows from others (blade_park from
+// H_v) names the derived one.
+TEST(HostileSceneParameters, ValuesTheSolversWouldFailOnAreRefusedByName) {
+  struct Case {
+    const char* scene;
+    const char* set;
+    const char* refused;  // the parameter the refusal names
+  };
+  const Case cases[] = {
+      {"ft4-rheometer", "e_rest=0.05", "parameters.e_rest: 0.05 is outside [0.051, 1]"},
+      {"ft4-rheometer", "e_rest=1.5", "parameters.e_rest"},
+      {"ft4-rheometer", "blade_radius=0.1", "parameters.blade_radius: 0.1 is outside"},
+      {"ft4-rheometer", "blade_twist_deg=90", "parameters.blade_twist_deg"},
+      {"ft4-rheometer", "blade_chord=0", "parameters.blade_chord"},
+      {"ft4-rheometer", "H_v=0.01", "parameters.blade_park"},
+      {"ft4-rheometer", "output_interval=0", "parameters.output_interval"},
+      {"ft4-rheometer", "fill_pours=0", "parameters.fill_pours"},
+      {"spout-2d", "cg=100", "parameters.cg: 100 is outside"},
+      {"spout-2d", "H_flare=0.5", "parameters.H_flare"},
+      {"spout-2d", "fill_top=0.5", "parameters.fill_top"},
+      {"spout-2d", "W_top=0.01", "parameters.W_top"},
+      {"plasma-coating-bed", "e_rest=0", "parameters.e_rest"},
+      {"fluidized-bed", "e_rest=2", "parameters.e_rest"},
+  };
+  for (const auto& c : cases) {
+    const auto scene = fs::path(COSIM_SOURCE_DIR) / "scenarios" / c.scene / "scenario.yaml";
+    try {
+      (void)loadScenario(scene, {c.set});
+      ADD_FAILURE() << c.scene << " accepted --set " << c.set;
+    } catch (const ScenarioError& e) {
+      expectFragments(e.what(), {c.refused, "give a value within it"});
+    }
+  }
+  // the paper sizes and the coarse-graining checks run so far stay within the ranges
+  for (const auto& [scene, sets] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {"ft4-rheometer/paper.yaml", {"cell=0.0033"}},
+           {"ft4-rheometer/tiny.yaml", {}},
+           {"spout-2d/paper.yaml", {"cg=7"}},
+           {"spout-2d/ci.yaml", {}}})
+    EXPECT_NO_THROW((void)loadScenario(fs::path(COSIM_SOURCE_DIR) / "scenarios" / scene, sets))
+        << scene;
+}
