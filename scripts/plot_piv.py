@@ -6,9 +6,10 @@ usage:
       reads grid.csv and profiles.csv of `cosim piv`, writes PIV_FOLDER/piv.png: the
       time-averaged vertical parcel velocity in the plane of the front wall, with the profile
       heights marked, and the profiles with their standard errors
-  plot_piv.py compare SIMULATED_PROFILES MEASURED_PROFILES COMPARISON_CSV OUT_PNG
+  plot_piv.py compare SIMULATED_PROFILES MEASURED_PROFILES COMPARISON_CSV OUT_PNG [LABEL LABEL]
       one panel per measured height: the simulated profile (band: +- one standard error) and
-      the measured points, the mean absolute errors of COMPARISON_CSV in the panel's title
+      the measured points, the mean absolute errors of COMPARISON_CSV in the panel's title; the
+      two labels name them in the legend (default: simulated, measured)
 """
 import csv
 import math
@@ -87,7 +88,10 @@ def field(folder: Path) -> int:
     return 0
 
 
-def compare(simulated: Path, measured: Path, comparison: Path, out: Path) -> int:
+def compare(simulated: Path, measured: Path, comparison: Path, out: Path,
+            labels=("simulated", "measured")) -> int:
+    # a name is text, not matplotlib's $math$
+    sim_label, meas_label = (label.replace("$", r"\$") for label in labels)
     sim = profiles(simulated)
     meas = profiles(measured)
     errors = {}
@@ -100,12 +104,12 @@ def compare(simulated: Path, measured: Path, comparison: Path, out: Path) -> int
         key = next((k for k in sim if abs(k - h) <= 1e-6), None)
         if key is not None:
             x, v, se = sim[key]
-            ax.plot(1e3 * x, v, "-", color="C0", label="simulated")
+            ax.plot(1e3 * x, v, "-", color="C0", label=sim_label)
             if np.isfinite(se).any():
                 ax.fill_between(1e3 * x, v - se, v + se, color="C0", alpha=0.25, lw=0)
         x, v, se = meas[h]
         ax.errorbar(1e3 * x, v, yerr=np.where(np.isfinite(se), se, 0), fmt="s", ms=4,
-                    color="C3", label="measured")
+                    color="C3", label=meas_label)
         ax.axhline(0, color="gray", lw=0.6)
         title = f"z = {1e3 * h:g} mm"
         hkey = next((k for k, _ in errors if k != "all" and abs(float(k) - h) <= 1e-6), None)
@@ -134,8 +138,9 @@ def compare(simulated: Path, measured: Path, comparison: Path, out: Path) -> int
 def main(argv) -> int:
     if len(argv) == 3 and argv[1] == "field":
         return field(Path(argv[2]))
-    if len(argv) == 6 and argv[1] == "compare":
-        return compare(Path(argv[2]), Path(argv[3]), Path(argv[4]), Path(argv[5]))
+    if len(argv) in (6, 8) and argv[1] == "compare":
+        return compare(Path(argv[2]), Path(argv[3]), Path(argv[4]), Path(argv[5]),
+                       tuple(argv[6:8]) if len(argv) == 8 else ("simulated", "measured"))
     print(__doc__, file=sys.stderr)
     return 2
 

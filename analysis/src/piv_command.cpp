@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -147,6 +148,14 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
                                " does not exist: run `cosim piv " + c.simulated.string() +
                                "` first (with --heights for the measured profiles' heights)");
   }
+  for (const auto* label : {&c.simulated_label, &c.measured_label}) {
+    const bool printable = std::all_of(label->begin(), label->end(),
+                                       [](unsigned char ch) { return ch >= 0x20 && ch != 0x7f; });
+    if (label->empty() || label->size() > 40 || !printable)
+      throw std::runtime_error("cosim piv-compare: --labels: " + quotedCell(*label) +
+                               ": expected two names of 1-40 printable characters, e.g. "
+                               "--labels 'cg 5,cg 10'");
+  }
   PivCompareOptions o;
   o.core_band = c.core_band;
   const auto simulated = readProfileCsv(sim);
@@ -207,7 +216,8 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
     log.replace_extension(".plot.log");
     out << "cosim piv-compare: "
         << drawFigure("plot_piv.py",
-                      {"compare", sim.string(), c.measured.string(), file.string(), png.string()},
+                      {"compare", sim.string(), c.measured.string(), file.string(), png.string(),
+                       c.simulated_label, c.measured_label},
                       png, log)
         << "\n";
   }

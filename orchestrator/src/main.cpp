@@ -309,6 +309,12 @@ int main(int argc, char** argv) {
                    "comparison CSV (default: comparison.csv beside the simulated profiles); "
                    "its plot has the same name ending .png");
   pivc->add_flag("--no-plots{false}", pivc_opt.plots, "the CSV only, no PNG");
+  std::vector<std::string> pivc_labels;
+  pivc->add_option("--labels", pivc_labels,
+                   "A,B: the two profiles' names in the plot's legend (default "
+                   "simulated,measured; e.g. 'cg 5,cg 10' when a run is compared with another)")
+      ->delimiter(',')
+      ->expected(2);
 #endif
 
   CLI11_PARSE(app, argc, argv);
@@ -368,6 +374,10 @@ int main(int argc, char** argv) {
           return 2;
         }
         pivc_opt.core_band = std::make_pair(core_band[0], core_band[1]);
+      }
+      if (!pivc_labels.empty()) {
+        pivc_opt.simulated_label = pivc_labels[0];
+        pivc_opt.measured_label = pivc_labels[1];
       }
       return cosim::analysis::runPivCompareCommand(pivc_opt, std::cout);
     }

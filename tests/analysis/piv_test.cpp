@@ -540,6 +540,20 @@ TEST(PivPlots, FieldAndComparisonAsPngsOrWhatToInstall) {
     EXPECT_TRUE(isPng(run / "comparison.png")) << out.str();
     EXPECT_NE(out.str().find("plot: " + (run / "comparison.png").string()), std::string::npos)
         << out.str();
+    // two runs compared: the legend names them; a name is text, not matplotlib's $math$ (an
+    // unknown command in it would fail the drawing)
+    PivCompareCommandOptions labelled = compare;
+    labelled.output = run / "labelled.csv";
+    labelled.simulated_label = "cg 5 $\\nosuchcommand$";
+    labelled.measured_label = "cg 10";
+    ASSERT_EQ(runPivCompareCommand(labelled, out), 0);
+    EXPECT_TRUE(isPng(run / "labelled.png")) << out.str();
+  }
+  for (const std::string bad : {std::string(), std::string("two\nlines"), std::string(41, 'x')}) {
+    PivCompareCommandOptions labelled = compare;
+    labelled.measured_label = bad;
+    std::ostringstream out;
+    EXPECT_THROW(runPivCompareCommand(labelled, out), std::runtime_error) << bad;
   }
   fs::remove(run / "piv" / "piv.png");
   fs::remove(run / "comparison.png");

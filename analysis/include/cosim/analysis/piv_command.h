@@ -38,6 +38,9 @@ struct PivCompareCommandOptions {
   std::optional<std::pair<double, double>> core_band;
   std::filesystem::path output;  // default: comparison.csv beside the simulated profiles
   bool plots = true;             // a PNG of the profiles beside it (comparison.png)
+  // the two profiles' names in the PNG's legend: another run compared as "measured" (a
+  // coarse-graining check) names both runs
+  std::string simulated_label = "simulated", measured_label = "measured";
 };
 
 // Prints the mean absolute error per profile and region and writes it as CSV
