@@ -136,8 +136,12 @@ EnergyProfile flowEnergy(const std::vector<BladeRow>& rows, double blade_radius_
   p.helix_deg = helix_deg;
   const double lever = blade_radius_m * std::tan(helix_deg * std::numbers::pi / 180.0);
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    EnergyPoint e{rows[i].height_m, rows[i].force_N, rows[i].torque_Nm,
-                  rows[i].torque_Nm / lever + rows[i].force_N, 0.0};
+    EnergyPoint e{rows[i].height_m,
+                  rows[i].force_N,
+                  rows[i].torque_Nm,
+                  rows[i].torque_Nm / lever + rows[i].force_N,
+                  0.0,
+                  0.0};
     if (i > 0) {
       const auto& prev = p.points.back();
       const double dh = prev.height_m - e.height_m;
@@ -159,6 +163,8 @@ EnergyProfile flowEnergy(const std::vector<BladeRow>& rows, double blade_radius_
       }
       e.energy_J =
           prev.energy_J + (dh > 0 ? 0.5 * (prev.gradient_J_per_m + e.gradient_J_per_m) * dh : 0.0);
+      e.torque_energy_J =
+          prev.torque_energy_J + (dh > 0 ? 0.5 * (prev.torque_Nm + e.torque_Nm) / lever * dh : 0.0);
     }
     p.points.push_back(e);
   }

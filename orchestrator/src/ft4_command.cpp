@@ -58,9 +58,11 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
       a::writeFileAtomically(file, a::energyProfileCsv(profile));
       out << fmt::format(
           "flow energy {:.6g} mJ over the blade's descent from {:.4g} to {:.4g} mm (R = {:.4g} "
-          "mm, helix {:.4g} deg)\nprofile: {}\n",
+          "mm, helix {:.4g} deg)\n  of which the torque term M / (R tan alpha) {:.6g} mJ, the "
+          "vertical force F {:.6g} mJ\nprofile: {}\n",
           profile.total_J() * 1e3, profile.highest_m() * 1e3, profile.lowest_m() * 1e3,
-          profile.blade_radius_m * 1e3, profile.helix_deg, file.string());
+          profile.blade_radius_m * 1e3, profile.helix_deg, profile.torque_J() * 1e3,
+          (profile.total_J() - profile.torque_J()) * 1e3, file.string());
       if (o.plots) {
         auto png = file, log = file;
         png.replace_extension(".png");

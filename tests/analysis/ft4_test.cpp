@@ -76,6 +76,7 @@ TEST(Ft4Energy, ConstantForceAndTorqueGiveTheirWorkExactly) {
   // rows at 0.04 m with F = 0 and F = 2 share the height, so they add nothing
   const double g = 0.01 / kLever + 2.0;
   EXPECT_NEAR(p.total_J(), g * 0.03, 1e-12 * g);
+  EXPECT_NEAR(p.torque_J(), 0.01 / kLever * 0.03, 1e-12 * g);  // and 2 N x 0.03 m from F
   EXPECT_NEAR(p.points.back().gradient_J_per_m, g, 1e-12 * g);
   EXPECT_NEAR(p.between(0.015, 0.035), g * 0.02, 1e-12 * g);
   EXPECT_DOUBLE_EQ(p.highest_m(), 0.04);

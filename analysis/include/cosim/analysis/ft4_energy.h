@@ -39,6 +39,7 @@ struct EnergyPoint {
   double torque_Nm = 0;
   double gradient_J_per_m = 0;  // M / (R tan alpha) + F
   double energy_J = 0;          // cumulative, trapezoid rule over the heights
+  double torque_energy_J = 0;   // the part of energy_J from the torque term M / (R tan alpha)
 };
 
 struct EnergyProfile {
@@ -47,6 +48,9 @@ struct EnergyProfile {
   std::vector<EnergyPoint> points;    // the rows in time order; only descending steps add work
   std::vector<double> cut_windows_s;  // times of rows left out: intervals a resume cut
   double total_J() const { return points.empty() ? 0.0 : points.back().energy_J; }
+  // the torque term's share of total_J (the rest is the vertical force's): which of the two
+  // a change of the powder or the model moves
+  double torque_J() const { return points.empty() ? 0.0 : points.back().torque_energy_J; }
   // Work done while the blade's height went from h_high down to h_low (the cumulative energy
   // interpolated linearly in height). Throws std::invalid_argument when the profile does not
   // cover [h_low, h_high] (names both ranges).
