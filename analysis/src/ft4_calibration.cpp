@@ -200,6 +200,30 @@ Calibration calibrate(std::vector<CalibrationPoint> points, double measured_J,
   c.sigma_measurement = measured_se_J / std::fabs(c.slope_J);
   c.sigma = std::hypot(c.sigma_study, c.sigma_measurement);
   c.extrapolated = c.parameter < *distinct.begin() || c.parameter > *distinct.rbegin();
+  // the mean energy at each studied value, in the parameter's order; the pair bracketing the
+  // measurement, if exactly one does
+  std::vector<std::pair<double, double>> means;
+  for (const double v : distinct) {
+    double sum = 0;
+    int count = 0;
+    for (const auto& p : points)
+      if (p.parameter == v) {
+        sum += p.energy_J;
+        ++count;
+      }
+    means.emplace_back(v, sum / count);
+  }
+  int brackets = 0;
+  for (std::size_t i = 0; i + 1 < means.size(); ++i) {
+    const auto [v0, w0] = means[i];
+    const auto [v1, w1] = means[i + 1];
+    if (w0 == w1 || measured_J < std::min(w0, w1) || measured_J > std::max(w0, w1)) continue;
+    if (++brackets > 1) break;
+    c.bracketed = v0 + (measured_J - w0) * (v1 - v0) / (w1 - w0);
+    c.bracket_low = v0;
+    c.bracket_high = v1;
+  }
+  if (brackets != 1) c.bracketed.reset();
   return c;
 }
 
@@ -263,6 +287,8 @@ Json calibrationJson(const Calibration& c, const std::string& parameter) {
           {"sigma_study", c.sigma_study},
           {"sigma_measurement", c.sigma_measurement},
           {"extrapolated", c.extrapolated},
+          {"bracketed", c.bracketed ? Json(*c.bracketed) : Json(nullptr)},
+          {"bends", c.bends()},
           {"intercept_J", c.intercept_J},
           {"slope_J", c.slope_J},
           {"residual_sd_J", c.residual_sd_J},
@@ -289,6 +315,16 @@ std::string calibrationText(const Calibration& c, const std::string& parameter) 
       "{} = {} +- {} (study spread {}, measurement {}){}\n", parameter, value(c.parameter),
       value(c.sigma), value(c.sigma_study), value(c.sigma_measurement),
       c.extrapolated ? "; outside the studied values: extrapolated, extend the study" : "");
+  if (c.bracketed) {
+    s += fmt::format("between the runs at {} = {:g} and {:g}, whose energies bracket it: {}\n",
+                     parameter, c.bracket_low, c.bracket_high, value(*c.bracketed));
+    if (c.bends())
+      s += fmt::format(
+          "warning: the line and the bracketing runs differ by more than the uncertainty: the "
+          "energy is not linear in {} over the studied values (it bends); study more values "
+          "around {} and calibrate on those\n",
+          parameter, value(*c.bracketed));
+  }
   return s;
 }
 

@@ -271,6 +271,31 @@ TEST(Ft4Calibration, AFarExtrapolationIsPrintedInSignificantDigitsAndFlagged) {
   EXPECT_NE(line.find("extrapolated"), std::string::npos) << line;
 }
 
+TEST(Ft4Calibration, AnEnergyThatBendsIsReadBetweenTheBracketingRunsAndFlagged) {
+  // the paper-size friction study's shape: 54.2, 80.22, 81.05 mJ at 0.30, 0.52, 0.70. 80 mJ lies
+  // between the first two runs: 0.30 + (80 - 54.2) / (80.22 - 54.2) x 0.22, by hand 0.518140
+  const std::vector<CalibrationPoint> bent = {
+      {"a", 0.30, 0.05420}, {"b", 0.52, 0.08022}, {"c", 0.70, 0.08105}};
+  const auto c = calibrate(bent, 0.080, 0);
+  ASSERT_TRUE(c.bracketed.has_value());
+  EXPECT_NEAR(*c.bracketed, 0.30 + (80 - 54.2) / (80.22 - 54.2) * 0.22, 1e-12);
+  EXPECT_NEAR(*c.bracketed, 0.518140, 1e-6);
+  EXPECT_DOUBLE_EQ(c.bracket_low, 0.30);
+  EXPECT_DOUBLE_EQ(c.bracket_high, 0.52);
+  EXPECT_TRUE(c.bends()) << c.parameter << " +- " << c.sigma;
+  EXPECT_NE(calibrationText(c, "mu_fric").find("(it bends)"), std::string::npos);
+  // on a line (with scatter) both answers agree within the uncertainty: no warning
+  const std::vector<CalibrationPoint> straight = {
+      {"a", 0.3, 0.0301}, {"b", 0.45, 0.0449}, {"c", 0.6, 0.0601}, {"d", 0.75, 0.0749}};
+  const auto l = calibrate(straight, 0.052, 0);
+  ASSERT_TRUE(l.bracketed.has_value());
+  EXPECT_NEAR(*l.bracketed, 0.45 + (0.052 - 0.0449) / (0.0601 - 0.0449) * 0.15, 1e-12);
+  EXPECT_FALSE(l.bends()) << *l.bracketed << " against " << l.parameter << " +- " << l.sigma;
+  EXPECT_EQ(calibrationText(l, "mu_fric").find("warning"), std::string::npos);
+  // a measurement no pair brackets (beyond the runs) has no bracketed answer
+  EXPECT_FALSE(calibrate(straight, 0.1, 0).bracketed.has_value());
+}
+
 TEST(Ft4Calibration, StudyFolderEndToEndRecoversTheFrictionOfASyntheticMeasurement) {
   // runs whose force grows linearly with mu: F = 4 mu N, M = 0.02 mu N m over 30 mm of descent
   // -> gradient g(mu) = 0.02 mu / (R tan a) + 4 mu from 39 mm down, and the step from the rest

@@ -8,6 +8,7 @@
 // docs/calibration-validation.md section 1 describes the method and the commands.
 #pragma once
 
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -52,6 +53,13 @@ struct Calibration {
   double sigma_study = 0;        // the part from the runs' spread about the line
   double sigma_measurement = 0;  // the part from the measurement's replicates
   bool extrapolated = false;     // outside the studied values
+  // The same measurement read between the two studied values whose mean energies bracket it
+  // (linear between them; none when no pair or more than one pair does): where the energy bends
+  // over the studied range the line misleads, and this answer tells it apart from the line's.
+  std::optional<double> bracketed;
+  double bracket_low = 0, bracket_high = 0;  // the two parameter values
+  // the line's answer and the bracketed one differ by more than sigma
+  bool bends() const { return bracketed && std::fabs(*bracketed - parameter) > sigma; }
 };
 
 // Fits and inverts. Throws std::invalid_argument with fewer than 3 points or fewer than 2
