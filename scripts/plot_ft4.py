@@ -84,6 +84,17 @@ def calibration(calibration_json, out_png) -> int:
                + (" (extrapolated)" if c["extrapolated"] else ""))
     ax.axvspan(c["parameter"] - c["sigma"], c["parameter"] + c["sigma"], color="C2", alpha=0.12,
                lw=0)
+    if c.get("bracketed") is not None:
+        # the runs' mean energies joined in the parameter's order, and the measurement read
+        # between the two that bracket it
+        means = {}
+        for x, y in zip(xs, ys):
+            means.setdefault(x, []).append(y)
+        mx = sorted(means)
+        ax.plot(mx, [sum(means[x]) / len(means[x]) for x in mx], ":", color="C1", lw=1)
+        ax.axvline(c["bracketed"], color="C1", lw=1, ls=":",
+                   label=f"between the bracketing runs: {c['bracketed']:.3g}"
+                   + (" (the energy bends)" if c.get("bends") else ""))
     ax.set_xlabel(name)
     ax.set_ylabel("flow energy [mJ]")
     ax.legend(fontsize=8)
