@@ -339,6 +339,8 @@ TEST(HostileSceneParameters, ValuesTheSolversWouldFailOnAreRefusedByName) {
       {"spout-2d", "fill_top=0.5", "parameters.fill_top"},
       {"spout-2d", "W_top=0.01", "parameters.W_top"},
       {"plasma-coating-bed", "e_rest=0", "parameters.e_rest"},
+      {"plasma-coating-bed", "write_interval=0", "parameters.write_interval"},
+      {"fluidized-cylinder", "write_interval=-1", "parameters.write_interval"},
       {"fluidized-bed", "e_rest=2", "parameters.e_rest"},
   };
   for (const auto& c : cases) {
