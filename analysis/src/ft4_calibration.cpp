@@ -213,17 +213,22 @@ Calibration calibrate(std::vector<CalibrationPoint> points, double measured_J,
       }
     means.emplace_back(v, sum / count);
   }
-  int brackets = 0;
+  // (a measurement equal to a run's energy is bracketed by both pairs around that run, with the
+  // same answer: that counts once)
+  bool ambiguous = false;
   for (std::size_t i = 0; i + 1 < means.size(); ++i) {
     const auto [v0, w0] = means[i];
     const auto [v1, w1] = means[i + 1];
     if (w0 == w1 || measured_J < std::min(w0, w1) || measured_J > std::max(w0, w1)) continue;
-    if (++brackets > 1) break;
-    c.bracketed = v0 + (measured_J - w0) * (v1 - v0) / (w1 - w0);
+    const double answer = v0 + (measured_J - w0) * (v1 - v0) / (w1 - w0);
+    const double span = *distinct.rbegin() - *distinct.begin();
+    if (c.bracketed && std::fabs(*c.bracketed - answer) > 1e-9 * span) ambiguous = true;
+    if (c.bracketed) continue;
+    c.bracketed = answer;
     c.bracket_low = v0;
     c.bracket_high = v1;
   }
-  if (brackets != 1) c.bracketed.reset();
+  if (ambiguous) c.bracketed.reset();
   return c;
 }
 

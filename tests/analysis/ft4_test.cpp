@@ -294,6 +294,17 @@ TEST(Ft4Calibration, AnEnergyThatBendsIsReadBetweenTheBracketingRunsAndFlagged) 
   EXPECT_EQ(calibrationText(l, "mu_fric").find("warning"), std::string::npos);
   // a measurement no pair brackets (beyond the runs) has no bracketed answer
   EXPECT_FALSE(calibrate(straight, 0.1, 0).bracketed.has_value());
+  // one equal to a run's energy is that run's value (both pairs around it agree)
+  const auto at = calibrate(straight, 0.0449, 0);
+  ASSERT_TRUE(at.bracketed.has_value());
+  EXPECT_NEAR(*at.bracketed, 0.45, 1e-12);
+  const auto at_first = calibrate(straight, 0.0301, 0);  // the lowest run: one pair only
+  ASSERT_TRUE(at_first.bracketed.has_value());
+  EXPECT_NEAR(*at_first.bracketed, 0.3, 1e-12);
+  // energies that fall and rise again bracket it twice, at different values: none
+  const std::vector<CalibrationPoint> zigzag = {
+      {"a", 0.3, 0.030}, {"b", 0.45, 0.050}, {"c", 0.6, 0.040}, {"d", 0.75, 0.070}};
+  EXPECT_FALSE(calibrate(zigzag, 0.045, 0).bracketed.has_value());
 }
 
 TEST(Ft4Calibration, StudyFolderEndToEndRecoversTheFrictionOfASyntheticMeasurement) {
