@@ -12,32 +12,17 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/analysis/user_csv.h"
 
 namespace cosim::analysis {
 namespace {
 
-std::string trim(std::string t) {
-  t.erase(0, t.find_first_not_of(" \t\r"));
-  t.erase(t.find_last_not_of(" \t\r") + 1);
-  return t;
-}
-
-std::vector<std::string> cells(const std::string& line) {
-  std::vector<std::string> out;
-  std::string c;
-  std::istringstream in(line);
-  while (std::getline(in, c, ',')) out.push_back(trim(c));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
-
-double number(const std::string& t, const std::filesystem::path& f, int line,
-              const std::string& column) {
+double number(const std::string& t, const std::string& where, const std::string& column) {
   double v = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
-    throw std::runtime_error(fmt::format("{}:{}: column {}: {} is not a finite number", f.string(),
-                                         line, column, quotedCell(t)));
+    throw std::runtime_error(
+        fmt::format("{}: column {}: {} is not a finite number", where, column, quotedCell(t)));
   return v;
 }
 
@@ -65,17 +50,10 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
       "expected a header with energy_J or energy_mJ (totals, one row per replicate), or "
       "height_m or height_mm and energy_J... / energy_mJ... columns (a cumulative profile, "
       "one column per replicate)";
-  auto in = openUserFile(csv,
-                         "a measured FT4 energy CSV: a header with energy_J or energy_mJ, "
-                         "or height_m / height_mm and energy columns");
-  std::string line;
-  int n = 0;
-  std::vector<std::string> head;
-  while (head.empty() && std::getline(in, line)) {
-    ++n;
-    if (!trim(line).empty()) head = cells(line);
-  }
-  if (head.empty()) throw std::runtime_error(csv.string() + ": empty; " + form);
+  UserCsv in(csv,
+             "a measured FT4 energy CSV: a header with energy_J or energy_mJ, or height_m / "
+             "height_mm and energy columns");
+  const auto& head = in.header();
   int height_col = -1;
   double height_scale = 1;
   std::vector<int> energy_cols;
@@ -83,9 +61,7 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
   for (int i = 0; i < static_cast<int>(head.size()); ++i) {
     const auto& h = head[i];
     if (h == "height_m" || h == "height_mm") {
-      if (height_col >= 0)
-        throw std::runtime_error(csv.string() + ":" + std::to_string(n) + ": two height columns; " +
-                                 form);
+      if (height_col >= 0) throw std::runtime_error(in.where() + ": two height columns; " + form);
       height_col = i;
       height_scale = h == "height_mm" ? 1e-3 : 1.0;
     } else if (startsWith(h, "energy_mJ")) {
@@ -96,25 +72,17 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
       energy_scale.push_back(1.0);
     } else {
       throw std::runtime_error(
-          fmt::format("{}:{}: unknown column {}; {}", csv.string(), n, quotedCell(h), form));
+          fmt::format("{}: unknown column {}; {}", in.where(), quotedCell(h), form));
     }
   }
-  if (energy_cols.empty())
-    throw std::runtime_error(csv.string() + ":" + std::to_string(n) + ": no energy column; " +
-                             form);
+  if (energy_cols.empty()) throw std::runtime_error(in.where() + ": no energy column; " + form);
   if (height_col < 0 && energy_cols.size() != 1)
-    throw std::runtime_error(csv.string() + ":" + std::to_string(n) +
+    throw std::runtime_error(in.where() +
                              ": totals take one energy column (one row per replicate); " + form);
   std::vector<std::vector<double>> rows;
-  while (std::getline(in, line)) {
-    ++n;
-    if (trim(line).empty()) continue;
-    const auto c = cells(line);
-    if (c.size() != head.size())
-      throw std::runtime_error(fmt::format("{}:{}: {} columns, the header has {}", csv.string(), n,
-                                           c.size(), head.size()));
+  for (std::vector<std::string> c; in.next(c);) {
     std::vector<double> r;
-    for (std::size_t i = 0; i < c.size(); ++i) r.push_back(number(c[i], csv, n, head[i]));
+    for (std::size_t i = 0; i < c.size(); ++i) r.push_back(number(c[i], in.where(), head[i]));
     rows.push_back(r);
   }
   MeasuredEnergy m;

@@ -13,27 +13,13 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/analysis/user_csv.h"
 
 namespace cosim::analysis {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMaxSpeed = 343;  // m/s, sound in air at 20 C: above any particle velocity
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r") - b + 1);
-}
-
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) out.push_back(trim(cell));
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
 
 double parse(const std::string& text, bool empty_is_nan, const std::string& where) {
   if (text.empty() && empty_is_nan) return kNaN;
@@ -92,37 +78,23 @@ struct Curve {
 }  // namespace
 
 std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
-  auto in = openUserFile(path, "a profile CSV with the columns height_m, x_m, vz_m_s");
-  std::string line;
-  std::size_t lineno = 0;
+  UserCsv in(path, "a profile CSV with the columns height_m, x_m, vz_m_s");
   std::map<std::string, std::size_t> col;
+  const auto& head = in.header();
+  for (std::size_t i = 0; i < head.size(); ++i) {
+    if (!col.emplace(head[i], i).second)
+      throw std::runtime_error(in.where() + ": column " + quotedCell(head[i]) + " named twice");
+  }
+  for (const char* need : {"height_m", "x_m", "vz_m_s"}) {
+    if (!col.count(need))
+      throw std::runtime_error(
+          in.where() + ": the header has no column '" + need +
+          "' (a profile CSV starts with a header naming height_m, x_m and vz_m_s)");
+  }
   std::vector<ProfilePoint> out;
-  while (std::getline(in, line)) {
-    ++lineno;
-    const std::string t = trim(line);
-    if (t.empty() || t[0] == '#') continue;
-    const auto cells = split(t);
-    const std::string where = fmt::format("{}:{}", path.string(), lineno);
-    if (col.empty()) {
-      for (std::size_t i = 0; i < cells.size(); ++i) {
-        if (!col.emplace(cells[i], i).second)
-          throw std::runtime_error(where + ": column " + quotedCell(cells[i]) + " named twice");
-      }
-      for (const char* need : {"height_m", "x_m", "vz_m_s"}) {
-        if (!col.count(need))
-          throw std::runtime_error(
-              where + ": the header has no column '" + need +
-              "' (a profile CSV starts with a header naming height_m, x_m and vz_m_s)");
-      }
-      continue;
-    }
-    auto cell = [&](const char* name) -> std::string {
-      const std::size_t i = col.at(name);
-      if (i >= cells.size())
-        throw std::runtime_error(fmt::format("{}: column '{}' is missing ({} values on the line)",
-                                             where, name, cells.size()));
-      return cells[i];
-    };
+  for (std::vector<std::string> cells; in.next(cells);) {
+    const std::string where = in.where();
+    auto cell = [&](const char* name) -> const std::string& { return cells[col.at(name)]; };
     ProfilePoint p;
     p.height = parse(cell("height_m"), false, where + " column height_m");
     p.x = parse(cell("x_m"), false, where + " column x_m");
@@ -140,9 +112,6 @@ std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
     }
     out.push_back(p);
   }
-  if (col.empty())
-    throw std::runtime_error(path.string() +
-                             ": is empty (a header naming height_m, x_m and vz_m_s was expected)");
   return out;
 }
 
