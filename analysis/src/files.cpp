@@ -98,6 +98,50 @@ std::string quotedCell(std::string_view text) {
   return out;
 }
 
+namespace {
+
+// Whether `path` is a file whose first 4 KiB hold `signature`.
+bool holdsSignature(const std::filesystem::path& path, std::string_view signature) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return false;
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  return head.find(signature) != std::string::npos;
+}
+
+}  // namespace
+
+void claimOutputFiles(const std::vector<std::filesystem::path>& files, std::string_view signature,
+                      const std::string& option) {
+  if (files.empty() || holdsSignature(files.front(), signature)) return;
+  for (const auto& f : files) {
+    std::error_code ec;
+    if (!std::filesystem::exists(std::filesystem::symlink_status(f, ec))) continue;
+    const std::string why = f == files.front() ? "is not an earlier output of this command"
+                                               : "is not this command's to replace (no " +
+                                                     files.front().filename().string() +
+                                                     " of an earlier run of it beside it)";
+    throw std::runtime_error(fmt::format(
+        "{}: {} already exists and {}; it is left as it is: give {} another name or folder", option,
+        f.string(), why, option));
+  }
+}
+
+void claimOutputFolder(const std::filesystem::path& folder, const std::string& marker,
+                       std::string_view signature, const std::string& option) {
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(folder, ec))) return;
+  if (!std::filesystem::is_directory(folder, ec))
+    throw std::runtime_error(option + ": " + folder.string() + " exists and is not a folder");
+  if (std::filesystem::is_empty(folder, ec) || holdsSignature(folder / marker, signature)) return;
+  throw std::runtime_error(fmt::format(
+      "{}: {} holds other files and no {} of this command's earlier output; nothing in it was "
+      "touched: give {} a new or empty folder",
+      option, folder.string(), marker, option));
+}
+
 Json readJsonFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read " + path.string());

@@ -102,6 +102,9 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
   const ParticleFile file(c.run / kParticlesFile);
   const PivResult r = pivField(file, o);
   const fs::path folder = c.output.empty() ? c.run / kPivFolder : c.output;
+  claimOutputFiles({folder / "profiles.csv", folder / "grid.csv", folder / "piv.json",
+                    folder / "piv.png", folder / "plot_piv.log"},
+                   kProfilesHeader, "cosim piv -o");
   writePiv(r, o, folder);
   out << fmt::format(
       "cosim piv: {} snapshots from {} to {} s, parcels seen through the front wall y = {} m "
@@ -209,11 +212,16 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
                                  " would overwrite the input " + input.string() +
                                  ": give another -o");
   }
+  auto log = file;
+  log.replace_extension(".plot.log");
+  if (png == file || log == file)
+    throw std::runtime_error("cosim piv-compare -o " + file.string() +
+                             ": the comparison is a CSV and its plot takes the name ending .png: "
+                             "give a name ending .csv");
+  claimOutputFiles({file, png, log}, csv.substr(0, csv.find('\n') + 1), "cosim piv-compare -o");
   writeFileAtomically(file, csv);
   out << "cosim piv-compare: written " << file.string() << "\n";
   if (c.plots) {
-    auto log = file;
-    log.replace_extension(".plot.log");
     out << "cosim piv-compare: "
         << drawFigure("plot_piv.py",
                       {"compare", sim.string(), c.measured.string(), file.string(), png.string(),

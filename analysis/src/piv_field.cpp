@@ -204,7 +204,7 @@ void writePiv(const PivResult& r, const PivOptions& o, const std::filesystem::pa
           fmt::format("{},{},{},{}\n", formatShortest(g.xCentre(ix)), formatShortest(g.zCentre(iz)),
                       number(g.mean(ix, iz)), g.samples[iz * g.nx + ix]);
   writeFileAtomically(folder / "grid.csv", grid);
-  std::string prof = "height_m,x_m,vz_m_s,samples,vz_stderr_m_s\n";
+  std::string prof = std::string(kProfilesHeader) + "\n";
   for (const auto& p : r.profiles)
     for (std::size_t i = 0; i < p.x.size(); ++i)
       prof += fmt::format("{},{},{},{},{}\n", formatShortest(p.height), formatShortest(p.x[i]),

@@ -209,13 +209,25 @@ int runReport(const ReportOptions& o) {
     }
     std::vector<std::string> folders;
     std::set<std::string> used;
-    std::string anyPlotProblem;
     for (const auto& a : analyses) {
       std::string folder = a.label.empty() ? "run" : a.label;
       for (int k = 2; used.count(folder) != 0; ++k) folder = a.label + "-" + std::to_string(k);
       used.insert(folder);
       folders.push_back(folder);
-      const auto dir = several ? out / folder : out;
+    }
+    // A report replaces the figures of its folder: only a new or empty folder, or one an earlier
+    // report wrote, is written into; every folder is checked before anything is written.
+    if (several) {
+      claimOutputFolder(out, "comparison.json", "\"cosim-comparison\"", "cosim report -o");
+      for (const auto& folder : folders)
+        claimOutputFolder(out / folder, "report.json", "\"cosim-report\"", "cosim report -o");
+    } else {
+      claimOutputFolder(out, "report.json", "\"cosim-report\"", "cosim report -o");
+    }
+    std::string anyPlotProblem;
+    for (std::size_t i = 0; i < analyses.size(); ++i) {
+      const auto& a = analyses[i];
+      const auto dir = several ? out / folders[i] : out;
       std::string plotMessage;
       const auto pngs = writeRunReport(a, o, dir, plotMessage);
       log << "cosim report: " << a.label << ": " << a.verdict.summary() << "\n";

@@ -44,11 +44,12 @@ std::vector<std::string> userCsvCells(std::string_view line, const std::string& 
         cell += line[i++];
       }
       if (!closed)
-        throw std::runtime_error(where + ": a double quote is left open (a cell in quotes "
-                                         "ends with a quote on the same line)");
+        throw std::runtime_error(where +
+                                 ": a double quote is left open (a cell in quotes "
+                                 "ends with a quote on the same line)");
       const auto comma = line.find(',', i);
-      const auto rest = trimmed(line.substr(i, comma == std::string_view::npos ? line.npos
-                                                                                : comma - i));
+      const auto rest =
+          trimmed(line.substr(i, comma == std::string_view::npos ? line.npos : comma - i));
       if (!rest.empty())
         throw std::runtime_error(where + ": text " + quotedCell(rest) +
                                  " after a quoted cell (a quote inside quotes is written \"\")");

@@ -9,6 +9,8 @@
 #include <memory>
 #include <ostream>
 
+#include "cosim/analysis/files.h"
+#include "cosim/analysis/summary.h"
 #include "coupler.h"
 #include "scenario.h"
 
@@ -71,6 +73,12 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
       << " s per stage after " << opt.warmup << " untimed";
   if (have_load) out << fmt::format("; load average {:.2f}", load[0]);
   out << "\n  run folders under " << folder.string() << std::endl;
+
+  // The stages' run folders are written over (as with cosim run --overwrite): each must be new,
+  // empty or a run folder of cosim's, checked before the first stage runs.
+  for (const auto& name : opt.stages)
+    analysis::claimOutputFolder(folder / name, analysis::kSummaryFile, "\"cosim-summary\"",
+                                "cosim bench -o");
 
   std::map<std::string, BenchStage> stages;
   // The coupled stage runs first and records its terms; the solver-alone stages replay them.

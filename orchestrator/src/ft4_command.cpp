@@ -55,7 +55,16 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
       const auto profile = a::runFlowEnergy(o.run);
       const auto file = o.output.empty() ? std::filesystem::path(o.run) / "ft4_energy.csv"
                                          : std::filesystem::path(o.output);
-      a::writeFileAtomically(file, a::energyProfileCsv(profile));
+      const std::string csv = a::energyProfileCsv(profile);
+      auto png = file, log = file;
+      png.replace_extension(".png");
+      log.replace_extension(".plot.log");
+      if (png == file || log == file)
+        throw std::runtime_error("-o " + file.string() +
+                                 ": the profile is a CSV and its plot takes the name ending "
+                                 ".png: give a name ending .csv");
+      a::claimOutputFiles({file, png, log}, csv.substr(0, csv.find('\n') + 1), "-o");
+      a::writeFileAtomically(file, csv);
       out << fmt::format(
           "flow energy {:.6g} mJ over the blade's descent from {:.4g} to {:.4g} mm (R = {:.4g} "
           "mm, helix {:.4g} deg)\n  of which the torque term M / (R tan alpha) {:.6g} mJ, the "
@@ -64,9 +73,6 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
           profile.blade_radius_m * 1e3, profile.helix_deg, profile.torque_J() * 1e3,
           (profile.total_J() - profile.torque_J()) * 1e3, file.string());
       if (o.plots) {
-        auto png = file, log = file;
-        png.replace_extension(".png");
-        log.replace_extension(".plot.log");
         out << a::drawFigure("plot_ft4.py", {"energy", file.string(), png.string()}, png, log)
             << "\n";
       }
@@ -91,8 +97,10 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
     out << a::calibrationText(c, o.parameter);
     if (!o.calibration_output.empty()) {
       const std::filesystem::path folder(o.calibration_output);
-      std::filesystem::create_directories(folder);
       const auto json = folder / "ft4_calibration.json";
+      a::claimOutputFiles({json, folder / "ft4_calibration.png", folder / "plot_ft4.log"},
+                          "\"parameter_name\"", "-o");
+      std::filesystem::create_directories(folder);
       a::writeJsonFile(json, a::calibrationJson(c, o.parameter), 2);
       out << "written " << json.string() << "\n";
       if (o.plots)

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "checkpoints.h"
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/summary.h"
 #include "coupler.h"
 #include "scenario.h"
@@ -312,6 +313,11 @@ int runStudy(const StudyOptions& opt) {
   }
   const fs::path folder = opt.output.empty() ? fs::current_path() / "runs" / (base.name + "-study")
                                              : fs::absolute(opt.output);
+  // The study's own files may replace only an earlier study's; checked before the first variant
+  // runs, not after hours of them. Variant folders of another scene are kept aside (runVariant).
+  analysis::claimOutputFiles({folder / "study.json", folder / "study.csv", folder / "study.md",
+                              folder / "error_vs_runtime.png", folder / "plot_study.log"},
+                             "\"vary\"", "cosim study -o");
   fs::create_directories(folder);
 
   for (std::size_t i = 0; i < variants.size(); ++i) {

@@ -549,7 +549,7 @@ TEST(PivPlots, FieldAndComparisonAsPngsOrWhatToInstall) {
     ASSERT_EQ(runPivCompareCommand(labelled, out), 0);
     EXPECT_TRUE(isPng(run / "labelled.png")) << out.str();
   }
-  for (const std::string bad : {std::string(), std::string("two\nlines"), std::string(41, 'x')}) {
+  for (const std::string& bad : {std::string(), std::string("two\nlines"), std::string(41, 'x')}) {
     PivCompareCommandOptions labelled = compare;
     labelled.measured_label = bad;
     std::ostringstream out;

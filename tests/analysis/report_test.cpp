@@ -572,3 +572,38 @@ TEST(Report, MissingRunIsAClearError) {
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("/nonexistent/run does not exist"), std::string::npos) << err;
 }
+
+// A report removes the old figures of its folder: pointed (-o) at a folder of someone's pictures
+// it refuses before anything is written, and the pictures stay; its own earlier folder is reused.
+TEST(Report, NeverEmptiesAFolderItDidNotWrite) {
+  const fs::path run = makeRun("folder-guard", 0.0, 53);
+  CleanUp cleanup{run.parent_path()};
+  const fs::path pictures = run.parent_path() / "pictures";
+  fs::create_directories(pictures);
+  std::ofstream(pictures / "holiday.png") << "\x89PNG";
+  ReportOptions o;
+  o.runs = {run};
+  o.output = pictures;
+  o.plots = false;
+  std::ostringstream log;
+  o.log = &log;
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(runReport(o), 1);
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("holds other files and no report.json"), std::string::npos) << err;
+  EXPECT_TRUE(fs::exists(pictures / "holiday.png"));
+  EXPECT_FALSE(fs::exists(pictures / "report.json"));
+  // a comparison checks every folder first: nothing is written when one is refused
+  const fs::path other = makeRun("folder-guard-2", 0.0, 59);
+  o.runs = {run, other};
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(runReport(o), 1);
+  (void)testing::internal::GetCapturedStderr();
+  EXPECT_FALSE(fs::exists(pictures / "folder-guard"));
+  EXPECT_TRUE(fs::exists(pictures / "holiday.png"));
+  // its own folder, twice
+  o.runs = {run};
+  o.output = run.parent_path() / "report-guard";
+  EXPECT_EQ(runReport(o), 0) << log.str();
+  EXPECT_EQ(runReport(o), 0) << log.str();
+}

@@ -203,3 +203,23 @@ TEST(Study, AVariantOutsideTheSceneIsRefusedBeforeAnyRuns) {
   EXPECT_THROW(runStudy(o), ScenarioError);
   EXPECT_FALSE(fs::exists(o.output));
 }
+
+// A study's table files may replace only an earlier study's: pointed at a folder holding someone's
+// study.md, it is refused before the first variant runs, and the file stays as it was.
+TEST(Study, AFolderWithSomeoneElsesStudyFilesIsRefusedBeforeAnyRuns) {
+  StudyOptions o = settlingSphereStudy("cosim-study-foreign-");
+  fs::create_directories(o.output);
+  std::ofstream(o.output / "study.md") << "# my own notes\n";
+  try {
+    runStudy(o);
+    ADD_FAILURE() << "the study ran into a folder with someone's study.md";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("study.md already exists"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(o.output / "variant-00"));
+  std::ifstream in(o.output / "study.md");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "# my own notes");
+  fs::remove_all(o.output);
+}

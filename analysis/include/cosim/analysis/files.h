@@ -8,6 +8,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace cosim::analysis {
 
@@ -43,6 +44,22 @@ std::ifstream openUserFile(const std::filesystem::path& path, const std::string&
 // characters (then "..."), bytes outside printable ASCII as \xNN, so a binary file given by
 // mistake cannot scramble the terminal.
 std::string quotedCell(std::string_view text);
+
+// Before a command writes its files where a user's option points (-o): refuses to replace a
+// file the command did not write. `files` are the files it writes there, the first the one it
+// always writes; `signature` is text that file's first 4 KiB hold when this command wrote it
+// (its CSV header, a JSON key only it writes). Passes when that first file exists and holds the
+// signature (the command's own earlier output, replaced as a whole) or when none of `files`
+// exists; else throws std::runtime_error naming `option`, the first existing file and what to do.
+// Nothing is written or removed.
+void claimOutputFiles(const std::vector<std::filesystem::path>& files, std::string_view signature,
+                      const std::string& option);
+
+// The same for a folder whose files the command replaces as a group (a report removes the old
+// figures of its folder): passes when `folder` does not exist or is empty, or when it holds
+// `marker` with `signature` in its first 4 KiB (the command's own earlier output).
+void claimOutputFolder(const std::filesystem::path& folder, const std::string& marker,
+                       std::string_view signature, const std::string& option);
 
 // Parses a JSON file. Throws std::runtime_error naming the path when it cannot be read or parsed.
 Json readJsonFile(const std::filesystem::path& path);

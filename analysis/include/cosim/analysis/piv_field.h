@@ -28,6 +28,9 @@
 
 namespace cosim::analysis {
 
+// The header line of profiles.csv (without its newline): what `cosim piv-compare` reads.
+inline constexpr const char* kProfilesHeader = "height_m,x_m,vz_m_s,samples,vz_stderr_m_s";
+
 struct PivOptions {
   double from = 0.0;                                    // [s] snapshots at from <= t <= to count
   double to = std::numeric_limits<double>::infinity();  // [s]
