@@ -1,6 +1,7 @@
 #include "scenario.h"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 
 #include <fstream>
 #include <optional>
@@ -104,6 +105,10 @@ void applySet(YAML::Node root, const std::string& set, Context& ctx) {
           shown, "the value is longer than " + std::to_string(limits::kMaxFileBytes) + " bytes");
     }
     parsed = YAML::Load(value);
+  } catch (const YAML::DeepRecursion&) {
+    ctx.failCommandLine(shown,
+                        "the value is nested thousands of levels deep (maps and lists "
+                        "inside each other); a value needs a few");
   } catch (const YAML::Exception& e) {
     ctx.failCommandLine(shown,
                         "the value is not valid YAML: " + e.msg +

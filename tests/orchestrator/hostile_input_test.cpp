@@ -133,10 +133,13 @@ TEST(HostileYaml, DeepNestingIsRefused) {
   const std::string deep =
       withLine("description: " + std::string(100, '[') + std::string(100, ']') + "\n");
   expectFragments(errorOf(deep), {"hostile.yaml:", "nested more than 64 levels"});
-  // Nesting deeper than yaml-cpp's own limit is refused by the parser, named as bad YAML.
+  // Nesting deeper than yaml-cpp's own limit is stopped by the parser; named as nesting, not
+  // as yaml-cpp's "bad file"
   const std::string deeper =
       withLine("description: " + std::string(5000, '[') + std::string(5000, ']') + "\n");
-  expectFragments(errorOf(deeper), {"hostile.yaml:", "not valid YAML"});
+  expectFragments(errorOf(deeper), {"hostile.yaml:", "nested more than 64 levels"});
+  expectFragments(errorOf(kScene, {"d=" + std::string(5000, '[') + std::string(5000, ']')}),
+                  {"command line --set d=", "nested thousands of levels deep"});
 }
 
 TEST(HostileYaml, HugeFilesAreRefused) {

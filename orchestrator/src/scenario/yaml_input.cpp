@@ -1,5 +1,7 @@
 #include "scenario/yaml_input.h"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <fstream>
 #include <map>
 
@@ -9,6 +11,11 @@
 namespace cosim::orchestrator {
 
 namespace {
+
+std::string nestingTooDeep() {
+  return "nested more than " + std::to_string(limits::kMaxNesting) +
+         " levels deep (maps and lists inside each other); a scenario needs a few";
+}
 
 class Walk {
  public:
@@ -22,9 +29,7 @@ class Walk {
                "out, or use fewer levels of aliases");
     }
     if (depth > limits::kMaxNesting) {
-      fail(n, path,
-           "nested more than " + std::to_string(limits::kMaxNesting) +
-               " levels deep (maps and lists inside each other); a scenario needs a few");
+      fail(n, path, nestingTooDeep());
     }
     if (n.IsMap()) {
       std::map<std::string, int> seen;  // key -> line (1-based)
@@ -99,8 +104,11 @@ YAML::Node loadYaml(const std::string& text, const std::string& where, bool line
   YAML::Node root;
   try {
     root = YAML::Load(text);
+  } catch (const YAML::DeepRecursion& e) {
+    // brackets nested deeper than the parser follows: what the tree check says of fewer levels
+    throw ScenarioError(where + (lines ? ":" + std::to_string(e.mark.line + 1) : std::string()) +
+                        ": " + nestingTooDeep());
   } catch (const YAML::Exception& e) {
-    // ParserException, and DeepRecursion for brackets nested too deep.
     throw ScenarioError(where + (lines ? ":" + std::to_string(e.mark.line + 1) : std::string()) +
                         ": not valid YAML: " + e.msg);
   }
