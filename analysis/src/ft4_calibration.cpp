@@ -249,6 +249,15 @@ std::vector<CalibrationPoint> calibrationPoints(const std::vector<std::filesyste
   return points;
 }
 
+bool Calibration::changesSign() const {
+  if (points.empty()) return false;
+  const auto [lo, hi] = std::minmax_element(
+      points.begin(), points.end(), [](const CalibrationPoint& a, const CalibrationPoint& b) {
+        return a.parameter < b.parameter;
+      });
+  return (lo->parameter >= 0 && parameter < 0) || (hi->parameter <= 0 && parameter > 0);
+}
+
 Json calibrationJson(const Calibration& c, const std::string& parameter) {
   Json points = Json::array();
   for (const auto& p : c.points)
@@ -262,6 +271,7 @@ Json calibrationJson(const Calibration& c, const std::string& parameter) {
           {"extrapolated", c.extrapolated},
           {"bracketed", c.bracketed ? Json(*c.bracketed) : Json(nullptr)},
           {"bends", c.bends()},
+          {"changes_sign", c.changesSign()},
           {"intercept_J", c.intercept_J},
           {"slope_J", c.slope_J},
           {"residual_sd_J", c.residual_sd_J},
@@ -288,6 +298,12 @@ std::string calibrationText(const Calibration& c, const std::string& parameter) 
       "{} = {} +- {} (study spread {}, measurement {}){}\n", parameter, value(c.parameter),
       value(c.sigma), value(c.sigma_study), value(c.sigma_measurement),
       c.extrapolated ? "; outside the studied values: extrapolated, extend the study" : "");
+  if (c.changesSign())
+    s += fmt::format(
+        "warning: {} = {} has the other sign than every studied value: no {} of the studied "
+        "sign reproduces {:.6g} mJ (the runs' energies are all on one side of it); check the "
+        "measurement's units and the scene's vessel, mass and aeration before the parameter\n",
+        parameter, value(c.parameter), parameter, c.measured_J * 1e3);
   if (c.bracketed) {
     s += fmt::format("between the runs at {} = {:g} and {:g}, whose energies bracket it: {}\n",
                      parameter, c.bracket_low, c.bracket_high, value(*c.bracketed));

@@ -271,6 +271,30 @@ TEST(Ft4Calibration, AFarExtrapolationIsPrintedInSignificantDigitsAndFlagged) {
   EXPECT_NE(line.find("extrapolated"), std::string::npos) << line;
 }
 
+TEST(Ft4Calibration, AnAnswerOfTheOtherSignThanEveryStudiedValueIsFlagged) {
+  // W = 0.1 J x mu exactly: 0.01 J reads mu = 0.1 (extrapolated, same sign), -0.01 J (a sign
+  // convention) would read -0.1, and on W = 0.02 J + 0.1 J x mu a measured 0.01 J reads -0.1
+  const std::vector<CalibrationPoint> line = {
+      {"a", 0.3, 0.03}, {"b", 0.45, 0.045}, {"c", 0.6, 0.06}};
+  const auto low = calibrate(line, 0.01, 0);
+  EXPECT_NEAR(low.parameter, 0.1, 1e-12);
+  EXPECT_TRUE(low.extrapolated);
+  EXPECT_FALSE(low.changesSign());
+  const std::vector<CalibrationPoint> offset = {
+      {"a", 0.3, 0.05}, {"b", 0.45, 0.065}, {"c", 0.6, 0.08}};
+  const auto below = calibrate(offset, 0.01, 0);
+  EXPECT_NEAR(below.parameter, -0.1, 1e-12);
+  EXPECT_TRUE(below.changesSign());
+  const auto text = calibrationText(below, "mu_fric");
+  EXPECT_NE(text.find("warning: mu_fric = -0.1000 has the other sign than every studied value"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(calibrationJson(below, "mu_fric").at("changes_sign"), true);
+  // studied values of both signs: no sign to keep
+  const std::vector<CalibrationPoint> both = {{"a", -0.2, 0.0}, {"b", 0.0, 0.02}, {"c", 0.2, 0.04}};
+  EXPECT_FALSE(calibrate(both, -0.01, 0).changesSign());
+}
+
 TEST(Ft4Calibration, AnEnergyThatBendsIsReadBetweenTheBracketingRunsAndFlagged) {
   // the paper-size friction study's shape: 54.2, 80.22, 81.05 mJ at 0.30, 0.52, 0.70. 80 mJ lies
   // between the first two runs: 0.30 + (80 - 54.2) / (80.22 - 54.2) x 0.22, by hand 0.518140

@@ -60,6 +60,10 @@ struct Calibration {
   double bracket_low = 0, bracket_high = 0;  // the two parameter values
   // the line's answer and the bracketed one differ by more than sigma
   bool bends() const { return bracketed && std::fabs(*bracketed - parameter) > sigma; }
+  // Every studied value is >= 0 (or <= 0) and the answer has the other sign: a friction, a
+  // stiffness or a density below zero means no value of the studied kind reproduces the
+  // measurement (its units, or the scene's vessel, mass or aeration, are the likelier cause).
+  bool changesSign() const;
 };
 
 // Fits and inverts. Throws std::invalid_argument with fewer than 3 points or fewer than 2
