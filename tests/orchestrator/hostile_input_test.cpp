@@ -334,7 +334,12 @@ TEST(HostileSceneParameters, ValuesTheSolversWouldFailOnAreRefusedByName) {
       {"ft4-rheometer", "blade_radius=0.1", "parameters.blade_radius: 0.1 is outside"},
       {"ft4-rheometer", "blade_twist_deg=90", "parameters.blade_twist_deg"},
       {"ft4-rheometer", "blade_chord=0", "parameters.blade_chord"},
-      {"ft4-rheometer", "H_v=0.01", "parameters.blade_park"},
+      {"ft4-rheometer", "H_v=0.03", "parameters.blade_park"},
+      // a mass in grams, more than the vessel holds at random close packing
+      {"ft4-rheometer", "powder_mass=95", "parameters.powder_mass: 95 is outside"},
+      {"spout-2d", "bed_mass=100", "parameters.bed_mass: 100 is outside"},
+      {"fluidized-bed", "n_grains=1e6", "parameters.n_grains"},
+      {"fluidized-cylinder", "n_grains=1e6", "parameters.n_grains"},
       {"ft4-rheometer", "output_interval=0", "parameters.output_interval"},
       {"ft4-rheometer", "fill_pours=0", "parameters.fill_pours"},
       {"spout-2d", "cg=100", "parameters.cg: 100 is outside"},
