@@ -340,6 +340,10 @@ TEST(HostileSceneParameters, ValuesTheSolversWouldFailOnAreRefusedByName) {
       {"spout-2d", "bed_mass=100", "parameters.bed_mass: 100 is outside"},
       {"fluidized-bed", "n_grains=1e6", "parameters.n_grains"},
       {"fluidized-cylinder", "n_grains=1e6", "parameters.n_grains"},
+      // a gauge pressure for the absolute one the perfect gas needs: rho = p M / (R T) < 0
+      {"spout-2d", "p_out=-1", "parameters.p_out: -1 is outside [1, inf]"},
+      {"plasma-coating-bed", "p_out=0", "parameters.p_out"},
+      {"ft4-rheometer", "p_out=-100", "parameters.p_out"},
       {"ft4-rheometer", "output_interval=0", "parameters.output_interval"},
       {"ft4-rheometer", "fill_pours=0", "parameters.fill_pours"},
       {"spout-2d", "cg=100", "parameters.cg: 100 is outside"},
