@@ -129,6 +129,20 @@ void claimOutputFiles(const std::vector<std::filesystem::path>& files, std::stri
   }
 }
 
+CsvWithPlot claimCsvWithPlot(const std::filesystem::path& file, std::string_view csv_text,
+                             const std::string& option) {
+  CsvWithPlot out{file, file, file};
+  out.png.replace_extension(".png");
+  out.log.replace_extension(".plot.log");
+  if (out.png == file || out.log == file)
+    throw std::runtime_error(
+        option + " " + file.string() +
+        ": the CSV's plot takes its name ending .png: give a name ending .csv");
+  claimOutputFiles({out.csv, out.png, out.log}, csv_text.substr(0, csv_text.find('\n') + 1),
+                   option);
+  return out;
+}
+
 void claimOutputFolder(const std::filesystem::path& folder, const std::string& marker,
                        std::string_view signature, const std::string& option) {
   std::error_code ec;

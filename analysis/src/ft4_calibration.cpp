@@ -81,8 +81,9 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
                              ": totals take one energy column (one row per replicate); " + form);
   std::vector<std::vector<double>> rows;
   for (std::vector<std::string> c; in.next(c);) {
+    const std::string where = in.where();
     std::vector<double> r;
-    for (std::size_t i = 0; i < c.size(); ++i) r.push_back(number(c[i], in.where(), head[i]));
+    for (std::size_t i = 0; i < c.size(); ++i) r.push_back(number(c[i], where, head[i]));
     rows.push_back(r);
   }
   MeasuredEnergy m;

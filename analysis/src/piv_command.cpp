@@ -212,13 +212,7 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
                                  " would overwrite the input " + input.string() +
                                  ": give another -o");
   }
-  auto log = file;
-  log.replace_extension(".plot.log");
-  if (png == file || log == file)
-    throw std::runtime_error("cosim piv-compare -o " + file.string() +
-                             ": the comparison is a CSV and its plot takes the name ending .png: "
-                             "give a name ending .csv");
-  claimOutputFiles({file, png, log}, csv.substr(0, csv.find('\n') + 1), "cosim piv-compare -o");
+  const auto log = claimCsvWithPlot(file, csv, "cosim piv-compare -o").log;
   writeFileAtomically(file, csv);
   out << "cosim piv-compare: written " << file.string() << "\n";
   if (c.plots) {

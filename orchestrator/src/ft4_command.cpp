@@ -56,14 +56,7 @@ int runFt4Command(const CLI::App& ft4, const Ft4Options& o, std::ostream& out, s
       const auto file = o.output.empty() ? std::filesystem::path(o.run) / "ft4_energy.csv"
                                          : std::filesystem::path(o.output);
       const std::string csv = a::energyProfileCsv(profile);
-      auto png = file, log = file;
-      png.replace_extension(".png");
-      log.replace_extension(".plot.log");
-      if (png == file || log == file)
-        throw std::runtime_error("-o " + file.string() +
-                                 ": the profile is a CSV and its plot takes the name ending "
-                                 ".png: give a name ending .csv");
-      a::claimOutputFiles({file, png, log}, csv.substr(0, csv.find('\n') + 1), "-o");
+      const auto [_, png, log] = a::claimCsvWithPlot(file, csv, "-o");
       a::writeFileAtomically(file, csv);
       out << fmt::format(
           "flow energy {:.6g} mJ over the blade's descent from {:.4g} to {:.4g} mm (R = {:.4g} "

@@ -55,6 +55,15 @@ std::string quotedCell(std::string_view text);
 void claimOutputFiles(const std::vector<std::filesystem::path>& files, std::string_view signature,
                       const std::string& option);
 
+// A CSV a command writes at `file` (-o) with its plot beside it: FILE.png and the plotter's log
+// FILE.plot.log. Refuses a name whose plot would be the CSV itself (FILE.png), then claims the
+// three with the CSV's header line as signature (claimOutputFiles).
+struct CsvWithPlot {
+  std::filesystem::path csv, png, log;
+};
+CsvWithPlot claimCsvWithPlot(const std::filesystem::path& file, std::string_view csv_text,
+                             const std::string& option);
+
 // The same for a folder whose files the command replaces as a group (a report removes the old
 // figures of its folder): passes when `folder` does not exist or is empty, or when it holds
 // `marker` with `signature` in its first 4 KiB (the command's own earlier output).
