@@ -1,5 +1,6 @@
 // cosim: the orchestrator's command line.
 #include <CLI/CLI.hpp>
+#include <fmt/format.h>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -78,6 +79,9 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
                       : "; its run keys in RUN/.cosim-" + name + ".key (--key-file)")
               << "\n";
   }
+  for (const auto& v : sc.shown)
+    std::cout << "  shows: " << v.name << " = " << fmt::format("{:.6g}", v.value)
+              << (v.doc.empty() ? "" : "  (" + v.doc + ")") << "\n";
   for (const auto& n : p.notes) std::cout << "  note: " << n << "\n";
   for (const auto& a : checked) std::cout << "  checked: " << a << "\n";
   std::cout << "  output: " << sc.output.folder.string() << "\n";

@@ -200,13 +200,13 @@ double parameterValue(const YAML::Node& v, const std::string& key, const Variabl
   }
 }
 
-// A parameter is `name: value`, or `name: {value: V, min: A, max: B, doc: "..."}` when the
-// scene states the range it holds for (inclusive bounds; numbers or ${...} of earlier
-// parameters). A value outside the range is refused before anything starts, with the range and
-// what the parameter is.
+// A parameter is `name: value`, or `name: {value: V, min: A, max: B, doc: "...", show: true}`
+// when the scene states the range it holds for (inclusive bounds; numbers or ${...} of earlier
+// parameters) or a value `cosim validate` shows. A value outside the range is refused before
+// anything starts, with the range and what the parameter is.
 double rangedParameter(const YAML::Node& v, const std::string& key, const Variables& before,
-                       const Context& ctx) {
-  ctx.allowOnly(v, key, {"value", "min", "max", "doc"});
+                       const Context& ctx, std::vector<ShownParameter>& shown_values) {
+  ctx.allowOnly(v, key, {"value", "min", "max", "doc", "show"});
   if (!v["value"]) ctx.fail(v, key + ".value", "missing; a parameter with a range needs its value");
   const double val = parameterValue(v["value"], key + ".value", before, ctx);
   const std::string doc = v["doc"] ? " (" + ctx.text(v["doc"], key + ".doc") + ")" : "";
@@ -223,18 +223,27 @@ double rangedParameter(const YAML::Node& v, const std::string& key, const Variab
                  (hi ? shown(*hi) : std::string("inf")) + "], the range the scene holds for" + doc +
                  "; give a value within it");
   }
+  if (v["show"]) {
+    bool show = false;
+    if (!YAML::convert<bool>::decode(v["show"], show))
+      ctx.fail(v["show"], key + ".show", "expected true or false");
+    if (show)
+      shown_values.push_back({key.substr(key.find('.') + 1), val,
+                              v["doc"] ? ctx.text(v["doc"], key + ".doc") : std::string()});
+  }
   return val;
 }
 
 // Parameters first: each may use the ones before it.
-Variables parseParameters(const YAML::Node& params, const Context& ctx) {
+Variables parseParameters(const YAML::Node& params, const Context& ctx,
+                          std::vector<ShownParameter>& shown) {
   Variables out;
   if (!params) return out;
   if (!params.IsMap()) ctx.fail(params, "parameters", "expected a map name: value");
   for (const auto& kv : params) {
     const auto k = ctx.keyName(kv.first, "parameters");
     const std::string key = "parameters." + k;
-    out[k] = kv.second.IsMap() ? rangedParameter(kv.second, key, out, ctx)
+    out[k] = kv.second.IsMap() ? rangedParameter(kv.second, key, out, ctx, shown)
                                : parameterValue(kv.second, key, out, ctx);
   }
   return out;
@@ -307,7 +316,7 @@ Scenario parseTree(YAML::Node root, const fs::path& origin, const std::vector<st
   sc.overrides = sets;
 
   reading = "parameters";
-  sc.parameters = parseParameters(root["parameters"], ctx);
+  sc.parameters = parseParameters(root["parameters"], ctx, sc.shown);
   dropParameterRanges(root["parameters"]);
   reading = "name";
   sc.name =

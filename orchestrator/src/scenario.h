@@ -26,12 +26,21 @@ namespace cosim::orchestrator {
 // One struct per section, each parsed next to its concept by its own function
 // (scenario/*_section.{h,cpp}), which declares the section's keys with their defaults and
 // meaning (docs/scenario.md lists them).
+// A parameter the scene marks `show: true`: a derived number a user should see before running
+// (a bed's depth, u / u_mf, the estimated cost), printed by `cosim validate` with its doc.
+struct ShownParameter {
+  std::string name;
+  double value;
+  std::string doc;
+};
+
 struct Scenario {
   std::filesystem::path file;  // absolute path of the scenario file
   std::filesystem::path dir;   // its folder (relative paths are relative to it)
   std::string name;            // a safe file name (it names the run folder)
   std::string description;
   Variables parameters;
+  std::vector<ShownParameter> shown;  // parameters marked show: true, in the file's order
 
   ParticipantsSection participants;  // as written (may include unused ones)
   CouplingSection coupling;

@@ -78,6 +78,24 @@ TEST(Scenario, SetOverridesParametersAndKeys) {
   EXPECT_DOUBLE_EQ(sc.coupling.end_time, 0.02);
 }
 
+// A parameter marked show: true is kept with its value (after --set) and doc for cosim validate;
+// one without it, or with show: false, is not; a show that is not a yes/no is refused by key.
+TEST(Scenario, ParametersMarkedShowAreListedWithValueAndDoc) {
+  const std::string text = mutate(
+      "  u: ${flow_lpm / 60000 / 0.01}\n",
+      "  u: ${flow_lpm / 60000 / 0.01}\n"
+      "  area: {value: 0.01, show: false}\n"
+      "  ratio: {value: \"${u / 0.075}\", show: true, doc: \"u / u_mf\"}\n");
+  Scenario sc = parse(text, {"flow_lpm=100"});
+  ASSERT_EQ(sc.shown.size(), 1u);
+  EXPECT_EQ(sc.shown[0].name, "ratio");
+  EXPECT_NEAR(sc.shown[0].value, 100.0 / 60000.0 / 0.01 / 0.075, 1e-12);
+  EXPECT_EQ(sc.shown[0].doc, "u / u_mf");
+  EXPECT_TRUE(parse(kGood).shown.empty());
+  expectError(mutate("  flow_lpm: 50\n", "  flow_lpm: {value: 50, show: often}\n"),
+              {"parameters.flow_lpm.show", "true or false"});
+}
+
 // kGood with coating: a box zone of two keys (min, max) that a cylinder does not take.
 const std::string kZoned = std::string(kGood) +
                            "  mass_transfer: { law: ranz_marshall }\n"
@@ -558,7 +576,7 @@ TEST(ScenarioErrors, TheCoatingBedRefusesValuesOutsideItsRanges) {
       {"n_grains=0", "outside [1, "},
       {"n_grains=1e6", "outside [1, "},  // more than 0.6 of the vessel above the nozzle holds
       {"insert_seed=7", "outside [10001, inf]"}};
-  for (const char* size : {"scenario.yaml", "ci.yaml", "study.yaml", "paper.yaml"}) {
+  for (const char* size : {"scenario.yaml", "ci.yaml", "study.yaml"}) {
     EXPECT_NO_THROW(loadScenario(bed / size)) << size;
     for (const auto& [set, range] : cases) {
       try {
@@ -568,6 +586,32 @@ TEST(ScenarioErrors, TheCoatingBedRefusesValuesOutsideItsRanges) {
         const std::string msg = e.what();
         EXPECT_EQ(msg.rfind("command line --set " + set + ": parameters.", 0), 0u) << msg;
         EXPECT_NE(msg.find(range), std::string::npos) << msg;
+      }
+    }
+  }
+}
+
+// The paper's round reactor likewise, at its size and in CI's miniature: a mass in grams, a
+// nozzle wider than the O-grid's square around it, no protrusion, a vessel of a few cells.
+TEST(ScenarioErrors, TheRoundReactorRefusesValuesOutsideItsRanges) {
+  const fs::path dir = fs::path(COSIM_SOURCE_DIR) / "scenarios" / "plasma-coating-reactor";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"bed_mass=200", "parameters.bed_mass"},  // grams for kg: far more than the vessel holds
+      {"d_nozzle=0.05", "parameters.d_nozzle"},
+      {"hn=0", "parameters.hn"},
+      {"R=0.01", "parameters.R"},
+      {"cell=0.01", "parameters.cell"},
+      {"nozzle_cells=6", "parameters.nozzle_cells"}};
+  for (const char* size : {"scenario.yaml", "tiny.yaml"}) {
+    EXPECT_NO_THROW(loadScenario(dir / size)) << size;
+    for (const auto& [set, key] : cases) {
+      try {
+        loadScenario(dir / size, {set});
+        ADD_FAILURE() << size << " accepted --set " << set;
+      } catch (const ScenarioError& e) {
+        const std::string msg = e.what();
+        EXPECT_EQ(msg.rfind("command line --set " + set + ": " + key, 0), 0u) << msg;
+        EXPECT_NE(msg.find("is outside ["), std::string::npos) << msg;
       }
     }
   }
