@@ -67,6 +67,9 @@ Json toJson(const CoupledState& s) {
     for (const auto& [id, p] : *s.wake) parcels.push_back({id, p.anchor, p.y, p.K, p.v, p.dt});
     j["wake"] = {{"modes", models::WakeKernel::kModes}, {"parcels", parcels}};
   }
+  if (s.sample_ahead) {  // doubles as JSON numbers round-trip exactly (shortest form)
+    j["sample_ahead"] = {{"ids", s.sample_ahead->ids}, {"fields", s.sample_ahead->fields()}};
+  }
   return j;
 }
 
@@ -129,6 +132,17 @@ CoupledState fromJson(const Json& j) {
       p.dt = e.at(5).get<double>();
     }
     s.wake = std::move(wake);
+  }
+  if (j.contains("sample_ahead")) {
+    const Json& a = j.at("sample_ahead");
+    link::ParticleData where;
+    where.ids = a.at("ids").get<std::vector<std::int64_t>>();
+    for (const auto& [name, values] : a.at("fields").items()) {
+      where.field(name) = values.get<std::vector<double>>();
+      if (where.field(name).size() % std::max<std::size_t>(where.ids.size(), 1) != 0)
+        throw std::runtime_error("its sample_ahead." + name + " does not match its ids");
+    }
+    s.sample_ahead = std::move(where);
   }
   return s;
 }

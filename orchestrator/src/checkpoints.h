@@ -46,6 +46,10 @@ struct CoupledState {
   // Scenes with undisturbed_velocity 'self_disturbance_transient': every parcel's force history
   // (cosim/models/drag/wake_buildup.h), so that a resumed run continues it bit for bit.
   std::optional<models::WakeBuildup::State> wake;
+  // Scheme 'overlapped': where the fluid sampled the gas for the next interval (the particles at
+  // the last interval's start moved by velocity dt), every sampled field; a resumed run samples
+  // the gas there first (coupling_scheme.h). Absent for the other schemes.
+  std::optional<link::ParticleData> sample_ahead;
 };
 
 // FNV-1a digests of the particle state, one per field (and "ids"), over the values' bytes in

@@ -276,6 +276,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   }
   ledger_.restore(saved.balance, saved.pending);
   if (models_.wake) models_.wake->restore(*saved.wake);
+  if (saved.sample_ahead) scheme_->resumeSamplingAt(std::move(*saved.sample_ahead));
   totals_ = saved.totals;
   monitor_.restore(saved.monitor);
   initial_count_ = saved.initial_count;
@@ -318,6 +319,7 @@ void Coupler::writeCheckpoint() {
   s.particle_digest = particleDigest(state_);
   if (passes_) s.zone_passes = passes_->state();
   if (models_.wake) s.wake = models_.wake->state();
+  s.sample_ahead = scheme_->samplingAhead();
   const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint.keep);
   next_checkpoint_ = time_ + sc_.checkpoint.interval;
   log_.file("checkpoint at t = " + analysis::formatShortest(time_) + " s: " + dir.string());
@@ -391,7 +393,7 @@ CouplingTerms Coupler::termsOfStep() {
 link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
   lost.assign(state_.size(), 0);
   if (!plan_.fluid) return {};
-  if (auto ahead = scheme_->samplesAhead(state_)) return samplesOf(*ahead, lost);
+  if (auto ahead = scheme_->samplesAhead(participants_, state_)) return samplesOf(*ahead, lost);
   wire::Envelope e;
   state_.toWire(*e.mutable_sample()->mutable_particles(), plan_.sample_state);
   const auto r = participants_.request("fluid", std::move(e), wire::Envelope::kSamples);

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cosim/link/fields.h"
+#include "cosim/link/session.h"
 
 namespace cosim::orchestrator {
 
@@ -70,6 +71,9 @@ AdvanceReplies OverlappedScheme::advance(Participants& participants,
   if (plan_.fluid) {
     auto fluid = fluidAdvance(sc_, plan_, terms);
     state.toWire(*fluid.mutable_advance()->mutable_sample_ahead(), plan_.sample_state);
+    sent_.ids.assign(state.ids.begin(), state.ids.end());  // for a checkpoint (samplingAhead)
+    for (const auto& name : plan_.sample_state)
+      if (state.has(name)) sent_.field(name).assign(state.get(name).begin(), state.get(name).end());
     messages["fluid"] = std::move(fluid);
   }
   auto replies = participants.exchange(std::move(messages), wire::Envelope::kAdvanced);
@@ -86,7 +90,21 @@ AdvanceReplies OverlappedScheme::advance(Participants& participants,
   return r;
 }
 
-std::optional<wire::Samples> OverlappedScheme::samplesAhead(const link::ParticleData& state) {
+std::optional<link::ParticleData> OverlappedScheme::samplingAhead() const {
+  if (!ahead_) return std::nullopt;
+  return link::predictedAt(sent_, sc_.coupling.dt);  // what the fluid computed from the same bits
+}
+
+std::optional<wire::Samples> OverlappedScheme::samplesAhead(Participants& participants,
+                                                            const link::ParticleData& state) {
+  if (resume_at_) {  // the first interval after a resume: the gas where it was sampled ahead
+    wire::Envelope e;
+    resume_at_->toWire(*e.mutable_sample()->mutable_particles());
+    resume_at_.reset();
+    auto r = participants.request("fluid", std::move(e), wire::Envelope::kSamples);
+    participants.addComputeSeconds("fluid_sample_ahead", r.samples().wall_seconds());
+    ahead_ = std::move(*r.mutable_samples());
+  }
   if (!ahead_) return std::nullopt;
   std::optional<wire::Samples> s = std::move(ahead_);
   ahead_.reset();

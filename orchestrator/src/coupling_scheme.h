@@ -34,9 +34,16 @@ class CouplingScheme {
                                  const CouplingTerms& terms) = 0;
   // The gas at the particles for the interval starting from `state`, when the scheme already
   // has it (the fluid sampled it ahead during the last interval); nullopt: sample as usual.
-  virtual std::optional<wire::Samples> samplesAhead(const link::ParticleData& /*state*/) {
+  virtual std::optional<wire::Samples> samplesAhead(Participants& /*participants*/,
+                                                    const link::ParticleData& /*state*/) {
     return std::nullopt;
   }
+  // Where the scheme's samples for the next interval were taken, when they differ from the
+  // particles' state (the overlapped scheme's prediction): a checkpoint keeps it, so that a
+  // resumed run samples the gas where the run that never stopped did. nullopt: nothing to keep.
+  virtual std::optional<link::ParticleData> samplingAhead() const { return std::nullopt; }
+  // A resumed run's first interval samples the gas there (what samplingAhead() gave).
+  virtual void resumeSamplingAt(link::ParticleData /*where*/) {}
   // False when later intervals replay earlier terms: the zone membership is then not known at
   // every step, and no zone passes are recorded.
   virtual bool evaluatesEveryStep() const { return true; }
@@ -64,7 +71,10 @@ class ParallelScheme final : public CouplingScheme {
 // still advancing. The next interval uses those samples when the particles are the same (same
 // ids in the same order) and none was predicted outside the mesh, else it samples as usual (an
 // insertion, a deletion, a parcel about to bounce off a wall, the first step, the first step
-// after a resume). The placement is off by the particles' change of velocity
+// after a resume without samplingAhead() in its checkpoint). A checkpoint keeps where the fluid
+// sampled ahead (samplingAhead()), and the first interval after a resume samples the gas (restored
+// to the bit) there, so the resumed run continues as the one that never stopped. The placement
+// is off by the particles' change of velocity
 // over the interval, about a dt^2 / 2 (1e-7 m for a = g and dt = 1e-4 s, against cells of
 // millimetres); the fluid's voidage and exchange terms follow the same placement, so mass and
 // momentum stay balanced. A fluid adapter that does not answer sample_ahead is sampled as usual
@@ -75,12 +85,17 @@ class OverlappedScheme final : public CouplingScheme {
   std::string name() const override { return "overlapped"; }
   AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
                          const CouplingTerms& terms) override;
-  std::optional<wire::Samples> samplesAhead(const link::ParticleData& state) override;
+  std::optional<wire::Samples> samplesAhead(Participants& participants,
+                                            const link::ParticleData& state) override;
+  std::optional<link::ParticleData> samplingAhead() const override;
+  void resumeSamplingAt(link::ParticleData where) override { resume_at_ = std::move(where); }
 
  private:
   const Scenario& sc_;
   const Plan& plan_;
   std::optional<wire::Samples> ahead_;
+  link::ParticleData sent_;  // the sampled fields at the last interval's start (buffers reused)
+  std::optional<link::ParticleData> resume_at_;
 };
 
 // One solver alone, for `cosim bench`; only the named solver advances, the other idles and
