@@ -39,9 +39,18 @@ void CoatingLedger::pay(link::ParticleData& forcing) {
     if (it != pending_.end()) {
       inc[i] = it->second;
       b_.credited += it->second;
+      in_flight_[it->first] += it->second;
       pending_.erase(it);
     }
   }
+}
+
+void CoatingLedger::undelivered() {
+  for (const auto& [id, m] : in_flight_) {
+    pending_[id] += m;
+    b_.credited -= m;
+  }
+  in_flight_.clear();
 }
 
 void CoatingLedger::leave(const std::vector<std::int64_t>& deleted_ids,

@@ -38,8 +38,12 @@ class CoatingLedger {
   void addFlows(double in, double out);
   void setHeld(double held) { b_.held = held; }
   void setHeldAtStart(double held) { b_.held_start = held; }
-  // Pays what is owed to the parcels in `forcing` into its coating_increment field.
+  // Pays what is owed to the parcels in `forcing` into its coating_increment field. The payment
+  // is in flight until the particles confirm the step (delivered()); a step that never completes
+  // (the particle solver gone) gives it back to what is owed (undelivered()).
   void pay(link::ParticleData& forcing);
+  void delivered() { in_flight_.clear(); }
+  void undelivered();
   // Parcels that left the domain take what they were owed with them.
   void leave(const std::vector<std::int64_t>& deleted_ids, double deleted_coating_mass);
   // Coating paid plus owed: what the parcels hold once the ledger is settled.
@@ -58,6 +62,7 @@ class CoatingLedger {
  private:
   Balance b_;
   std::map<std::int64_t, double> pending_;  // parcel id -> precursor removed, not yet paid
+  std::map<std::int64_t, double> in_flight_;  // paid with the step under way, not yet delivered
 };
 
 }  // namespace cosim::orchestrator

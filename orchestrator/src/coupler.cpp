@@ -133,6 +133,7 @@ RunResult Coupler::run() {
     if (progress) progress->abort();
     participants_.shutdown(false);
   }
+  if (status != "completed") recordStoppedState();
   closeZonePasses(result.steps);
   result.wall_seconds = wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count();
   result.final_state = state_;
@@ -445,6 +446,7 @@ void Coupler::takeParticleState(const wire::Advanced& pa) {
   participants_.addComputeSeconds("particles", pa.wall_seconds());
   const std::vector<std::int64_t> before = state_.ids;
   state_ = link::ParticleData::fromWire(pa.state());
+  ledger_.delivered();  // the coating paid with this step is on the parcels
   try {
     monitor_.checkParticleLedger(before, state_.ids,
                                  {pa.inserted_ids().begin(), pa.inserted_ids().end()},
@@ -542,6 +544,7 @@ void Coupler::flushCredit() {
   flush.ids = state_.ids;
   ledger_.pay(flush);
   reportParticleState(flush);
+  ledger_.delivered();
 }
 
 void Coupler::reportParticleState(const link::ParticleData& terms) {
@@ -564,6 +567,20 @@ void Coupler::finishRun() {
 
 bool Coupler::recordsZonePasses() const {
   return plan_.coating && models_.zone && scheme_->evaluatesEveryStep();
+}
+
+// A run stopped before its end (failed, interrupted): the particles as they were after the last
+// step done, as the final snapshot, so that particles.h5 ends where zone_passes.csv is closed and
+// the time series ends (the coating on the parcels equals the coating in their passes). Without
+// it the file would end at the last output time, passes later.
+void Coupler::recordStoppedState() {
+  if (!record_.recording() || step_ == 0 || state_.ids.empty()) return;  // nothing ran
+  ledger_.undelivered();  // a step cut short: what it paid is still owed to the parcels
+  try {
+    record_.snapshot(time_, ledger_.held(state_), true);
+  } catch (const std::exception& e) {
+    log_.warn(std::string("could not write the particles at the stop: ") + e.what());
+  }
 }
 
 void Coupler::closeZonePasses(std::uint64_t steps_done) {

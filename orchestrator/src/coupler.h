@@ -104,6 +104,7 @@ class Coupler {
   // Scenes with a coating zone whose membership is decided at every step (not cosim bench).
   bool recordsZonePasses() const;
   // Every pass still open is written with the time of the last finished step.
+  void recordStoppedState();
   void closeZonePasses(std::uint64_t steps_done);
 
   void check(const link::ParticleData& state, const std::string& where) const;

@@ -1,5 +1,6 @@
 #include "run_record.h"
 
+#include <algorithm>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
@@ -264,7 +265,12 @@ void RunRecord::resumeRecorders(std::size_t rows, double time, double next_outpu
   particles_ = std::make_unique<analysis::ParticleRecorder>(
       folder_, plan_.particles_send, analysis::RunIdentity{run_id, sc_.constants.cg},
       analysis::ParticleRecorder::Mode::append);
-  particles_->truncateAfter(time);
+  // Snapshots after the checkpoint go, and so does one a stopped run wrote off the output times
+  // (the parcels at the stop, so that its records ended together): the resumed run's file reads
+  // as one that never stopped. The last one on the output times is at next_output - interval.
+  const double scheduled = next_output - sc_.output.interval;
+  particles_->truncateAfter(
+      std::min(time, scheduled + 1e-9 * std::max({1.0, std::fabs(scheduled), sc_.output.interval})));
   next_output_ = next_output;
 }
 

@@ -81,7 +81,11 @@ struct ZonePassReport {
   std::vector<MannPrediction> predictions;
   ParcelPlaces never_entered_places;  // where the parcels that never entered sit (if any did not)
   bool cycles_cut_by_run = false;     // the run is short against the cycles (see zone_passes notes)
-  std::vector<std::string> notes;     // plain-language cautions
+  // The two ledgers: each parcel's coating gain between the first and the last snapshot equals
+  // the coating of its passes (to 1e-9 relative, sums of the same increments in another order);
+  // empty when they agree, else the first parcel that disagrees and by how much.
+  std::string ledger_problem;
+  std::vector<std::string> notes;  // plain-language cautions
 };
 
 struct RunAnalysis {
