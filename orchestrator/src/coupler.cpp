@@ -13,6 +13,7 @@
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/long_quotes.h"
 #include "processes.h"
 
 namespace cosim::orchestrator {
@@ -134,6 +135,7 @@ RunResult Coupler::run() {
     participants_.shutdown(false);
   }
   if (status != "completed") recordStoppedState();
+  result.message = util::cutLongQuotes(result.message);  // a peer's or a user's long input
   closeZonePasses(result.steps);
   result.wall_seconds = wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count();
   result.final_state = state_;

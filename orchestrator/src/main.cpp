@@ -21,6 +21,7 @@
 #include "plan.h"
 #include "run_pack.h"
 #include "scenario.h"
+#include "cosim/util/long_quotes.h"
 #include "study.h"
 
 #if __has_include("cosim/analysis/report.h")
@@ -452,10 +453,10 @@ int main(int argc, char** argv) {
       return 0;
     }
   } catch (const ScenarioError& e) {
-    std::cerr << "cosim: invalid scenario\n  " << e.what() << "\n";
+    std::cerr << "cosim: invalid scenario\n  " << cosim::util::cutLongQuotes(e.what()) << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "cosim: " << e.what() << "\n";
+    std::cerr << "cosim: " << cosim::util::cutLongQuotes(e.what()) << "\n";
     return 1;
   }
   return 0;

@@ -1,5 +1,7 @@
 #include "scenario.h"
 
+#include "cosim/util/long_quotes.h"
+
 #include <fmt/format.h>
 #include <yaml-cpp/depthguard.h>
 
@@ -78,7 +80,7 @@ std::string joinPath(const std::vector<std::string>& parts) {
 // a list or map replaces the whole node (nothing of the old one is kept).
 // How an override is named in messages: as given, cut if very long.
 std::string shownOverride(const std::string& flag, const std::string& arg) {
-  return flag + " " + (arg.size() > 200 ? arg.substr(0, 200) + "..." : arg);
+  return flag + " " + util::cutInput(arg);
 }
 
 void applySet(YAML::Node root, const std::string& set, Context& ctx) {

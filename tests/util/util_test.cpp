@@ -8,6 +8,7 @@
 
 #include "cosim/util/child_process.h"
 #include "cosim/util/cpu_binding.h"
+#include "cosim/util/long_quotes.h"
 #include "cosim/util/rayleigh_time.h"
 #include "cosim/util/text_file.h"
 
@@ -99,4 +100,22 @@ TEST(RayleighTime, HandValueAndScaling) {
   const double t = rayleighTime(1e-3, 2500, 1e7, 0.25);
   EXPECT_NEAR(rayleighTime(2e-3, 2500, 1e7, 0.25), 2 * t, 1e-15);    // ~ r
   EXPECT_NEAR(rayleighTime(1e-3, 2500, 4e7, 0.25), 0.5 * t, 1e-15);  // ~ 1/sqrt(E)
+}
+
+// A quoted input is shown up to 200 characters, with how long it was; short ones are untouched.
+TEST(LongQuotes, AQuotedInputIsCutToAReadableLengthAndSaysHowLongItWas) {
+  EXPECT_EQ(cosim::util::cutInput("abc"), "abc");
+  const std::string value(10000, 'x');
+  EXPECT_EQ(cosim::util::cutInput(value), std::string(200, 'x') + "... (10000 characters in all)");
+  const std::string msg = "parameters.u: expected a number, got '" + value + "' (see the scene's doc)";
+  const std::string cut = cosim::util::cutLongQuotes(msg);
+  EXPECT_EQ(cut, "parameters.u: expected a number, got '" + std::string(200, 'x') +
+                     "... (10000 characters in all)' (see the scene's doc)");
+  // an unquoted run without spaces (a --set echoed as given) likewise; prose is kept whole
+  const std::string set = "command line --set u=" + value + ": not a number";
+  EXPECT_EQ(cosim::util::cutLongQuotes(set),
+            "command line --set " + ("u=" + value).substr(0, 200) +
+                "... (10003 characters in all) not a number");  // the colon was part of the run
+  const std::string prose = "a message in words, 'a name', the scene's doc: nothing to cut";
+  EXPECT_EQ(cosim::util::cutLongQuotes(prose), prose);
 }
