@@ -405,6 +405,12 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
   while (got.size() < expected.size()) {
     if (g_stop_count >= 2)
       throw RunFailure("", "interrupted (signal " + std::to_string(g_stop_signal.load()) + ")");
+    // Before the first answer (a participant's own start-up: LIGGGHTS pouring and settling the
+    // bed, OpenFOAM reading its case) there is no step to finish: stop now
+    if (g_stop_signal && !answered_once_)
+      throw RunFailure("", "interrupted during start-up (signal " +
+                               std::to_string(g_stop_signal.load()) +
+                               "), before the first step: no step was done in this run");
     if (g_stop_signal && !stop_noted_) {
       stop_noted_ = true;
       log_.show("signal " + std::to_string(g_stop_signal.load()) +

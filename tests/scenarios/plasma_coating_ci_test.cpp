@@ -10,7 +10,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <chrono>
 #include <fstream>
+#include <thread>
 #include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -24,6 +26,7 @@
 #include "cosim/analysis/time_series.h"
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/child_process.h"
 #include "coupler.h"
 #include "run_pack.h"
 #include "scenario.h"
@@ -508,4 +511,45 @@ TEST(PlasmaCoatingCi, OverlappedSchemeKeepsTheBalanceAndAgreesWithParallel) {
       nlohmann::json::parse(std::ifstream(runs["overlapped"].folder / "summary.json"));
   EXPECT_GT(summary.at("timings_s").at("fluid_sample_ahead_compute").get<double>(), 0.0);
   fs::remove_all(base);
+}
+
+// Ctrl-C while LIGGGHTS pours and settles the bed (before the first step, with no step to finish):
+// cosim stops at once, not after the settling, with status interrupted and exit code 130, its
+// participants gone. The settling here is made long (2 s of DEM at 5e-6 s, minutes of wall time)
+// so that the run could only stop in time by not waiting for it.
+TEST(PlasmaCoatingCi, CtrlCDuringTheSettlingStopsAtOnce) {
+  const fs::path out = fs::temp_directory_path() / ("cosim-plasma-ctrlc-" + std::to_string(getpid()));
+  fs::remove_all(out);
+  fs::create_directories(out);
+  cosim::util::ChildProcess run(
+      {std::string(COSIM_BINARY_DIR) + "/cosim", "run",
+       std::string(COSIM_SOURCE_DIR) + "/scenarios/plasma-coating-bed/ci.yaml", "-o",
+       (out / "run").string(), "--set", "settle_time=2"},
+      out, out / "run.out", {});
+  // LIGGGHTS is settling once its log shows its first thermo rows
+  for (int i = 0; i < 600; ++i) {
+    std::ifstream log(out / "run" / "particles" / "liggghts.log");
+    const std::string text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    if (text.find("KinEng") != std::string::npos) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ASSERT_TRUE(run.running());
+  const auto t0 = std::chrono::steady_clock::now();
+  ::kill(run.pid(), SIGINT);
+  const int code = run.wait();
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("Ctrl-C during the settling: cosim stopped after %.2f s\n", waited);
+  EXPECT_EQ(code, 130);
+  EXPECT_LT(waited, 20.0) << "cosim waited for the settling to end";
+  const auto summary = cosim::analysis::readJsonFile(out / "run" / "summary.json");
+  EXPECT_EQ(summary.at("status"), "interrupted");
+  // no participant left running in the run's folders
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    std::error_code ec;
+    const auto cwd = fs::read_symlink(e.path() / "cwd", ec);
+    if (!ec) EXPECT_EQ(cwd.string().rfind(out.string(), 0), std::string::npos) << e.path();
+  }
+  fs::remove_all(out);
 }
