@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <chrono>
 #include <fstream>
+#include <random>
 #include <thread>
 #include <iterator>
 #include <map>
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "cosim/analysis/files.h"
+#include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/report.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/analysis/zone_pass_file.h"
@@ -602,5 +604,139 @@ TEST(PlasmaCoatingCi, ResumedOnTwoParticleRanksAgreesToRoundOff) {
     const auto it = inPasses.find(b.ids[i]);
     EXPECT_NEAR(mb[i], it == inPasses.end() ? 0.0 : it->second, 1e-12 * mb[i]) << b.ids[i];
   }
+  fs::remove_all(base);
+}
+
+// cosim itself killed with SIGKILL five times (once while it writes a checkpoint, once right after
+// a particle snapshot appeared, three times at random moments), resumed after each: the records
+// of the whole run pass every ledger check. The precursor balance closes and what left the gas
+// is on the parcels to round-off; each parcel's coating is the sum of its passes (report); the
+// snapshots are the output times, each once; each parcel's passes follow each other without
+// overlap; the time series has one row per step; summary.json is complete.
+TEST(PlasmaCoatingCi, KilledFiveTimesAndResumedTheRecordsAgree) {
+  const fs::path base = fs::temp_directory_path() / ("cosim-plasma-kills-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const fs::path run = base / "run";
+  const std::string cosim = std::string(COSIM_BINARY_DIR) + "/cosim";
+  const std::vector<std::string> sets = {"--set", "checkpoint.interval=0.004", "--set",
+                                         "output.interval=0.005", "--set", "coupling.end_time=0.08"};
+  std::mt19937 rng(20261205);
+  std::uniform_int_distribution<int> after(20, 120);  // steps past where the piece resumed
+  const auto rows = [&] {
+    std::ifstream in(run / "timeseries.csv");
+    return static_cast<int>(std::count(std::istreambuf_iterator<char>(in),
+                                       std::istreambuf_iterator<char>(), '\n'));
+  };
+  const auto snapshots = [&] {
+    if (!fs::exists(run / "particles.h5")) return std::size_t{0};
+    return cosim::analysis::ParticleFile(run / "particles.h5").snapshots().size();
+  };
+  int kills = 0;
+  for (int piece = 0; piece < 6; ++piece) {
+    std::vector<std::string> argv = {cosim};
+    if (piece == 0) {
+      argv.insert(argv.end(), {"run", std::string(COSIM_SOURCE_DIR) + "/scenarios/plasma-coating-bed/ci.yaml",
+                               "-o", run.string(), "--quiet"});
+      argv.insert(argv.end(), sets.begin(), sets.end());
+    } else {
+      argv.insert(argv.end(), {"resume", run.string(), "--quiet"});
+    }
+    cosim::util::ChildProcess p(argv, base, base / ("piece" + std::to_string(piece) + ".out"), {});
+    if (piece == 5) {  // the last piece runs to the end
+      ASSERT_EQ(p.wait(), 0) << "piece " << piece;
+      break;
+    }
+    // wait for the coupled steps to run (the first checkpoint of this piece's run), then aim
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto waited = [&] {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    bool aimed = false;
+    if (piece == 0) {  // while a checkpoint is being written, one complete already there
+      while (p.running() && waited() < 120 && !aimed) {
+        bool complete = false, partial = false;
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(run / "checkpoints", ec)) {
+          const std::string name = e.path().filename().string();
+          (name.rfind(".partial", 0) == 0 ? partial : complete) = true;
+        }
+        aimed = complete && partial;
+        if (!aimed) std::this_thread::sleep_for(std::chrono::microseconds(200));
+      }
+    } else if (piece == 1) {  // right after a snapshot appeared
+      const std::size_t before = snapshots();
+      while (p.running() && waited() < 120 && !aimed) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        try {
+          aimed = snapshots() > before;
+        } catch (const std::exception&) {
+          aimed = true;  // the file is being written: the moment to aim at
+        }
+      }
+    } else {  // at a random step: once the piece has run some steps past its resume
+      std::this_thread::sleep_for(std::chrono::seconds(1));  // the resume cuts the series back
+      int target = -1;
+      while (p.running() && waited() < 120 && !aimed) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        const int n = rows();
+        if (target < 0 && n > 0) target = n + after(rng);
+        aimed = target > 0 && n >= target;
+      }
+    }
+    if (!p.running()) {  // finished before it could be killed: nothing more to test
+      ADD_FAILURE() << "piece " << piece << " ended before the kill: " << p.exitDescription();
+      break;
+    }
+    ::kill(p.pid(), SIGKILL);
+    p.wait();
+    ++kills;
+    // its participants notice that cosim is gone and stop; wait for them before resuming
+    std::this_thread::sleep_for(std::chrono::seconds(4));
+  }
+  EXPECT_EQ(kills, 5);
+
+  const auto summary = cosim::analysis::readJsonFile(run / "summary.json");
+  ASSERT_EQ(summary.at("status"), "completed");
+  const auto& t = summary.at("headline");
+  const double in = t.at("precursor_in_kg");
+  EXPECT_LT(std::fabs(in - t.at("precursor_out_kg").get<double>() -
+                      t.at("precursor_held_kg").get<double>() -
+                      t.at("precursor_removed_kg").get<double>()),
+            1e-4 * in);
+  EXPECT_NEAR(t.at("coating_credited_kg").get<double>(), t.at("precursor_removed_kg").get<double>(),
+              1e-12 * in);
+  EXPECT_NEAR(t.at("coating_on_particles_kg").get<double>(), t.at("coating_credited_kg").get<double>(),
+              1e-12 * in);
+
+  // snapshots: the output times 0, 0.005, ..., 0.08, each once
+  const cosim::analysis::ParticleFile file(run / "particles.h5");
+  ASSERT_EQ(file.snapshots().size(), 17u);
+  for (std::size_t i = 0; i < 17; ++i) EXPECT_NEAR(file.snapshots()[i].time, 0.005 * i, 1e-9);
+  // the time series: one row per step after the initial one
+  const auto ts = cosim::analysis::readTimeSeries(run / "timeseries.csv");
+  const auto& times = ts.at("time");
+  ASSERT_EQ(times.size(), 801u);
+  for (std::size_t i = 1; i < times.size(); ++i) EXPECT_NEAR(times[i], 1e-4 * i, 1e-9) << i;
+  // passes: per parcel in order, none overlapping the next
+  std::map<std::int64_t, std::vector<cosim::analysis::ZonePass>> byParcel;
+  for (const auto& p : cosim::analysis::readZonePasses(run / cosim::analysis::kZonePassesFile))
+    byParcel[p.parcel_id].push_back(p);
+  for (auto& [id, ps] : byParcel) {
+    std::sort(ps.begin(), ps.end(), [](auto& a, auto& b) { return a.entry_time < b.entry_time; });
+    for (std::size_t i = 0; i + 1 < ps.size(); ++i)
+      EXPECT_LE(ps[i].exit_time, ps[i + 1].entry_time + 1e-12) << "parcel " << id;
+  }
+  // the report's ledger check: every parcel's coating equals its passes'
+  cosim::analysis::ReportOptions ro;
+  ro.runs = {run};
+  ro.output = base / "report";
+  ro.plots = false;
+  ASSERT_EQ(cosim::analysis::runReport(ro), 0);
+  const auto report = cosim::analysis::readJsonFile(base / "report" / "report.json");
+  const auto& zp = report.at("zone_passes");
+  EXPECT_TRUE(zp.at("ledgers_agree").get<bool>()) << zp.value("ledger_problem", "");
+  const double passes = zp.at("coating_in_passes_kg"), parcels = zp.at("coating_on_parcels_kg");
+  EXPECT_NEAR(parcels, passes, 1e-12 * passes);
   fs::remove_all(base);
 }
