@@ -1,0 +1,331 @@
+#include "cosim/analysis/long_time.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "cosim/analysis/coating_statistics.h"
+#include "cosim/analysis/particle_file.h"
+#include "cosim/link/fields.h"
+
+namespace cosim::analysis {
+
+int Compartments::of(double x, double y, double z) const {
+  const double r2 = x * x + y * y;
+  const int ring =
+      r_max > 0 ? static_cast<int>(std::floor(rings * r2 / (r_max * r_max))) : 0;  // equal areas
+  const int layer = z_max > 0 ? static_cast<int>(std::floor(layers * z / z_max)) : 0;
+  return std::clamp(layer, 0, layers - 1) * rings + std::clamp(ring, 0, rings - 1);
+}
+
+CoatingDatabase readCoatingDatabase(const ParticleFile& file, double from, double until,
+                                    Compartments grid) {
+  const std::string where = file.path().string();
+  if (grid.rings < 1 || grid.layers < 1)
+    throw std::runtime_error("long-time model: at least one ring and one layer");
+  if (!file.hasField(field::position) || !file.hasField(field::coating_mass))
+    throw std::runtime_error(where + ": no positions or coating recorded (a scene with coating)");
+  std::vector<std::size_t> use;
+  const auto& snaps = file.snapshots();
+  for (std::size_t i = 0; i < snaps.size(); ++i) {
+    const double t = snaps[i].time;
+    if (t + 1e-9 >= from && (until < 0 || t <= until + 1e-9)) use.push_back(i);
+  }
+  if (use.size() < 3)
+    throw std::runtime_error(fmt::format(
+        "{}: {} snapshots between t = {:g} and {:g} s; the long-time model needs at least 3 "
+        "(a record of several seconds, output.interval 0.1 s)",
+        where, use.size(), from, until));
+  CoatingDatabase db;
+  db.grid = grid;
+  db.interval = snaps[use[1]].time - snaps[use[0]].time;
+  for (std::size_t k = 0; k < use.size(); ++k) {
+    db.times.push_back(snaps[use[k]].time);
+    if (k > 0 && std::fabs(db.times[k] - db.times[k - 1] - db.interval) > 1e-6 * db.interval)
+      throw std::runtime_error(fmt::format(
+          "{}: the snapshots are not evenly spaced (t = {:g} s after {:g} s, not {:g} s later): "
+          "the model steps by one interval; give --from after the uneven ones",
+          where, db.times[k], db.times[k - 1], db.interval));
+  }
+  // parcels present in every snapshot used
+  std::unordered_map<std::int64_t, std::size_t> seen;
+  for (std::size_t k : use)
+    for (auto id : file.ids(k)) ++seen[id];
+  for (const auto& [id, n] : seen) {
+    if (n == use.size())
+      db.ids.push_back(id);
+    else
+      ++db.left_out;
+  }
+  std::sort(db.ids.begin(), db.ids.end());
+  std::unordered_map<std::int64_t, std::size_t> slot;
+  for (std::size_t i = 0; i < db.ids.size(); ++i) slot[db.ids[i]] = i;
+  const std::size_t n = db.ids.size();
+  std::vector<std::vector<double>> pos(use.size());
+  db.coating.assign(use.size(), std::vector<double>(n, 0.0));
+  double r_max = 0;
+  std::vector<double> heights;
+  for (std::size_t k = 0; k < use.size(); ++k) {
+    const auto ids = file.ids(use[k]);
+    const auto x = file.read(use[k], field::position);
+    const auto m = file.read(use[k], field::coating_mass);
+    pos[k].assign(3 * n, 0.0);
+    for (std::size_t i = 0; i < ids.size(); ++i) {
+      const auto it = slot.find(ids[i]);
+      if (it == slot.end()) continue;
+      const std::size_t j = it->second;
+      for (int c = 0; c < 3; ++c) pos[k][3 * j + c] = x[3 * i + c];
+      db.coating[k][j] = m[i];
+      r_max = std::max(r_max, std::hypot(x[3 * i], x[3 * i + 1]));
+      heights.push_back(x[3 * i + 2]);
+    }
+  }
+  if (db.grid.r_max <= 0) db.grid.r_max = r_max * (1 + 1e-9);
+  if (db.grid.z_max <= 0 && !heights.empty()) {  // the bed's top: 99 % of the parcels below
+    const auto q = heights.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(heights.size() - 1));
+    std::nth_element(heights.begin(), q, heights.end());
+    db.grid.z_max = *q;
+  }
+  db.state.assign(use.size(), std::vector<int>(n, 0));
+  for (std::size_t k = 0; k < use.size(); ++k)
+    for (std::size_t j = 0; j < n; ++j)
+      db.state[k][j] = db.grid.of(pos[k][3 * j], pos[k][3 * j + 1], pos[k][3 * j + 2]);
+  return db;
+}
+
+namespace {
+
+using Matrix = std::vector<double>;  // K x K, row-major
+
+Matrix multiply(const Matrix& a, const Matrix& b, int k) {
+  Matrix c(a.size(), 0.0);
+  for (int i = 0; i < k; ++i)
+    for (int l = 0; l < k; ++l) {
+      const double ail = a[i * k + l];
+      if (ail == 0) continue;
+      for (int j = 0; j < k; ++j) c[i * k + j] += ail * b[l * k + j];
+    }
+  return c;
+}
+
+// Intervals until every visited state's row of P^n is within 0.25 (total variation) of its own
+// limit (P^(2^40), by repeated squaring: each row's limit, the chain reducible or not); infinity
+// when it is not within 2^40.
+double mixingIntervals(const Matrix& p, int k, const std::vector<std::size_t>& departures) {
+  std::vector<Matrix> powers = {p};
+  for (int i = 0; i < 40; ++i) powers.push_back(multiply(powers.back(), powers.back(), k));
+  const Matrix& limit = powers.back();
+  for (std::size_t i = 0; i < powers.size(); ++i) {
+    double worst = 0;
+    for (int s = 0; s < k; ++s) {
+      if (departures[s] == 0) continue;
+      double tv = 0;
+      for (int j = 0; j < k; ++j) tv += std::fabs(powers[i][s * k + j] - limit[s * k + j]);
+      worst = std::max(worst, 0.5 * tv);
+    }
+    if (worst < 0.25) return std::ldexp(1.0, static_cast<int>(i));
+  }
+  return std::numeric_limits<double>::infinity();
+}
+
+// Expected intervals until a parcel starting in each state first starts an interval in a coating
+// state (one whose recorded moves gained coating): (I - Q) h = 1 over the other states, Q the
+// moves among them; infinity for states that cannot reach one. Gaussian elimination (K ~ 50).
+std::vector<double> intervalsToTheZone(const Matrix& p, int k, const std::vector<char>& coats) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> h(k, inf);
+  std::vector<char> reach(coats.begin(), coats.end());
+  for (bool grew = true; grew;) {  // states from which a coating state can be reached
+    grew = false;
+    for (int a = 0; a < k; ++a)
+      for (int b = 0; b < k && !reach[a]; ++b)
+        if (p[a * k + b] > 0 && reach[b]) reach[a] = grew = true;
+  }
+  std::vector<int> idx;
+  for (int a = 0; a < k; ++a) {
+    if (coats[a]) h[a] = 0;
+    else if (reach[a]) idx.push_back(a);
+  }
+  const std::size_t n = idx.size();
+  std::vector<double> A(n * (n + 1), 0.0);  // [I - Q | 1]
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = 0; j < n; ++j)
+      A[i * (n + 1) + j] = (i == j ? 1.0 : 0.0) - p[idx[i] * k + idx[j]];
+    A[i * (n + 1) + n] = 1.0;
+  }
+  for (std::size_t c = 0; c < n; ++c) {  // partial pivoting
+    std::size_t piv = c;
+    for (std::size_t r = c + 1; r < n; ++r)
+      if (std::fabs(A[r * (n + 1) + c]) > std::fabs(A[piv * (n + 1) + c])) piv = r;
+    for (std::size_t j = 0; j <= n; ++j) std::swap(A[c * (n + 1) + j], A[piv * (n + 1) + j]);
+    const double d = A[c * (n + 1) + c];
+    if (d == 0) continue;
+    for (std::size_t r = 0; r < n; ++r) {
+      if (r == c) continue;
+      const double f = A[r * (n + 1) + c] / d;
+      if (f == 0) continue;
+      for (std::size_t j = c; j <= n; ++j) A[r * (n + 1) + j] -= f * A[c * (n + 1) + j];
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const double d = A[i * (n + 1) + i];
+    if (d != 0) h[idx[i]] = A[i * (n + 1) + n] / d;
+  }
+  return h;
+}
+
+}  // namespace
+
+LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_departures) {
+  LongTimeModel m;
+  const int k = db.grid.count();
+  m.states = k;
+  m.interval = db.interval;
+  m.record_seconds = db.times.back() - db.times.front();
+  m.P.assign(static_cast<std::size_t>(k) * k, 0.0);
+  m.gains.assign(static_cast<std::size_t>(k) * k, {});
+  m.departures.assign(k, 0);
+  m.occupied_at_end.assign(k, 0);
+  for (std::size_t t = 0; t + 1 < db.state.size(); ++t) {
+    for (std::size_t j = 0; j < db.ids.size(); ++j) {
+      const int a = db.state[t][j], b = db.state[t + 1][j];
+      m.P[a * k + b] += 1;
+      m.gains[a * k + b].push_back(db.coating[t + 1][j] - db.coating[t][j]);
+      ++m.departures[a];
+    }
+  }
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      if (m.departures[a] > 0) m.P[a * k + b] /= static_cast<double>(m.departures[a]);
+  for (int s : db.state.back()) ++m.occupied_at_end[s];
+
+  m.mixing_seconds = mixingIntervals(m.P, k, m.departures) * m.interval;
+  std::vector<char> coats(k, 0);  // states whose recorded departures gained coating
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k && !coats[a]; ++b)
+      for (const double g : m.gains[a * k + b])
+        if (g > 0) {
+          coats[a] = 1;
+          break;
+        }
+  const auto h = intervalsToTheZone(m.P, k, coats);
+  m.zone_return_seconds.assign(k, 0.0);
+  m.longest_wait_seconds = 0;
+  for (int a = 0; a < k; ++a) {
+    m.zone_return_seconds[a] = h[a] * m.interval;
+    if (m.occupied_at_end[a] > 0 && m.departures[a] > 0)
+      m.longest_wait_seconds = std::max(m.longest_wait_seconds, m.zone_return_seconds[a]);
+  }
+  if (std::isfinite(m.longest_wait_seconds) && m.longest_wait_seconds > m.record_seconds)
+    m.warnings.push_back(fmt::format(
+        "parcels of the bed wait longer for the coating zone than the record lasts: from the "
+        "slowest compartment a parcel reaches the zone after {:.3g} s on average, the record is "
+        "{:.3g} s long; record at least {:.3g} s (twice that wait) so that these moves are seen "
+        "often enough to carry the batch",
+        m.longest_wait_seconds, m.record_seconds, 2 * m.longest_wait_seconds));
+  if (!(m.mixing_seconds <= m.record_seconds) && m.longest_wait_seconds <= m.record_seconds) {
+    m.warnings.push_back(
+        std::isfinite(m.mixing_seconds)
+            ? fmt::format("the bed's slowest motion takes longer than the record: the "
+                          "compartments mix in about {:.3g} s, the record is {:.3g} s long; "
+                          "record at least {:.3g} s (twice the mixing time) for rates seen "
+                          "often enough to carry the batch",
+                          m.mixing_seconds, m.record_seconds, 2 * m.mixing_seconds)
+            : fmt::format("the compartments do not mix within any time from this {:.3g} s "
+                          "record: parts of the bed the parcels were seen in are never seen to "
+                          "exchange with the rest; a longer record would show whether they do",
+                          m.record_seconds));
+  }
+  // Parcels where the record has no move out at all, or too few to trust its rates
+  std::size_t stuck = 0, thin = 0;
+  int stuck_states = 0, thin_states = 0;
+  for (int s = 0; s < k; ++s) {
+    if (m.occupied_at_end[s] == 0) continue;
+    const std::size_t leave = m.departures[s] - m.gains[s * k + s].size();  // moves elsewhere
+    if (leave == 0) {
+      stuck += m.occupied_at_end[s];
+      ++stuck_states;
+    } else if (m.departures[s] < min_departures) {
+      thin += m.occupied_at_end[s];
+      ++thin_states;
+    }
+  }
+  if (stuck > 0)
+    m.warnings.push_back(fmt::format(
+        "{} parcels sit in {} compartments no parcel was seen to leave in the record: the model "
+        "keeps them there (and uncoated if they are) for the whole batch",
+        stuck, stuck_states));
+  if (thin > 0)
+    m.warnings.push_back(fmt::format(
+        "{} parcels sit in {} compartments seen fewer than {} times in the record: their rates "
+        "rest on few moves",
+        thin, thin_states, min_departures));
+  return m;
+}
+
+LongTimePrediction predictLongTime(const LongTimeModel& model, const CoatingDatabase& db,
+                                   std::vector<double> times, std::uint64_t seed) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  std::sort(times.begin(), times.end());
+  LongTimePrediction out;
+  out.ids = db.ids;
+  const int k = model.states;
+  const std::size_t n = db.ids.size();
+  const double end = db.times.back();
+  // cumulative rows for drawing the next compartment
+  std::vector<double> cum(model.P.size());
+  for (int a = 0; a < k; ++a) {
+    double c = 0;
+    for (int b = 0; b < k; ++b) cum[a * k + b] = (c += model.P[a * k + b]);
+  }
+  std::vector<int> state = db.state.back();
+  std::vector<double> coating = db.coating.back();
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  double now = end;
+  const auto point = [&](double t, const std::vector<double>& c) {
+    const auto s = coatingStatistics(t, c, 0.0);
+    std::size_t zero = 0;
+    for (double x : c) zero += x <= 0 ? 1 : 0;
+    return LongTimePoint{t, s.mean, s.cv, n ? static_cast<double>(zero) / static_cast<double>(n) : 0.0};
+  };
+  for (double t : times) {
+    if (t <= end + 1e-9 * std::max(1.0, end)) {  // within the record: read it
+      std::size_t at = 0;
+      while (at + 1 < db.times.size() && db.times[at + 1] <= t + 1e-9) ++at;
+      out.points.push_back(point(db.times[at], db.coating[at]));
+      continue;
+    }
+    const auto steps = static_cast<long long>(std::llround((t - now) / model.interval));
+    for (long long step = 0; step < steps; ++step) {
+      for (std::size_t j = 0; j < n; ++j) {
+        const int a = state[j];
+        if (model.departures[a] == 0) continue;  // never seen to move: stays, gains nothing
+        const double u = uniform(rng);
+        const double* row = &cum[static_cast<std::size_t>(a) * k];
+        int b = static_cast<int>(std::upper_bound(row, row + k, u * row[k - 1]) - row);
+        b = std::min(b, k - 1);
+        const auto& g = model.gains[static_cast<std::size_t>(a) * k + b];
+        if (!g.empty()) {
+          const auto pick = static_cast<std::size_t>(uniform(rng) * static_cast<double>(g.size()));
+          coating[j] += g[std::min(pick, g.size() - 1)];
+        }
+        state[j] = b;
+      }
+    }
+    now += static_cast<double>(steps) * model.interval;
+    out.points.push_back(point(t, coating));
+  }
+  out.final_coating = coating;
+  out.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return out;
+}
+
+}  // namespace cosim::analysis
