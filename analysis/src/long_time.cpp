@@ -222,14 +222,24 @@ LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_depart
     if (m.occupied_at_end[a] > 0 && m.departures[a] > 0)
       m.longest_wait_seconds = std::max(m.longest_wait_seconds, m.zone_return_seconds[a]);
   }
-  if (std::isfinite(m.longest_wait_seconds) && m.longest_wait_seconds > m.record_seconds)
+  std::size_t unreachable = 0;
+  for (int a = 0; a < k; ++a)
+    if (m.occupied_at_end[a] > 0 && m.departures[a] > 0 && !std::isfinite(h[a]))
+      unreachable += m.occupied_at_end[a];
+  if (unreachable > 0)
+    m.warnings.push_back(fmt::format(
+        "{} parcels sit in compartments from which the record shows no way to the coating zone: "
+        "the model keeps them uncoated by the zone for the whole batch; a longer record would "
+        "show whether they reach it",
+        unreachable));
+  if (std::isfinite(m.longest_wait_seconds) && m.longest_wait_seconds > m.record_seconds) {
     m.warnings.push_back(fmt::format(
         "parcels of the bed wait longer for the coating zone than the record lasts: from the "
         "slowest compartment a parcel reaches the zone after {:.3g} s on average, the record is "
         "{:.3g} s long; record at least {:.3g} s (twice that wait) so that these moves are seen "
         "often enough to carry the batch",
         m.longest_wait_seconds, m.record_seconds, 2 * m.longest_wait_seconds));
-  if (!(m.mixing_seconds <= m.record_seconds) && m.longest_wait_seconds <= m.record_seconds) {
+  } else if (m.mixing_seconds > m.record_seconds) {
     m.warnings.push_back(
         std::isfinite(m.mixing_seconds)
             ? fmt::format("the bed's slowest motion takes longer than the record: the "

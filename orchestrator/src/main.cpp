@@ -14,6 +14,7 @@
 #include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 #include "coupler.h"
+#include "batch_command.h"
 #include "ft4_command.h"
 #include "keys_command.h"
 #include "launchers.h"
@@ -216,6 +217,8 @@ int main(int argc, char** argv) {
 
   Ft4Options ft4_opt;
   auto* ft4 = addFt4Command(app, ft4_opt);
+  BatchOptions batch_opt;
+  auto* batch = addBatchCommand(app, batch_opt);
 
 #ifdef COSIM_HAVE_REPORT
   cosim::analysis::ReportOptions rep_opt;
@@ -328,6 +331,7 @@ int main(int argc, char** argv) {
     if (*val) return validate(scenario, sets, unsets);
     if (*keys) return keysCommand(key_file, std::cout);
     if (*ft4) return runFt4Command(*ft4, ft4_opt, std::cout, std::cerr);
+    if (*batch) return runBatchCommand(batch_opt, std::cout, std::cerr);
     if (*study) {
       for (const auto& v : vary) sopt.vary.push_back(parseVary(v));
       // Ctrl-C or SIGTERM: the running variant checkpoints and stops, and so does the study

@@ -29,6 +29,7 @@
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/fields.h"
 #include "cosim/util/child_process.h"
+#include "batch_command.h"
 #include "coupler.h"
 #include "run_pack.h"
 #include "scenario.h"
@@ -244,6 +245,28 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   EXPECT_EQ(zp.at("passes").get<std::size_t>(), passes.size());
   EXPECT_EQ(zp.at("never_entered").get<std::size_t>(), n - withPass);
   EXPECT_TRUE(fs::exists(out / "report" / "zone_passes_per_parcel.csv"));
+
+  // The whole batch from this record (cosim batch): at the record's end the record's own
+  // statistics; later the mean grows and the never-coated share falls, never the other way; and
+  // the model says that 0.05 s of record cannot hold this bed's slow motion.
+  BatchOptions bo;
+  bo.run = r.folder.string();
+  bo.until = 60.0;
+  std::ostringstream said, errs;
+  ASSERT_EQ(runBatchCommand(bo, said, errs), 0) << errs.str();
+  std::printf("%s", said.str().c_str());
+  const auto batch = cosim::analysis::readJsonFile(r.folder / "batch" / "batch.json");
+  const auto& points = batch.at("points");
+  ASSERT_GE(points.size(), 3u);
+  EXPECT_NEAR(points[0].at("mean_kg").get<double>(), on_particles / double(n), 1e-9 * on_particles / double(n));
+  EXPECT_NEAR(points[0].at("never_coated_share").get<double>(), 1.0 - double(coated) / double(n), 1e-12);
+  for (std::size_t i = 1; i < points.size(); ++i) {
+    EXPECT_GE(points[i].at("mean_kg").get<double>(), points[i - 1].at("mean_kg").get<double>());
+    EXPECT_LE(points[i].at("never_coated_share").get<double>(),
+              points[i - 1].at("never_coated_share").get<double>());
+  }
+  EXPECT_FALSE(batch.at("long_time_model").at("warnings").empty());
+  EXPECT_TRUE(fs::exists(r.folder / "batch" / "batch.csv"));
 }
 
 // Resume with the real solvers (docs/restarts.md): the bed run to 0.05 s with checkpoints every

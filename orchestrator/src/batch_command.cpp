@@ -1,0 +1,134 @@
+#include "batch_command.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <ostream>
+
+#include "cosim/analysis/files.h"
+#include "cosim/analysis/long_time.h"
+#include "cosim/analysis/particle_file.h"
+
+namespace cosim::orchestrator {
+
+namespace fs = std::filesystem;
+namespace a = cosim::analysis;
+
+namespace {
+constexpr const char* kCsvHeader = "time_s,mean_kg,cv,never_coated_share,from_record";
+
+// The record's end, then 20 s, 1, 5, 10, 20, 30, 40, 50 and 60 min, up to `until`, with `extra`.
+std::vector<double> reportTimes(double end, double until, const std::vector<double>& extra) {
+  std::vector<double> t = {end};
+  for (double x : {20.0, 60.0, 300.0, 600.0, 1200.0, 1800.0, 2400.0, 3000.0, 3600.0})
+    if (x > end && x < until) t.push_back(x);
+  if (until > end) t.push_back(until);
+  for (double x : extra) t.push_back(x);
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end(), [](double x, double y) { return std::fabs(x - y) < 1e-9; }),
+          t.end());
+  return t;
+}
+}  // namespace
+
+CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
+  auto* b = app.add_subcommand(
+      "batch",
+      "A whole coating batch from a recorded run: every parcel carried on between compartments of "
+      "the bed with the coating gains the record holds for each move (CV, mean, never-coated "
+      "share to --until)");
+  b->add_option("run", o.run, "run folder of a scene with coating (its particles.h5)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  b->add_option("--until", o.until, "the batch's length [s] (default 3600)")
+      ->check(CLI::PositiveNumber);
+  b->add_option("--times", o.times, "more times to report [s], comma separated")
+      ->delimiter(',')
+      ->check(CLI::NonNegativeNumber);
+  b->add_option("--from", o.from, "the record used starts here [s] (skip the start-up)")
+      ->check(CLI::NonNegativeNumber);
+  b->add_option("--rings", o.rings, "compartments: rings about the vertical axis (default 6)")
+      ->check(CLI::Range(1, 100));
+  b->add_option("--layers", o.layers, "compartments: layers of the bed (default 8)")
+      ->check(CLI::Range(1, 100));
+  b->add_option("--seed", o.seed, "seed of the random moves (the same seed, the same answer)");
+  b->add_option("-o,--output", o.output, "folder for batch.json and batch.csv (default RUN/batch)");
+  return b;
+}
+
+int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err) {
+  try {
+    const fs::path run(o.run);
+    const fs::path folder = o.output.empty() ? run / "batch" : fs::path(o.output);
+    const fs::path json = folder / "batch.json", csv = folder / "batch.csv";
+    a::claimOutputFiles({json, csv}, "\"long_time_model\"", "-o");
+    const a::ParticleFile file(run / "particles.h5");
+    a::Compartments grid;
+    grid.rings = o.rings;
+    grid.layers = o.layers;
+    const auto db = a::readCoatingDatabase(file, o.from, -1, grid);
+    const auto model = a::fitLongTimeModel(db);
+    const auto times = reportTimes(db.times.back(), o.until, o.times);
+    const auto pr = a::predictLongTime(model, db, times, o.seed);
+
+    out << fmt::format(
+        "cosim batch: {} parcels, record t = {:g} .. {:g} s ({} snapshots, every {:g} s), {} x {} "
+        "compartments ({} rings to r = {:.4g} m, {} layers to z = {:.4g} m)\n",
+        db.ids.size(), db.times.front(), db.times.back(), db.times.size(), db.interval,
+        grid.rings, grid.layers, grid.rings, db.grid.r_max, grid.layers, db.grid.z_max);
+    if (db.left_out > 0)
+      out << fmt::format("  {} parcels not in every snapshot (inserted or deleted) left out\n",
+                         db.left_out);
+    out << fmt::format(
+        "  longest wait for the coating zone {:.3g} s, mixing time {:.3g} s, record {:.3g} s\n",
+        model.longest_wait_seconds, model.mixing_seconds, model.record_seconds);
+    for (const auto& w : model.warnings) out << "  warning: " << w << "\n";
+    out << "  time [s]     mean [kg]      CV       never coated\n";
+    std::string text = std::string(kCsvHeader) + "\n";
+    a::Json points = a::Json::array();
+    for (const auto& p : pr.points) {
+      const bool recorded = p.time <= db.times.back() + 1e-9;
+      out << fmt::format("  {:>8.6g}  {:>12.5g}  {:>8.4f}  {:>10.2f} %{}\n", p.time, p.mean, p.cv,
+                         100 * p.never_coated_share, recorded ? "  (the record)" : "");
+      text += fmt::format("{},{},{},{},{}\n", a::formatShortest(p.time), a::formatShortest(p.mean),
+                          a::formatShortest(p.cv), a::formatShortest(p.never_coated_share),
+                          recorded ? 1 : 0);
+      points.push_back({{"time_s", p.time},
+                        {"mean_kg", p.mean},
+                        {"cv", p.cv},
+                        {"never_coated_share", p.never_coated_share},
+                        {"from_record", recorded}});
+    }
+    out << fmt::format("  predicted in {:.3g} s\n", pr.wall_seconds);
+    a::Json j;
+    j["long_time_model"] = {{"record_from_s", db.times.front()},
+                            {"record_to_s", db.times.back()},
+                            {"interval_s", db.interval},
+                            {"parcels", db.ids.size()},
+                            {"left_out", db.left_out},
+                            {"rings", grid.rings},
+                            {"layers", grid.layers},
+                            {"r_max_m", db.grid.r_max},
+                            {"z_max_m", db.grid.z_max},
+                            {"longest_wait_s", model.longest_wait_seconds},
+                            {"mixing_s", model.mixing_seconds},
+                            {"seed", o.seed},
+                            {"warnings", model.warnings},
+                            {"wall_s", pr.wall_seconds}};
+    j["points"] = points;
+    fs::create_directories(folder);
+    a::writeJsonFile(json, j, 1);
+    a::writeFileAtomically(csv, text);
+    out << "  written: " << json.string() << ", " << csv.string() << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    err << "cosim batch: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace cosim::orchestrator

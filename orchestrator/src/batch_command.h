@@ -1,0 +1,29 @@
+// `cosim batch`: a whole coating batch (minutes to an hour) from a recorded run, by the long-time
+// model of analysis/long_time.h (docs/physics.md, "Coating over a whole batch").
+//   cosim batch RUN [--until 3600] [--times 20,60,1200] [--from T] [--rings 6] [--layers 8]
+//                   [--seed 1] [-o FOLDER]
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace cosim::orchestrator {
+
+struct BatchOptions {
+  std::string run;
+  double until = 3600;        // [s] the batch's length
+  std::vector<double> times;  // [s] more times to report (besides a grid up to `until`)
+  double from = 0;            // [s] the record used starts here (skip the start-up)
+  int rings = 6;
+  int layers = 8;
+  std::uint64_t seed = 1;
+  std::string output;  // folder for batch.json and batch.csv (default RUN/batch)
+};
+
+CLI::App* addBatchCommand(CLI::App& app, BatchOptions& options);
+int runBatchCommand(const BatchOptions& options, std::ostream& out, std::ostream& err);
+
+}  // namespace cosim::orchestrator
