@@ -194,6 +194,7 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     }
   }
   a.zone_passes = analyseZonePasses(run, file, a, o, a.zone_passes_problem);
+  a.batch = analyseBatch(file, o, a.batch_problem);
   a.conditions = readOperatingConditions(
       {run, a.parameters, cg, o.coating_start, o.coating_density, o.u_mf}, file);
   std::vector<RunAnalysis> one;

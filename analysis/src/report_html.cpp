@@ -469,6 +469,7 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
   endOfRun(h, a, o);
   extrapolation(h, a, o);
   h << zonePassesHtml(a);
+  h << batchHtml(a);
   massBalanceSection(h, a);
   if (std::isfinite(a.wall_seconds)) {
     h << "<p>Run time: " << g(a.wall_seconds) << " s wall clock over " << a.steps

@@ -37,6 +37,13 @@ Json zonePassesJson(const RunAnalysis& a);
 void writeZonePassTables(const RunAnalysis& a, const std::filesystem::path& dir);
 std::string zonePassesHtml(const RunAnalysis& a);
 
+// The whole batch by the long-time model (report_batch.cpp): computed from the run's snapshots,
+// its report.json object and its HTML section.
+std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const ReportOptions& o,
+                                            std::string& problem);
+Json batchJson(const RunAnalysis& a);
+std::string batchHtml(const RunAnalysis& a);
+
 // Scenario parameters (summary.json) present in every run with different values.
 std::vector<std::string> variedParameters(const std::vector<RunAnalysis>& runs);
 double parameter(const RunAnalysis& a, const std::string& name);

@@ -323,6 +323,7 @@ Json toJson(const RunAnalysis& a, const ReportOptions& o) {
   j["wall_seconds"] = a.wall_seconds;
   j["steps"] = static_cast<unsigned long long>(a.steps);
   j["zone_passes"] = zonePassesJson(a);
+  j["batch_model"] = batchJson(a);
   return j;
 }
 

@@ -265,6 +265,8 @@ int main(int argc, char** argv) {
       "max_uncoated_share=0.3); the report then says it was judged with non-default criteria");
   bool no_plots = false;
   rep->add_flag("--no-plots", no_plots, "numbers and HTML only, no matplotlib");
+  rep->add_flag("--no-batch{false}", rep_opt.batch,
+                "leave out the whole batch by the long-time model (cosim batch)");
 
   cosim::analysis::PivCommandOptions piv_opt;
   auto* piv = app.add_subcommand(

@@ -56,6 +56,7 @@ struct ReportOptions {
   std::size_t bootstrap_resamples = 100;
   std::size_t bootstrap_snapshots = 50;
   bool plots = true;  // false: numbers and HTML only
+  bool batch = true;  // the whole batch by the long-time model (cosim batch) to predict_until
   // Check for CI: when set, runReport returns 3 if a run has no mass balance or its |error %|
   // exceeds this limit (the project's target: 0.01). NaN = no check.
   double mass_balance_limit_percent = std::numeric_limits<double>::quiet_NaN();
@@ -88,6 +89,15 @@ struct ZonePassReport {
   std::vector<std::string> notes;  // plain-language cautions
 };
 
+// The long-time model's answer for a run's report (cosim batch with its defaults).
+struct BatchPrediction {
+  double record_from = 0, record_to = 0;  // [s]
+  double longest_wait = 0, mixing = 0;    // [s]
+  std::vector<std::string> warnings;
+  std::vector<double> times, mean, cv, never_coated;  // at the record's end, then later
+  double wall_seconds = 0;
+};
+
 struct RunAnalysis {
   // Standard errors shown with a1 and a2: the particle bootstrap when available, else HC3.
   double a1Error() const { return bootstrap.ok ? bootstrap.a1_se : fit.a1_se; }
@@ -113,6 +123,10 @@ struct RunAnalysis {
   std::size_t steps = 0;                      // rows of the time series
   std::optional<ZonePassReport> zone_passes;  // when the run recorded zone_passes.csv
   std::string zone_passes_problem;            // why there is none
+  // The whole batch by the long-time model (long_time.h) to predict_until; none when the record
+  // holds fewer than 3 evenly spaced snapshots or the options turn it off (then the reason)
+  std::optional<BatchPrediction> batch;
+  std::string batch_problem;
   OperatingConditions conditions;             // flow, u / u_mf, parcels, cg, grain scale, ...
   // The units the pages show: one for every coating mass (from the largest mean coating per
   // parcel; a comparison puts every run in the same), one for the layer thickness.
