@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cosim/analysis/display_units.h"
 #include "cosim/analysis/long_time.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/report.h"
@@ -72,20 +73,21 @@ std::string batchHtml(const RunAnalysis& a) {
   h << "<p>Every parcel carried on from the record's end between compartments of the bed, with "
        "the coating gains the record holds for each move (<code>cosim batch</code>; "
        "docs/physics.md, section 5b). Unlike Eqs. 9-10 it holds for a poorly mixed bed too. "
-    << fmt::format("Record {:.3g}-{:.3g} s; the longest wait for the zone {:.3g} s.", b.record_from,
-                   b.record_to, b.longest_wait)
+    << fmt::format("Record {:.3g}-{:.3g} s; the longest wait for the zone {:.3g} s. The first row "
+                   "is the record's own end.",
+                   b.record_from, b.record_to, b.longest_wait)
     << "</p>\n";
   if (!b.warnings.empty()) {
     h << "<ul>\n";
     for (const auto& w : b.warnings) h << "<li><b>Caution:</b> " << htmlEscape(w) << ".</li>\n";
     h << "</ul>\n";
   }
-  h << "<table>\n<tr><th>time</th><th>mean per parcel [kg]</th><th>CV</th><th>never coated</th>"
-       "</tr>\n";
+  h << "<table>\n<tr><th>time [s]</th><th>mean per parcel [" << a.mass_unit.name
+    << "]</th><th>CV</th><th>never coated [%]</th></tr>\n";
   for (std::size_t i = 0; i < b.times.size(); ++i) {
-    h << fmt::format("<tr><td>{:.6g} s{}</td><td>{:.4g}</td><td>{:.4f}</td><td>{:.2f} %</td></tr>\n",
-                     b.times[i], i == 0 ? " (the record)" : "", b.mean[i], b.cv[i],
-                     100 * b.never_coated[i]);
+    h << "<tr><td>" << htmlNumber(b.times[i], 6) << "</td><td>"
+      << htmlNumber(a.mass_unit.of(b.mean[i])) << "</td><td>" << htmlNumber(b.cv[i])
+      << "</td><td>" << htmlNumber(100 * b.never_coated[i], 3) << "</td></tr>\n";
   }
   h << "</table>\n";
   return h.str();
