@@ -45,7 +45,7 @@ CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
       ->required()
       ->check(CLI::ExistingDirectory);
   b->add_option("--until", o.until, "the batch's length [s] (default 3600)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(0.001, 1.0e7));
   b->add_option("--times", o.times, "more times to report [s], comma separated")
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);

@@ -1,0 +1,32 @@
+// cosim bench SCENARIO [--steps N] [--warmup N] [--set K=V] [-o FOLDER]
+#include <iostream>
+#include <memory>
+
+#include "../bench.h"
+#include "commands.h"
+
+namespace cosim::orchestrator {
+
+void addBenchCommand(CLI::App& app, Commands& commands) {
+  auto o = std::make_shared<BenchOptions>();
+  auto* bench = app.add_subcommand(
+      "bench",
+      "Cost of a coupled step against its solvers alone, on the same scene: coupled (its terms "
+      "recorded), the particles alone under the recorded forcing and the fluid alone with the "
+      "recorded particle terms, per step with phases; the last line reads "
+      "'coupled/max(dem,cfd) = R; serial share = S %'");
+  bench->add_option("scenario", o->scenario, "scenario file or folder")->required();
+  bench->add_option("--steps", o->steps, "timed coupling steps per stage (default 50)")
+      ->check(CLI::Range(1, 1000000000));
+  bench->add_option("--warmup", o->warmup, "untimed steps before them (default 5)");
+  bench->add_option("--set", o->sets, "override a value (as for run)")->take_all();
+  bench->add_option("--unset", o->unsets, "remove a node (as for run)")->take_all();
+  bench->add_option("-o,--output", o->output,
+                    "folder of the stages' run folders (default runs/<scene>-bench)");
+  commands.push_back({bench, [o] {
+                        catchStopSignals();
+                        return runBench(*o, std::cout);
+                      }});
+}
+
+}  // namespace cosim::orchestrator

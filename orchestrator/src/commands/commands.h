@@ -1,0 +1,40 @@
+// The subcommands of `cosim`, one file each in this folder: each adds its CLI11 subcommand with
+// its options and validators and says how to run it. main.cpp only collects them.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace cosim::orchestrator {
+
+struct Command {
+  CLI::App* app;             // the subcommand
+  std::function<int()> run;  // called when it was given; returns the exit code
+};
+using Commands = std::vector<Command>;
+
+// Help text shared by the commands that take a scene
+extern const char* const kSetHelp;
+extern const char* const kUnsetHelp;
+
+// Ctrl-C and SIGTERM stop a run after its step with a checkpoint (a second one at once);
+// `pipe`: a closed pipe is an error to handle, not a signal that ends the process.
+void catchStopSignals(bool ignore_pipe = true);
+
+void addRunCommand(CLI::App& app, Commands& commands);
+void addResumeCommand(CLI::App& app, Commands& commands);
+void addPackCommand(CLI::App& app, Commands& commands);
+void addValidateCommand(CLI::App& app, Commands& commands);
+void addStudyCommand(CLI::App& app, Commands& commands);
+void addBenchCommand(CLI::App& app, Commands& commands);
+void addModelsCommand(CLI::App& app, Commands& commands);
+void addKeysCommand(CLI::App& app, Commands& commands);
+void addFt4Commands(CLI::App& app, Commands& commands);
+void addBatchCommandLine(CLI::App& app, Commands& commands);
+void addReportCommand(CLI::App& app, Commands& commands);
+void addPivCommand(CLI::App& app, Commands& commands);
+void addPivCompareCommand(CLI::App& app, Commands& commands);
+
+}  // namespace cosim::orchestrator

@@ -1,0 +1,29 @@
+#include <csignal>
+
+#include "commands.h"
+#include "participants.h"
+
+namespace cosim::orchestrator {
+
+namespace {
+void onSignal(int sig) {
+  g_stop_signal = sig;
+  ++g_stop_count;
+}
+}  // namespace
+
+const char* const kSetHelp =
+    "override a value: key.path=value (e.g. coupling.end_time=0.5); a bare name sets a "
+    "scenario parameter (e.g. flow_lpm=50); a YAML map or list replaces the whole node (e.g. "
+    "'models.coating_zone={shape: sphere, center: [0, 0, 0.01], radius: 0.005}')";
+const char* const kUnsetHelp =
+    "remove a node (and everything below it) before the --set overrides, e.g. "
+    "models.coating_zone";
+
+void catchStopSignals(bool ignore_pipe) {
+  std::signal(SIGINT, onSignal);
+  std::signal(SIGTERM, onSignal);
+  if (ignore_pipe) std::signal(SIGPIPE, SIG_IGN);
+}
+
+}  // namespace cosim::orchestrator
