@@ -7,6 +7,7 @@
 
 #include "cosim/analysis/coating_statistics.h"
 #include "cosim/analysis/histogram.h"
+#include "cosim/analysis/long_time.h"
 #include "cosim/analysis/normality_test.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/link/fields.h"
@@ -71,3 +72,40 @@ static void NormalityK2(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * state.range(0));
 }
 BENCHMARK(NormalityK2)->Arg(65000);
+
+// The long-time model's batch: 65,000 parcels carried over `state.range(0)` intervals of 0.1 s
+// between 48 compartments (6 rings x 8 layers) whose moves hold 40 recorded gains each. A 60 min
+// batch is 36,000 intervals: the time per interval times 36,000 is its wall time.
+static void LongTimeBatch(benchmark::State& state) {
+  const int k = 48;
+  const std::size_t n = 65000;
+  CoatingDatabase db;
+  db.grid.rings = 6;
+  db.grid.layers = 8;
+  db.interval = 0.1;
+  db.times = {0.0, 0.1, 0.2};
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> st(0, k - 1);
+  for (std::size_t j = 0; j < n; ++j) db.ids.push_back(static_cast<std::int64_t>(j + 1));
+  db.state.assign(3, std::vector<int>(n));
+  db.coating.assign(3, std::vector<double>(n, 0.0));
+  for (auto& s : db.state)
+    for (auto& x : s) x = st(rng);
+  LongTimeModel m;
+  m.states = k;
+  m.interval = 0.1;
+  m.P.assign(k * k, 0.0);
+  m.gains.assign(k * k, {});
+  m.departures.assign(k, 100);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      m.P[a * k + b] = (a == b ? 0.5 : 0.5 / (k - 1));
+      for (int g = 0; g < 40; ++g) m.gains[a * k + b].push_back(a % 6 == 0 ? 1e-12 * g : 0.0);
+    }
+  for (auto _ : state) {
+    auto pr = predictLongTime(m, db, {0.2 + 0.1 * static_cast<double>(state.range(0))}, 1);
+    benchmark::DoNotOptimize(pr.final_coating.data());
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0) * static_cast<std::int64_t>(n));
+}
+BENCHMARK(LongTimeBatch)->Arg(100)->Unit(benchmark::kMillisecond);
