@@ -5,6 +5,7 @@ set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$repo"
 echo "== setup"; scripts/setup.sh
+echo "== format"; scripts/format-check.sh
 echo "== build"; scripts/build.sh
 # The libFuzzer targets (scenario loader, expression evaluator, protocol decoder), each for a
 # bounded time after an instrumented build of about 10 CPU-minutes; a crash fails the suite and

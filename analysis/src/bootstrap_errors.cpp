@@ -1,15 +1,15 @@
 #include "cosim/analysis/bootstrap_errors.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "cosim/analysis/growth_fit.h"
 
 namespace cosim::analysis {
 
-BootstrapErrors bootstrapGrowthErrors(const ParcelHistories& h, double coating_start, std::size_t resamples,
-                                      std::uint64_t seed) {
+BootstrapErrors bootstrapGrowthErrors(const ParcelHistories& h, double coating_start,
+                                      std::size_t resamples, std::uint64_t seed) {
   BootstrapErrors b;
   b.snapshots = h.time.size();
   b.parcels = h.mass.empty() ? 0 : h.mass.front().size();

@@ -6,7 +6,8 @@
 
 namespace cosim::analysis {
 
-CoatingStatistics coatingStatistics(double time, const std::vector<double>& m, double uncoated_relative) {
+CoatingStatistics coatingStatistics(double time, const std::vector<double>& m,
+                                    double uncoated_relative) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   CoatingStatistics s;
   s.time = time;

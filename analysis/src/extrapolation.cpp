@@ -35,7 +35,8 @@ PredictedDistribution predictDistribution(const GrowthFit& fit, double tau, doub
   return d;
 }
 
-PredictionCheck checkPrediction(const GrowthFit& fit, const std::vector<CoatingStatistics>& snapshots) {
+PredictionCheck checkPrediction(const GrowthFit& fit,
+                                const std::vector<CoatingStatistics>& snapshots) {
   PredictionCheck c;
   if (!fit.ok) return c;
   auto rel = [](double pred, double sim) { return sim != 0 ? (pred - sim) / sim : std::nan(""); };

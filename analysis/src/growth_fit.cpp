@@ -20,9 +20,11 @@ GrowthFit fitGrowth(const std::vector<CoatingStatistics>& snapshots, double t0, 
     g.variance.push_back(s.variance);
   }
   if (g.tau.size() < 3) {
-    g.problem = "only " + std::to_string(g.tau.size()) + " snapshot(s) with particles in the fit window [" +
-                std::to_string(t0) + ", " + std::to_string(t1) +
-                "] s after the coating start; at least 3 are needed (widen the window or record more often)";
+    g.problem = "only " + std::to_string(g.tau.size()) +
+                " snapshot(s) with particles in the fit window [" + std::to_string(t0) + ", " +
+                std::to_string(t1) +
+                "] s after the coating start; at least 3 are needed (widen the window or record "
+                "more often)";
     return g;
   }
   g.mean_fit = fitThroughOrigin(g.tau, g.mean);
@@ -32,8 +34,9 @@ GrowthFit fitGrowth(const std::vector<CoatingStatistics>& snapshots, double t0, 
   g.a1_se_classic = g.mean_fit.se_classic;
   const double b = g.variance_fit.slope;
   if (!(g.a1 > 0)) {
-    g.problem = "the mean coating mass does not grow over the fit window (a1 = " + std::to_string(g.a1) +
-                " kg/s): no coating happened; check the coating zone and the precursor feed";
+    g.problem =
+        "the mean coating mass does not grow over the fit window (a1 = " + std::to_string(g.a1) +
+        " kg/s): no coating happened; check the coating zone and the precursor feed";
     return g;
   }
   if (!(b > 0)) {
@@ -50,8 +53,10 @@ GrowthFit fitGrowth(const std::vector<CoatingStatistics>& snapshots, double t0, 
     mv += std::abs(g.variance[i]);
   }
   const double n = static_cast<double>(g.tau.size());
-  g.mean_relative_rms = mm > 0 ? g.mean_fit.rms_residual / (mm / n) : std::numeric_limits<double>::quiet_NaN();
-  g.variance_relative_rms = mv > 0 ? g.variance_fit.rms_residual / (mv / n) : std::numeric_limits<double>::quiet_NaN();
+  g.mean_relative_rms =
+      mm > 0 ? g.mean_fit.rms_residual / (mm / n) : std::numeric_limits<double>::quiet_NaN();
+  g.variance_relative_rms =
+      mv > 0 ? g.variance_fit.rms_residual / (mv / n) : std::numeric_limits<double>::quiet_NaN();
   g.ok = true;
   return g;
 }

@@ -88,7 +88,8 @@ CoatingDatabase readCoatingDatabase(const ParticleFile& file, double from, doubl
   }
   if (db.grid.r_max <= 0) db.grid.r_max = r_max * (1 + 1e-9);
   if (db.grid.z_max <= 0 && !heights.empty()) {  // the bed's top: 99 % of the parcels below
-    const auto q = heights.begin() + static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(heights.size() - 1));
+    const auto q = heights.begin() +
+                   static_cast<std::ptrdiff_t>(0.99 * static_cast<double>(heights.size() - 1));
     std::nth_element(heights.begin(), q, heights.end());
     db.grid.z_max = *q;
   }
@@ -149,8 +150,10 @@ std::vector<double> intervalsToTheZone(const Matrix& p, int k, const std::vector
   }
   std::vector<int> idx;
   for (int a = 0; a < k; ++a) {
-    if (coats[a]) h[a] = 0;
-    else if (reach[a]) idx.push_back(a);
+    if (coats[a])
+      h[a] = 0;
+    else if (reach[a])
+      idx.push_back(a);
   }
   const std::size_t n = idx.size();
   std::vector<double> A(n * (n + 1), 0.0);  // [I - Q | 1]
@@ -303,7 +306,8 @@ LongTimePrediction predictLongTime(const LongTimeModel& model, const CoatingData
     const auto s = coatingStatistics(t, c, 0.0);
     std::size_t zero = 0;
     for (double x : c) zero += x <= 0 ? 1 : 0;
-    return LongTimePoint{t, s.mean, s.cv, n ? static_cast<double>(zero) / static_cast<double>(n) : 0.0};
+    return LongTimePoint{t, s.mean, s.cv,
+                         n ? static_cast<double>(zero) / static_cast<double>(n) : 0.0};
   };
   for (double t : times) {
     if (t <= end + 1e-9 * std::max(1.0, end)) {  // within the record: read it

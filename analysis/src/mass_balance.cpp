@@ -28,12 +28,14 @@ MassBalance massBalance(const TimeSeries& s) {
   const auto& out = s.at(column::precursor_out);
   const auto& held = s.at(column::precursor_held);
   const auto& coated = s.at(column::coated_mass);
-  if (s.rows() == 0) throw std::runtime_error(s.source + " has no rows: no coupling step was recorded");
+  if (s.rows() == 0)
+    throw std::runtime_error(s.source + " has no rows: no coupling step was recorded");
   const bool initialRow = in.front() == 0.0 && out.front() == 0.0;
   MassBalance b = massBalance(in.back(), out.back(), initialRow ? held.front() : 0.0, held.back(),
                               initialRow ? coated.front() : 0.0, coated.back());
-  b.initial_state = initialRow ? "first row (t = " + std::to_string(s.at(column::time).front()) + " s)"
-                               : "assumed: no precursor in the gas and no coating at the start";
+  b.initial_state = initialRow
+                        ? "first row (t = " + std::to_string(s.at(column::time).front()) + " s)"
+                        : "assumed: no precursor in the gas and no coating at the start";
   b.obtained_source = s.source + ", column coated_mass (coating credited by the orchestrator)";
   if (s.has(column::precursor_removed)) {
     const auto& removed = s.at(column::precursor_removed);
@@ -46,7 +48,8 @@ MassBalance massBalance(const TimeSeries& s) {
 
 MassBalance withParticleCoating(const MassBalance& b, double coated_start, double coated_end,
                                 const std::string& source) {
-  MassBalance r = massBalance(b.precursor_in, b.precursor_out, b.held_start, b.held_end, coated_start, coated_end);
+  MassBalance r = massBalance(b.precursor_in, b.precursor_out, b.held_start, b.held_end,
+                              coated_start, coated_end);
   r.initial_state = b.initial_state;
   r.obtained_source = source;
   r.has_removed = b.has_removed;

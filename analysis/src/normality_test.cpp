@@ -20,11 +20,13 @@ double skewnessScore(double g1, double n) {
 // Anscombe & Glynn (1983): kurtosis b2 -> standard normal score.
 double kurtosisScore(double b2, double n) {
   const double e = 3.0 * (n - 1.0) / (n + 1.0);
-  const double var = 24.0 * n * (n - 2.0) * (n - 3.0) / ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0));
+  const double var =
+      24.0 * n * (n - 2.0) * (n - 3.0) / ((n + 1.0) * (n + 1.0) * (n + 3.0) * (n + 5.0));
   const double x = (b2 - e) / std::sqrt(var);
   const double sqrt_beta1 = 6.0 * (n * n - 5.0 * n + 2.0) / ((n + 7.0) * (n + 9.0)) *
                             std::sqrt(6.0 * (n + 3.0) * (n + 5.0) / (n * (n - 2.0) * (n - 3.0)));
-  const double a = 6.0 + 8.0 / sqrt_beta1 * (2.0 / sqrt_beta1 + std::sqrt(1.0 + 4.0 / (sqrt_beta1 * sqrt_beta1)));
+  const double a = 6.0 + 8.0 / sqrt_beta1 *
+                             (2.0 / sqrt_beta1 + std::sqrt(1.0 + 4.0 / (sqrt_beta1 * sqrt_beta1)));
   const double term1 = 1.0 - 2.0 / (9.0 * a);
   const double denom = 1.0 + x * std::sqrt(2.0 / (a - 4.0));
   const double term2 = (denom < 0 ? -1.0 : 1.0) * std::cbrt((1.0 - 2.0 / a) / std::abs(denom));
@@ -36,7 +38,8 @@ NormalityTest dagostinoPearson(const std::vector<double>& v) {
   NormalityTest t;
   t.n = v.size();
   if (t.n < 20) {
-    t.problem = "normality not tested: " + std::to_string(t.n) + " parcels, the test needs at least 20";
+    t.problem =
+        "normality not tested: " + std::to_string(t.n) + " parcels, the test needs at least 20";
     return t;
   }
   const double n = static_cast<double>(t.n);

@@ -7,7 +7,8 @@
 namespace cosim::analysis {
 
 OriginFit fitThroughOrigin(const std::vector<double>& x, const std::vector<double>& y) {
-  if (x.size() != y.size()) throw std::invalid_argument("fitThroughOrigin: x and y differ in length");
+  if (x.size() != y.size())
+    throw std::invalid_argument("fitThroughOrigin: x and y differ in length");
   if (x.empty()) throw std::invalid_argument("fitThroughOrigin: no points");
   double sxx = 0, sxy = 0;
   for (std::size_t i = 0; i < x.size(); ++i) {
@@ -25,7 +26,8 @@ OriginFit fitThroughOrigin(const std::vector<double>& x, const std::vector<doubl
     ss += r * r;
     const double h = x[i] * x[i] / sxx;
     const double lever = 1.0 - h;
-    hc3 += lever > 0 ? x[i] * x[i] * r * r / (lever * lever) : std::numeric_limits<double>::infinity();
+    hc3 +=
+        lever > 0 ? x[i] * x[i] * r * r / (lever * lever) : std::numeric_limits<double>::infinity();
   }
   const double n = static_cast<double>(x.size());
   f.rms_residual = std::sqrt(ss / n);

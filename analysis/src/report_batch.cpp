@@ -73,9 +73,10 @@ std::string batchHtml(const RunAnalysis& a) {
   h << "<p>Every parcel carried on from the record's end between compartments of the bed, with "
        "the coating gains the record holds for each move (<code>cosim batch</code>; "
        "docs/physics.md, section 5b). Unlike Eqs. 9-10 it holds for a poorly mixed bed too. "
-    << fmt::format("Record {:.3g}-{:.3g} s; the longest wait for the zone {:.3g} s. The first row "
-                   "is the record's own end.",
-                   b.record_from, b.record_to, b.longest_wait)
+    << fmt::format(
+           "Record {:.3g}-{:.3g} s; the longest wait for the zone {:.3g} s. The first row "
+           "is the record's own end.",
+           b.record_from, b.record_to, b.longest_wait)
     << "</p>\n";
   if (!b.warnings.empty()) {
     h << "<ul>\n";
@@ -86,8 +87,8 @@ std::string batchHtml(const RunAnalysis& a) {
     << "]</th><th>CV</th><th>never coated [%]</th></tr>\n";
   for (std::size_t i = 0; i < b.times.size(); ++i) {
     h << "<tr><td>" << htmlNumber(b.times[i], 6) << "</td><td>"
-      << htmlNumber(a.mass_unit.of(b.mean[i])) << "</td><td>" << htmlNumber(b.cv[i])
-      << "</td><td>" << htmlNumber(100 * b.never_coated[i], 3) << "</td></tr>\n";
+      << htmlNumber(a.mass_unit.of(b.mean[i])) << "</td><td>" << htmlNumber(b.cv[i]) << "</td><td>"
+      << htmlNumber(100 * b.never_coated[i], 3) << "</td></tr>\n";
   }
   h << "</table>\n";
   return h.str();

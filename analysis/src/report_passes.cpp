@@ -6,9 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
-#include <unordered_map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 #include <unordered_set>
 
 #include "cosim/analysis/display_units.h"
@@ -76,7 +76,8 @@ std::string ledgerProblem(const ParticleFile& file, const ZonePassStatistics& s,
         "resume it, or compare statistics only",
         end, snaps[last].time);
   const auto first_ids = file.ids(0), last_ids = file.ids(last);
-  const auto first_m = file.read(0, field::coating_mass), last_m = file.read(last, field::coating_mass);
+  const auto first_m = file.read(0, field::coating_mass),
+             last_m = file.read(last, field::coating_mass);
   std::unordered_map<std::int64_t, double> start;
   for (std::size_t i = 0; i < first_ids.size(); ++i) start[first_ids[i]] = first_m[i];
   std::unordered_map<std::int64_t, std::size_t> in_stats;
@@ -91,7 +92,8 @@ std::string ledgerProblem(const ParticleFile& file, const ZonePassStatistics& s,
     const auto ps = in_stats.find(last_ids[i]);
     if (st == start.end() || ps == in_stats.end()) continue;
     const double gained = last_m[i] - st->second, passes = s.parcel_coating[ps->second];
-    if (std::fabs(gained - passes) > 1e-9 * std::max({std::fabs(gained), std::fabs(passes), 1e-6 * largest}))
+    if (std::fabs(gained - passes) >
+        1e-9 * std::max({std::fabs(gained), std::fabs(passes), 1e-6 * largest}))
       return fmt::format(
           "parcel {} gained {:.6g} kg of coating between t = {:.6g} and {:.6g} s (particles.h5) "
           "but its passes hold {:.6g} kg (zone_passes.csv)",
@@ -130,7 +132,8 @@ std::optional<ZonePassReport> analyseZonePasses(const std::filesystem::path& run
   r.stats = zonePassStatistics(passes, {bed.begin(), bed.end()}, start, end);
   r.coating_on_parcels = a.snapshots.back().total - a.snapshots.front().total;
   r.ledger_problem = ledgerProblem(file, r.stats, end);
-  if (!r.ledger_problem.empty()) r.notes.push_back("The records disagree: " + r.ledger_problem + ".");
+  if (!r.ledger_problem.empty())
+    r.notes.push_back("The records disagree: " + r.ledger_problem + ".");
   r.simulated_time = a.snapshots.back().time;
   r.simulated_mean = a.snapshots.back().mean;
   r.simulated_cv = a.snapshots.back().cv;

@@ -36,8 +36,9 @@ TimeSeriesRecorder::TimeSeriesRecorder(const std::filesystem::path& path,
     : path_(path), columns_(std::move(columns)) {
   for (const auto& c : columns_) {
     if (c.empty() || c.find_first_of(",\n\r\"") != std::string::npos || c == column::time) {
-      throw std::runtime_error("TimeSeriesRecorder: column name '" + c + "' for " + path.string() +
-                               " is not allowed (empty, 'time', or containing a comma, quote or newline)");
+      throw std::runtime_error(
+          "TimeSeriesRecorder: column name '" + c + "' for " + path.string() +
+          " is not allowed (empty, 'time', or containing a comma, quote or newline)");
     }
   }
   if (path.has_parent_path()) {
@@ -45,14 +46,15 @@ TimeSeriesRecorder::TimeSeriesRecorder(const std::filesystem::path& path,
     std::filesystem::create_directories(path.parent_path(), ec);
   }
   const std::string h = header(columns_);
-  if (mode == Mode::append && std::filesystem::exists(path) && std::filesystem::file_size(path) > 0) {
+  if (mode == Mode::append && std::filesystem::exists(path) &&
+      std::filesystem::file_size(path) > 0) {
     std::ifstream in(path);
     std::string first;
     std::getline(in, first);
     if (!first.empty() && first.back() == '\r') first.pop_back();
     if (first != h) {
-      throw std::runtime_error(path.string() + " has columns '" + first + "' but this run writes '" + h +
-                               "': use a new run folder");
+      throw std::runtime_error(path.string() + " has columns '" + first +
+                               "' but this run writes '" + h + "': use a new run folder");
     }
     file_ = std::fopen(path.c_str(), "a");
   } else {
@@ -73,9 +75,9 @@ TimeSeriesRecorder::~TimeSeriesRecorder() {
 
 void TimeSeriesRecorder::write(double time, const std::vector<double>& values) {
   if (values.size() != columns_.size()) {
-    throw std::runtime_error("TimeSeriesRecorder: " + std::to_string(values.size()) + " values for " +
-                             std::to_string(columns_.size()) + " columns (" + header(columns_) +
-                             ") in " + path_.string());
+    throw std::runtime_error("TimeSeriesRecorder: " + std::to_string(values.size()) +
+                             " values for " + std::to_string(columns_.size()) + " columns (" +
+                             header(columns_) + ") in " + path_.string());
   }
   std::string row = formatShortest(time);
   for (double v : values) {
@@ -107,16 +109,19 @@ const std::vector<double>& TimeSeries::at(const std::string& name) const {
 TimeSeries readTimeSeries(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) {
-    throw std::runtime_error(path.string() + " cannot be read: the run wrote no time series "
+    throw std::runtime_error(path.string() +
+                             " cannot be read: the run wrote no time series "
                              "(did it complete a coupling step?)");
   }
   TimeSeries ts;
   ts.source = path.string();
   std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(path.string() + " is empty (expected a header line 'time,...')");
+  if (!std::getline(in, line))
+    throw std::runtime_error(path.string() + " is empty (expected a header line 'time,...')");
   ts.columns = splitCsv(line);
   if (ts.columns.empty() || ts.columns.front() != column::time) {
-    throw std::runtime_error(path.string() + ":1: header must start with 'time', found '" + line + "'");
+    throw std::runtime_error(path.string() + ":1: header must start with 'time', found '" + line +
+                             "'");
   }
   ts.values.assign(ts.columns.size(), {});
   std::vector<std::string> lines;
@@ -129,8 +134,9 @@ TimeSeries readTimeSeries(const std::filesystem::path& path) {
     auto cells = splitCsv(l);
     if (cells.size() != ts.columns.size()) {
       if (i + 1 == lines.size()) break;
-      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": " + std::to_string(cells.size()) +
-                               " values, header has " + std::to_string(ts.columns.size()));
+      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": " +
+                               std::to_string(cells.size()) + " values, header has " +
+                               std::to_string(ts.columns.size()));
     }
     std::vector<double> row;
     bool ok = true;
@@ -145,7 +151,8 @@ TimeSeries readTimeSeries(const std::filesystem::path& path) {
     }
     if (!ok) {
       if (i + 1 == lines.size()) break;
-      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": not a number in '" + l + "'");
+      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": not a number in '" +
+                               l + "'");
     }
     for (std::size_t c = 0; c < row.size(); ++c) ts.values[c].push_back(row[c]);
   }

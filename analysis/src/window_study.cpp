@@ -23,8 +23,8 @@ double interpolate(const std::vector<double>& x, const std::vector<double>& y, d
 }
 }  // namespace
 
-WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, double t0, double coating_start,
-                           double horizon, const TimeSeries* wall) {
+WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, double t0,
+                           double coating_start, double horizon, const TimeSeries* wall) {
   constexpr double nan = std::numeric_limits<double>::quiet_NaN();
   WindowStudy w;
   w.horizon = horizon;
@@ -37,14 +37,17 @@ WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, doub
   for (int k = 2; k <= 10; ++k) {
     WindowStudyPoint p;
     const double nominal = k == 10 ? w.run_end : t0 + 0.1 * k * (w.run_end - t0);
-    const double slack = 1e-9 * std::max(1.0, std::abs(nominal));  // a snapshot at the window end is in
+    const double slack =
+        1e-9 * std::max(1.0, std::abs(nominal));  // a snapshot at the window end is in
     const GrowthFit f = fitGrowth(snapshots, t0, nominal + slack, coating_start);
     // A window holding the same snapshots as the previous one repeats it.
     if (!w.points.empty() && f.tau.size() == fittedBefore) continue;
     fittedBefore = f.tau.size();
     p.ok = f.ok;
     p.t_end = f.ok ? f.time.back() : nominal;  // the last snapshot the fit used
-    p.wall_seconds = haveWall ? interpolate(wall->at(column::time), wall->at(column::wall_seconds), p.t_end) : nan;
+    p.wall_seconds =
+        haveWall ? interpolate(wall->at(column::time), wall->at(column::wall_seconds), p.t_end)
+                 : nan;
     if (f.ok) {
       p.a1 = f.a1;
       p.a1_se = f.a1_se;
@@ -54,7 +57,8 @@ WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, doub
       const double tau = w.run_end - coating_start;
       p.cv_run_end = tau > 0 ? (f.a2 / f.a1) / std::sqrt(tau) : nan;
       // A prediction only for windows that end before the run does.
-      p.cv_run_end_error = p.t_end < w.run_end && last.cv > 0 ? (p.cv_run_end - last.cv) / last.cv : nan;
+      p.cv_run_end_error =
+          p.t_end < w.run_end && last.cv > 0 ? (p.cv_run_end - last.cv) / last.cv : nan;
     }
     w.points.push_back(p);
   }

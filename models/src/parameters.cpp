@@ -16,8 +16,8 @@ double Parameters::number(const std::string& k) const {
   auto it = numbers_.find(k);
   if (it == numbers_.end()) {
     if (texts_.count(k)) {
-      throw ModelError(owner_ + ": parameter '" + k + "' must be a number, got '" +
-                       texts_.at(k) + "'");
+      throw ModelError(owner_ + ": parameter '" + k + "' must be a number, got '" + texts_.at(k) +
+                       "'");
     }
     throw ModelError(owner_ + ": missing parameter '" + k + "'");
   }
@@ -85,7 +85,8 @@ bool Parameters::flag(const std::string& k, bool fallback) const {
     if (it->second == 0.0) return false;
   } else if (auto t = texts_.find(k); t != texts_.end()) {
     std::string v = t->second;
-    std::transform(v.begin(), v.end(), v.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    std::transform(v.begin(), v.end(), v.begin(),
+                   [](unsigned char ch) { return std::tolower(ch); });
     if (v == "true" || v == "yes" || v == "on" || v == "1") return true;
     if (v == "false" || v == "no" || v == "off" || v == "0") return false;
   }
@@ -117,8 +118,8 @@ void Parameters::rejectUnknown(const std::vector<std::string>& known) const {
     if (std::find(known.begin(), known.end(), k) == known.end()) {
       std::string list;
       for (const auto& q : known) list += (list.empty() ? "" : ", ") + q;
-      throw ModelError(owner_ + ": unknown parameter '" + k + "' (known: " +
-                       (list.empty() ? "none" : list) + ")");
+      throw ModelError(owner_ + ": unknown parameter '" + k +
+                       "' (known: " + (list.empty() ? "none" : list) + ")");
     }
   }
 }

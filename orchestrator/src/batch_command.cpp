@@ -2,11 +2,10 @@
 
 #include <fmt/format.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "cosim/analysis/files.h"
@@ -29,8 +28,9 @@ std::vector<double> reportTimes(double end, double until, const std::vector<doub
   if (until > end) t.push_back(until);
   for (double x : extra) t.push_back(x);
   std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end(), [](double x, double y) { return std::fabs(x - y) < 1e-9; }),
-          t.end());
+  t.erase(
+      std::unique(t.begin(), t.end(), [](double x, double y) { return std::fabs(x - y) < 1e-9; }),
+      t.end());
   return t;
 }
 }  // namespace
@@ -78,8 +78,8 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     out << fmt::format(
         "cosim batch: {} parcels, record t = {:g} .. {:g} s ({} snapshots, every {:g} s), {} x {} "
         "compartments ({} rings to r = {:.4g} m, {} layers to z = {:.4g} m)\n",
-        db.ids.size(), db.times.front(), db.times.back(), db.times.size(), db.interval,
-        grid.rings, grid.layers, grid.rings, db.grid.r_max, grid.layers, db.grid.z_max);
+        db.ids.size(), db.times.front(), db.times.back(), db.times.size(), db.interval, grid.rings,
+        grid.layers, grid.rings, db.grid.r_max, grid.layers, db.grid.z_max);
     if (db.left_out > 0)
       out << fmt::format("  {} parcels not in every snapshot (inserted or deleted) left out\n",
                          db.left_out);

@@ -61,7 +61,7 @@ class CoatingLedger {
 
  private:
   Balance b_;
-  std::map<std::int64_t, double> pending_;  // parcel id -> precursor removed, not yet paid
+  std::map<std::int64_t, double> pending_;    // parcel id -> precursor removed, not yet paid
   std::map<std::int64_t, double> in_flight_;  // paid with the step under way, not yet delivered
 };
 

@@ -22,10 +22,10 @@ int main(int argc, char** argv) {
       "  cosim ft4 energy runs/ft4-rheometer\n"};
   app.require_subcommand(1);
   Commands commands;
-  for (auto add : {addRunCommand, addResumeCommand, addPackCommand, addValidateCommand,
-                   addStudyCommand, addBenchCommand, addModelsCommand, addKeysCommand,
-                   addFt4Commands, addBatchCommandLine, addReportCommand, addPivCommand,
-                   addPivCompareCommand})
+  for (auto add :
+       {addRunCommand, addResumeCommand, addPackCommand, addValidateCommand, addStudyCommand,
+        addBenchCommand, addModelsCommand, addKeysCommand, addFt4Commands, addBatchCommandLine,
+        addReportCommand, addPivCommand, addPivCompareCommand})
     add(app, commands);
 
   CLI11_PARSE(app, argc, argv);

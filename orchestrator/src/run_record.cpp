@@ -1,11 +1,11 @@
 #include "run_record.h"
 
-#include <algorithm>
 #include <fcntl.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
@@ -269,8 +269,8 @@ void RunRecord::resumeRecorders(std::size_t rows, double time, double next_outpu
   // (the parcels at the stop, so that its records ended together): the resumed run's file reads
   // as one that never stopped. The last one on the output times is at next_output - interval.
   const double scheduled = next_output - sc_.output.interval;
-  particles_->truncateAfter(
-      std::min(time, scheduled + 1e-9 * std::max({1.0, std::fabs(scheduled), sc_.output.interval})));
+  particles_->truncateAfter(std::min(
+      time, scheduled + 1e-9 * std::max({1.0, std::fabs(scheduled), sc_.output.interval})));
   next_output_ = next_output;
 }
 

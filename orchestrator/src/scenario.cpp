@@ -1,7 +1,5 @@
 #include "scenario.h"
 
-#include "cosim/util/long_quotes.h"
-
 #include <fmt/format.h>
 #include <yaml-cpp/depthguard.h>
 
@@ -10,6 +8,7 @@
 #include <set>
 #include <sstream>
 
+#include "cosim/util/long_quotes.h"
 #include "scenario/limits.h"
 #include "scenario/yaml_input.h"
 

@@ -22,7 +22,8 @@ ParcelHistories tracked(std::mt19937_64& rng, std::size_t parcels) {
 
 GrowthFit fitOf(const ParcelHistories& h) {
   std::vector<CoatingStatistics> stats;
-  for (std::size_t s = 0; s < h.time.size(); ++s) stats.push_back(coatingStatistics(h.time[s], h.mass[s]));
+  for (std::size_t s = 0; s < h.time.size(); ++s)
+    stats.push_back(coatingStatistics(h.time[s], h.mass[s]));
   return fitGrowth(stats, 0.0, h.time.back());
 }
 }  // namespace

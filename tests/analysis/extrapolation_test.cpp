@@ -46,7 +46,8 @@ TEST(Extrapolation, PredictionCheckedAgainstLaterSimulatedTimes) {
   const double a1 = 5e-9, a2 = 1e-9, dt = 2.5;
   const auto masses = test::trackedCoating(rng, 4000, a1, a2, dt, 30);
   std::vector<CoatingStatistics> snaps;
-  for (std::size_t s = 0; s < masses.size(); ++s) snaps.push_back(coatingStatistics(dt * static_cast<double>(s + 1), masses[s]));
+  for (std::size_t s = 0; s < masses.size(); ++s)
+    snaps.push_back(coatingStatistics(dt * static_cast<double>(s + 1), masses[s]));
   const auto fit = fitGrowth(snaps, 0.0, 20.0);
   ASSERT_TRUE(fit.ok);
   const auto c = checkPrediction(fit, snaps);

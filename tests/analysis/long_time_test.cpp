@@ -3,13 +3,13 @@
 // zone, gaining a fixed coating on every interval that starts in the zone). The model fitted on
 // 40 intervals of it predicts the mean, the CV and the never-coated share hundreds of intervals
 // later as the exact chain gives them (dynamic programming over compartment and passes).
+#include "cosim/analysis/long_time.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 #include <vector>
-
-#include "cosim/analysis/long_time.h"
 
 using namespace cosim::analysis;
 
@@ -145,7 +145,8 @@ TEST(LongTimeModel, SaysWhenTheRecordIsTooShortForTheSlowMotion) {
   const CoatingDatabase db = synthetic(stuck, 1000, 40, 3);
   const LongTimeModel s = fitLongTimeModel(db);
   bool named = false;
-  for (const auto& w : s.warnings) named |= w.find("no parcel was seen to leave") != std::string::npos;
+  for (const auto& w : s.warnings)
+    named |= w.find("no parcel was seen to leave") != std::string::npos;
   EXPECT_TRUE(named);
   // all start far from the jet and never leave: none is ever coated
   EXPECT_EQ(predictLongTime(s, db, {3600.0}, 1).points[0].never_coated_share, 1.0);

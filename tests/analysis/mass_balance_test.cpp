@@ -19,7 +19,8 @@ TEST(MassBalance, PaperTable3) {
 TEST(MassBalance, FromCumulativeTimeSeriesWithInitialRow) {
   TimeSeries ts;
   ts.source = "test";
-  ts.columns = {"time", "precursor_in", "precursor_out", "precursor_held", "precursor_removed", "coated_mass"};
+  ts.columns = {"time",           "precursor_in",      "precursor_out",
+                "precursor_held", "precursor_removed", "coated_mass"};
   // Initial state: 1 mg held, 0.5 mg already coated. Three steps of 2 mg in and 0.5 mg out;
   // held grows 0.5 mg per step, so 1 mg per step is removed; the credit lags one step
   // (0, 1, 2 mg credited) and a final row after the last credit brings it to 3 mg. (The layout

@@ -31,7 +31,8 @@ TEST(TimeSeries, RowsAreOnDiskRightAfterWriteAndReadBack) {
 }
 
 TEST(TimeSeries, LastLineCutByACrashIsIgnored) {
-  const auto path = fs::temp_directory_path() / ("cosim_ts_cut_" + std::to_string(::getpid()) + ".csv");
+  const auto path =
+      fs::temp_directory_path() / ("cosim_ts_cut_" + std::to_string(::getpid()) + ".csv");
   {
     std::ofstream f(path);
     f << "time,a,b\n0,1,2\n0.1,3,4\n0.2,5";

@@ -25,7 +25,7 @@ TEST(WindowStudy, ExactGrowthGivesTheSameFitForEveryWindowAndWallTimesInterpolat
   const auto w = studyFitWindow(snaps, 0.0, 0.0, 1200.0, &ts);
   ASSERT_EQ(w.points.size(), 9u);
   EXPECT_DOUBLE_EQ(w.run_end, 20.0);
-  EXPECT_DOUBLE_EQ(w.points.front().t_end, 4.0);   // 20 % of the run
+  EXPECT_DOUBLE_EQ(w.points.front().t_end, 4.0);  // 20 % of the run
   EXPECT_DOUBLE_EQ(w.points.front().wall_seconds, 10.0);
   EXPECT_DOUBLE_EQ(w.points.back().t_end, 20.0);
   EXPECT_DOUBLE_EQ(w.points.back().wall_seconds, 50.0);
@@ -36,7 +36,8 @@ TEST(WindowStudy, ExactGrowthGivesTheSameFitForEveryWindowAndWallTimesInterpolat
     EXPECT_NEAR(p.cv_horizon, 0.5 / std::sqrt(1200.0), 1e-9);
   }
   EXPECT_NEAR(w.points.front().cv_run_end_error, 0.0, 1e-9);
-  EXPECT_TRUE(std::isnan(w.points.back().cv_run_end_error));  // the full window predicts nothing new
+  EXPECT_TRUE(
+      std::isnan(w.points.back().cv_run_end_error));  // the full window predicts nothing new
 }
 
 TEST(WindowStudy, ShortWindowOfADriftingRunShowsItsError) {

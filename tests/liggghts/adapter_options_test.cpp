@@ -1,10 +1,10 @@
 // Options of the liggghts adapter: defaults, and errors that name the key and what to write.
+#include "cosim/liggghts/adapter_options.h"
+
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 #include <string>
-
-#include "cosim/liggghts/adapter_options.h"
 
 using cosim::liggghts::AdapterOptions;
 using cosim::liggghts::DtCheckPolicy;
@@ -34,13 +34,16 @@ TEST(AdapterOptions, DefaultsAndValues) {
 TEST(AdapterOptions, ErrorsNameTheKey) {
   EXPECT_NE(errorOf("").find("needs at least `script:"), std::string::npos);
   EXPECT_NE(errorOf("impact_speed: 1").find("options.script: missing"), std::string::npos);
-  EXPECT_NE(errorOf("{script: a, impact_speed: -1}").find("options.impact_speed: must be a positive"),
-            std::string::npos);
-  EXPECT_NE(errorOf("{script: a, impact_speed: fast}").find("options.impact_speed: expected a number"),
-            std::string::npos);
+  EXPECT_NE(
+      errorOf("{script: a, impact_speed: -1}").find("options.impact_speed: must be a positive"),
+      std::string::npos);
+  EXPECT_NE(
+      errorOf("{script: a, impact_speed: fast}").find("options.impact_speed: expected a number"),
+      std::string::npos);
   EXPECT_NE(errorOf("{script: a, dt_check: maybe}").find("'maybe' is not one of refuse, warn, off"),
             std::string::npos);
-  EXPECT_NE(errorOf("{script: a, scrpit: b}").find("options.scrpit: unknown option"), std::string::npos);
+  EXPECT_NE(errorOf("{script: a, scrpit: b}").find("options.scrpit: unknown option"),
+            std::string::npos);
   EXPECT_NE(errorOf("[1, 2]").find("must be a mapping"), std::string::npos);
   EXPECT_NE(errorOf("script: [a").find("not valid YAML"), std::string::npos);
 }

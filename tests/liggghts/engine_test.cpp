@@ -1,5 +1,7 @@
 // The LIGGGHTS side of the adapter in-process (one MPI rank, no sockets): rebound on a wall,
 // drag relaxation to the terminal velocity, coating mass by id and through a restart, errors.
+#include "cosim/liggghts/engine.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <fstream>
 #include <numbers>
 
-#include "cosim/liggghts/engine.h"
 #include "cosim/liggghts/liggghts_error.h"
 #include "test_dir.h"
 
@@ -162,27 +163,30 @@ TEST(Engine, CoatingMassByIdAndThroughRestart) {
     t.ids = s.ids;
     for (auto id : s.ids) t.coating_increment.push_back(1e-9 * static_cast<double>(id));
     e.applyTerms(t);
-    e.advance(500);  // particles move (fall) in between
+    e.advance(500);   // particles move (fall) in between
     e.applyTerms(t);  // second increment
     s = e.state();
     for (std::size_t k = 0; k < s.ids.size(); ++k) {
-      ASSERT_DOUBLE_EQ(s.coating_mass[k], 2e-9 * static_cast<double>(s.ids[k])) << "id " << s.ids[k];
+      ASSERT_DOUBLE_EQ(s.coating_mass[k], 2e-9 * static_cast<double>(s.ids[k]))
+          << "id " << s.ids[k];
       ASSERT_NEAR(s.mass[k], 2500 * 4.0 / 3.0 * std::numbers::pi * std::pow(0.0015, 3), 1e-15);
     }
     restart = e.writeRestart(dir.path() / "cp" / "liggghts.restart");
   }
   ASSERT_TRUE(std::filesystem::exists(restart));
   // A script that continues from the restart file.
-  std::ofstream(dir.path() / "in.restart") << "atom_style granular\natom_modify map array\n"
-      "boundary f f f\nnewton off\ncommunicate single vel yes\nunits si\nread_restart "
-      << restart.string() << "\n"
-      "neighbor 0.001 bin\n"
-      "fix m1 all property/global youngsModulus peratomtype 5e6\n"
-      "fix m2 all property/global poissonsRatio peratomtype 0.3\n"
-      "fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3\n"
-      "fix m4 all property/global coefficientFriction peratomtypepair 1 0.52\n"
-      "pair_style gran model hertz tangential history\npair_coeff * *\ntimestep 3e-5\n"
-      "fix integr all nve/sphere\n";
+  std::ofstream(dir.path() / "in.restart")
+      << "atom_style granular\natom_modify map array\n"
+         "boundary f f f\nnewton off\ncommunicate single vel yes\nunits si\nread_restart "
+      << restart.string()
+      << "\n"
+         "neighbor 0.001 bin\n"
+         "fix m1 all property/global youngsModulus peratomtype 5e6\n"
+         "fix m2 all property/global poissonsRatio peratomtype 0.3\n"
+         "fix m3 all property/global coefficientRestitution peratomtypepair 1 0.3\n"
+         "fix m4 all property/global coefficientFriction peratomtypepair 1 0.52\n"
+         "pair_style gran model hertz tangential history\npair_coeff * *\ntimestep 3e-5\n"
+         "fix integr all nve/sphere\n";
   Engine e(MPI_COMM_WORLD, dir.path());
   e.runScript(dir.path() / "in.restart");
   e.installCoupling();

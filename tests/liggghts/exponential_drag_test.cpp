@@ -1,9 +1,9 @@
 // The exponential drag update reproduces the exact solution of m dv/dt = K (u_f - v) + F.
+#include "cosim/liggghts/exponential_drag.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-
-#include "cosim/liggghts/exponential_drag.h"
 
 using namespace cosim::liggghts;
 

@@ -25,7 +25,8 @@ TEST(HertzContactTime, RigidWallIsShorterByTwoToTheMinusOneFifth) {
   const double wall = hertzContactTimeRigidWall(1e-3, 2500, 1e7, 0.25, 2.0);
   EXPECT_NEAR(wall / pp, std::pow(0.5, 0.2), 1e-12);
   // and v^-1/5: doubling the speed shortens the contact by 2^-0.2
-  EXPECT_NEAR(hertzContactTimeRigidWall(1e-3, 2500, 1e7, 0.25, 4.0) / wall, std::pow(0.5, 0.2), 1e-12);
+  EXPECT_NEAR(hertzContactTimeRigidWall(1e-3, 2500, 1e7, 0.25, 4.0) / wall, std::pow(0.5, 0.2),
+              1e-12);
 }
 
 TEST(TimestepVerdict, Thresholds) {

@@ -30,17 +30,17 @@ Parameters cylinderParams() {
 
 TEST(CoatingZone, CylinderBoundaryIsExact) {
   auto z = Registry::instance().makeZone("cylinder", cylinderParams());
-  EXPECT_TRUE(in(*z, 0.5, 0.0, 0.5));        // on the side
-  EXPECT_FALSE(in(*z, up(0.5), 0.0, 0.5));   // just outside the side
+  EXPECT_TRUE(in(*z, 0.5, 0.0, 0.5));       // on the side
+  EXPECT_FALSE(in(*z, up(0.5), 0.0, 0.5));  // just outside the side
   EXPECT_TRUE(in(*z, 0.0, -0.5, 0.5));
   EXPECT_FALSE(in(*z, 0.0, down(-0.5), 0.5));
-  EXPECT_TRUE(in(*z, 0.3, 0.4, 0.0));        // on the bottom disc edge region (r = 0.5)
-  EXPECT_TRUE(in(*z, 0.0, 0.0, 0.0));        // bottom
+  EXPECT_TRUE(in(*z, 0.3, 0.4, 0.0));  // on the bottom disc edge region (r = 0.5)
+  EXPECT_TRUE(in(*z, 0.0, 0.0, 0.0));  // bottom
   EXPECT_FALSE(in(*z, 0.0, 0.0, down(0.0)));
-  EXPECT_TRUE(in(*z, 0.0, 0.0, 1.0));        // top
+  EXPECT_TRUE(in(*z, 0.0, 0.0, 1.0));  // top
   EXPECT_FALSE(in(*z, 0.0, 0.0, up(1.0)));
-  EXPECT_TRUE(in(*z, 0.25, 0.25, 0.75));     // well inside
-  EXPECT_FALSE(in(*z, 0.4, 0.4, 0.5));       // r = 0.566
+  EXPECT_TRUE(in(*z, 0.25, 0.25, 0.75));  // well inside
+  EXPECT_FALSE(in(*z, 0.4, 0.4, 0.5));    // r = 0.566
 }
 
 TEST(CoatingZone, TiltedCylinderAroundItsBoundary) {
@@ -67,15 +67,15 @@ TEST(CoatingZone, ConeFrustumBoundaryIsExact) {
   p.set("base_radius", 0.5);
   p.set("top_radius", 0.25);
   auto z = Registry::instance().makeZone("cone_frustum", p);
-  EXPECT_TRUE(in(*z, 0.5, 0.0, 0.0));        // base rim
+  EXPECT_TRUE(in(*z, 0.5, 0.0, 0.0));  // base rim
   EXPECT_FALSE(in(*z, up(0.5), 0.0, 0.0));
-  EXPECT_TRUE(in(*z, 0.375, 0.0, 0.5));      // R(0.5) = 0.375
+  EXPECT_TRUE(in(*z, 0.375, 0.0, 0.5));  // R(0.5) = 0.375
   EXPECT_FALSE(in(*z, up(0.375), 0.0, 0.5));
-  EXPECT_TRUE(in(*z, 0.0, 0.25, 1.0));       // top rim
+  EXPECT_TRUE(in(*z, 0.0, 0.25, 1.0));  // top rim
   EXPECT_FALSE(in(*z, 0.0, up(0.25), 1.0));
   EXPECT_FALSE(in(*z, 0.0, 0.0, up(1.0)));
   EXPECT_FALSE(in(*z, 0.0, 0.0, down(0.0)));
-  EXPECT_FALSE(in(*z, 0.45, 0.0, 0.5));      // inside the base radius but outside the slope
+  EXPECT_FALSE(in(*z, 0.45, 0.0, 0.5));  // inside the base radius but outside the slope
 }
 
 TEST(CoatingZone, BoxBoundaryIsExact) {
@@ -104,7 +104,7 @@ TEST(CoatingZone, SphereBoundaryIsExact) {
   // 1 - nextafter(0.5, 0) rounds back to 0.5 (a translated point cannot resolve one ulp of
   // its own coordinate), so step out by 1e-15 here
   EXPECT_FALSE(in(*z, 1.0, 0.5 - 1e-15, 1.0));
-  EXPECT_TRUE(in(*z, 1.3, 1.4, 1.0));        // 0.3^2 + 0.4^2 = 0.25 (to round-off: inside)
+  EXPECT_TRUE(in(*z, 1.3, 1.4, 1.0));  // 0.3^2 + 0.4^2 = 0.25 (to round-off: inside)
   EXPECT_FALSE(in(*z, 1.3, 1.41, 1.0));
 }
 
@@ -121,10 +121,10 @@ TEST(CoatingZone, UnionIsInsideAnyPartAndNests) {
   Parameters p("coating_zone");
   p.setChild("parts", {cyl, inner});
   auto z = Registry::instance().makeZone("union", p);
-  EXPECT_TRUE(in(*z, 0.0, 0.0, 0.5));    // cylinder
-  EXPECT_TRUE(in(*z, 0.0, 0.0, 3.5));    // sphere top
+  EXPECT_TRUE(in(*z, 0.0, 0.0, 0.5));  // cylinder
+  EXPECT_TRUE(in(*z, 0.0, 0.0, 3.5));  // sphere top
   EXPECT_FALSE(in(*z, 0.0, 0.0, up(3.5)));
-  EXPECT_FALSE(in(*z, 0.0, 0.0, 2.0));   // between the two
+  EXPECT_FALSE(in(*z, 0.0, 0.0, 2.0));  // between the two
   // batch mask: 1 inside, 0 outside
   const std::vector<double> pos = {0, 0, 0.5, 0, 0, 2.0, 0, 0, 3.0};
   ParcelBatch b;

@@ -15,12 +15,12 @@ namespace {
 // Test points (voidage, slip speed [m/s]) with mu = 1.8e-5 Pa s, rho = 1.12 kg/m3,
 // d_real = 300 um, cg = 5, min_voidage = 0.35. Re = rho eps d w / mu from 0 to ~1700; the last
 // point has voidage 0.2, which every law must see as 0.35.
-const std::vector<std::pair<double, double>> kPoints = {
-    {1.0, 0.0}, {0.9, 0.05}, {0.6, 0.5}, {0.4, 2.0}, {0.45, 10.0},
-    {0.75, 30.0}, {0.99, 1.0}, {0.9, 100.0}, {0.2, 1.0}};
+const std::vector<std::pair<double, double>> kPoints = {{1.0, 0.0},  {0.9, 0.05},  {0.6, 0.5},
+                                                        {0.4, 2.0},  {0.45, 10.0}, {0.75, 30.0},
+                                                        {0.99, 1.0}, {0.9, 100.0}, {0.2, 1.0}};
 
-// K [kg/s] per parcel at kPoints, computed with python3 (tests/models/reference_values.py, written from the
-// published formulas: per-volume beta converted with K = beta V_p / phi for Ergun/Wen-Yu,
+// K [kg/s] per parcel at kPoints, computed with python3 (tests/models/reference_values.py, written
+// from the published formulas: per-volume beta converted with K = beta V_p / phi for Ergun/Wen-Yu,
 // Cd-based forms for Schiller-Naumann/Di Felice, the Benyahia et al. (2006) fit for Koch-Hill,
 // Beetstra's F with K = 3 pi mu d eps F), times cg^3 = 125.
 struct Reference {
@@ -29,13 +29,13 @@ struct Reference {
 };
 const std::vector<Reference> kReference = {
     {"schiller_naumann",
-     {6.3617251235193305e-06, 7.208262287346368e-06, 9.4782552817346667e-06,
-      1.2475533926569729e-05, 2.6390114629040509e-05, 6.6873295229254965e-05,
-      1.3439396769178857e-05, 0.00019594113380439542, 9.8264103029658013e-06}},
+     {6.3617251235193305e-06, 7.208262287346368e-06, 9.4782552817346667e-06, 1.2475533926569729e-05,
+      2.6390114629040509e-05, 6.6873295229254965e-05, 1.3439396769178857e-05,
+      0.00019594113380439542, 9.8264103029658013e-06}},
     {"di_felice",
-     {6.3617251235193305e-06, 9.3925017832910512e-06, 2.931020682877239e-05,
-      8.4180122966640841e-05, 0.00014182666331956248, 0.00013163517267322994,
-      1.3721569672547886e-05, 0.00025642279452789722, 9.7500870189459185e-05}},
+     {6.3617251235193305e-06, 9.3925017832910512e-06, 2.931020682877239e-05, 8.4180122966640841e-05,
+      0.00014182666331956248, 0.00013163517267322994, 1.3721569672547886e-05,
+      0.00025642279452789722, 9.7500870189459185e-05}},
     {"gidaspow",
      {6.3617251235193313e-06, 9.5298909472873596e-06, 4.1115593853856412e-05,
       0.00010261227004787662, 0.00018024887849971431, 0.00036403204873471719,
@@ -45,9 +45,9 @@ const std::vector<Reference> kReference = {
       0.00011412317360141688, 0.00015573055133515871, 0.00019262302795147184,
       1.0673063806542479e-05, 0.00056888620745311491, 0.00012704235193162396}},
     {"beetstra",
-     {6.3617251235193305e-06, 1.4229492365167718e-05, 4.77649016257485e-05,
-      0.0001126450954191382, 0.00017359131192388517, 0.00020459994065969559,
-      1.4572182508322373e-05, 0.0004259913703597443, 0.00012277214980551952}},
+     {6.3617251235193305e-06, 1.4229492365167718e-05, 4.77649016257485e-05, 0.0001126450954191382,
+      0.00017359131192388517, 0.00020459994065969559, 1.4572182508322373e-05, 0.0004259913703597443,
+      0.00012277214980551952}},
 };
 // Di Felice with Dallavalle's Cd = (0.63 + 4.8/sqrt(Re))^2 (the original paper), same points.
 const std::vector<double> kDallavalle = {
@@ -100,9 +100,8 @@ TEST(DragLaws, StokesIsThreePiMuD) {
                               {0.9, 0.01, 5e-3, 0.1, 1e-5},
                               {0.7, 1.0, 1e-7, 1.12, 1.8e-5}};
   // 125 * 3 pi * mu * d (python3)
-  const double expected[5] = {6.3617251235193305e-06, 4.71238898038469e-06,
-                              1.1780972450961724e-06, 5.890486225480863e-05,
-                              2.1205750411731104e-09};
+  const double expected[5] = {6.3617251235193305e-06, 4.71238898038469e-06, 1.1780972450961724e-06,
+                              5.890486225480863e-05, 2.1205750411731104e-09};
   Batch b;
   for (const auto& q : cases) b.add(q[0], q[1], q[2], 5.0, q[3], q[4]);
   const auto K = evaluate(*law, b, constants(5.0));
@@ -113,8 +112,8 @@ TEST(DragLaws, StokesIsThreePiMuD) {
 // Every law reduces to Stokes drag (K = cg^3 3 pi mu d) within 1e-6 as eps -> 1, Re -> 0.
 TEST(DragLaws, EveryLawReducesToStokes) {
   std::vector<std::pair<std::string, Parameters>> laws;
-  for (const auto& n : {"stokes", "schiller_naumann", "di_felice", "gidaspow", "koch_hill",
-                        "beetstra"}) {
+  for (const auto& n :
+       {"stokes", "schiller_naumann", "di_felice", "gidaspow", "koch_hill", "beetstra"}) {
     laws.emplace_back(n, Parameters(n));
   }
   Parameters filtered("beetstra");
@@ -142,8 +141,8 @@ TEST(DragLaws, EveryLawReducesToStokes) {
 // A parcel of cg^3 particles gets exactly cg^3 times the drag of one particle with the same slip.
 TEST(DragLaws, CoarseGrainingScalesByCgCubed) {
   std::vector<std::pair<std::string, Parameters>> laws;
-  for (const auto& n : {"stokes", "schiller_naumann", "di_felice", "gidaspow", "koch_hill",
-                        "beetstra"}) {
+  for (const auto& n :
+       {"stokes", "schiller_naumann", "di_felice", "gidaspow", "koch_hill", "beetstra"}) {
     laws.emplace_back(n, Parameters(n));
   }
   Parameters filtered("beetstra");  // filtered correction depends on d_real only; no parcel factor
@@ -218,7 +217,6 @@ TEST(DragLaws, GidaspowSwitchVoidageIsAParameter) {
   EXPECT_TRUE(close(K[0], 125.0 * std::numbers::pi * kD * kD * kD / 6.0 * bphi, 1e-12));
 }
 
-
 // The parcel-size factor exp(k (1 - cg)) is its own opt-in (parcel_size_factor: true, or k
 // given), not part of filtered: true. Hand value at cg = 5, k = 0.05: exp(-0.2) = 0.8187307531.
 TEST(DragLaws, ParcelSizeFactorIsItsOwnOptIn) {
@@ -238,7 +236,8 @@ TEST(DragLaws, ParcelSizeFactorIsItsOwnOptIn) {
     const auto with = evaluate(*make(filtered, "true", -1), batch, constants(5.0));
     const auto withK = evaluate(*make(filtered, nullptr, 0.1), batch, constants(5.0));
     for (std::size_t i = 0; i < plain.size(); ++i) {
-      EXPECT_TRUE(close(with[i] / plain[i], 0.8187307531, 1e-9)) << "filtered " << filtered << " point " << i;
+      EXPECT_TRUE(close(with[i] / plain[i], 0.8187307531, 1e-9))
+          << "filtered " << filtered << " point " << i;
       EXPECT_TRUE(close(withK[i] / plain[i], std::exp(0.1 * (1.0 - 5.0)), 1e-12)) << "point " << i;
     }
   }

@@ -18,11 +18,11 @@ TEST(Plugin, ExampleDragLoadsByPathAndEvaluates) {
   EXPECT_EQ(law->name(), "tenneti");
   // Tenneti, Garg & Subramaniam (2011) F with K = 3 pi mu d eps F, cg 5, same points as the
   // built-in drag tests (python3 tests/models/reference_values.py).
-  const std::vector<std::pair<double, double>> points = {
-      {1.0, 0.0}, {0.9, 0.05}, {0.6, 0.5}, {0.4, 2.0}, {0.45, 10.0}, {0.75, 30.0}};
-  const std::vector<double> expected = {
-      6.3617251235193305e-06, 1.5411089369990854e-05, 7.9261289373639782e-05,
-      0.0002713779819642367,  0.00031622669593404278, 0.00017014963799532451};
+  const std::vector<std::pair<double, double>> points = {{1.0, 0.0}, {0.9, 0.05},  {0.6, 0.5},
+                                                         {0.4, 2.0}, {0.45, 10.0}, {0.75, 30.0}};
+  const std::vector<double> expected = {6.3617251235193305e-06, 1.5411089369990854e-05,
+                                        7.9261289373639782e-05, 0.0002713779819642367,
+                                        0.00031622669593404278, 0.00017014963799532451};
   Batch b;
   for (auto [eps, w] : points) b.add(eps, w, kD, 5.0);
   std::vector<double> K(b.size());

@@ -1,11 +1,12 @@
 // Radl & Sundaresan (2014) filtered correction: continuity of the tabulated pieces, limit as the
 // cell shrinks, terminal velocity, and the filtered Beetstra law against independent values.
+#include "cosim/models/drag/radl_sundaresan.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-#include "cosim/models/drag/radl_sundaresan.h"
 #include "cosim/models/registry.h"
 #include "support.h"
 
@@ -60,10 +61,10 @@ TEST(RadlSundaresan, CorrectionStaysInZeroOneForEveryVolumeFraction) {
 // Terminal velocities from a log-bisection in python on (rho_p - rho) g pi d^3/6 =
 // 3 pi mu d u F(1, rho d u / mu) with Beetstra's F; rho_p 1750, rho 1.12, mu 1.8e-5, g 9.81.
 TEST(RadlSundaresan, TerminalVelocityMatchesIndependentSolution) {
-  EXPECT_TRUE(close(beetstraTerminalVelocity(300e-6, 1750, 1.12, 1.8e-5, 9.81),
-                    1.7624912237170847, 1e-10));
-  EXPECT_TRUE(close(beetstraTerminalVelocity(5e-3, 1750, 1.12, 1.8e-5, 9.81),
-                    12.930956948317188, 1e-10));
+  EXPECT_TRUE(
+      close(beetstraTerminalVelocity(300e-6, 1750, 1.12, 1.8e-5, 9.81), 1.7624912237170847, 1e-10));
+  EXPECT_TRUE(
+      close(beetstraTerminalVelocity(5e-3, 1750, 1.12, 1.8e-5, 9.81), 12.930956948317188, 1e-10));
   // Stokes regime: (rho_p - rho) g d^2 / (18 mu) = 1748.88 * 9.81 * 1e-14 / 3.24e-4
   EXPECT_TRUE(close(beetstraTerminalVelocity(1e-7, 1750, 1.12, 1.8e-5, 9.81),
                     1748.88 * 9.81 * 1e-14 / 3.24e-4, 1e-6));
@@ -80,9 +81,8 @@ TEST(RadlSundaresan, LengthScaleIsUt43OverG13TimesD23) {
 TEST(RadlSundaresan, FilteredBeetstraMatchesIndependentValues) {
   const double points[5][3] = {
       {0.6, 0.5, 1e-4}, {0.4, 2.0, 1e-3}, {0.95, 1.0, 4e-3}, {0.75, 0.2, 1e-2}, {0.5, 5.0, 0.1}};
-  const double expected[5] = {3.845857140381904e-05, 9.2226003803052119e-05,
-                              1.3207397581988376e-05, 1.0715331135622811e-05,
-                              2.0396379123687548e-05};
+  const double expected[5] = {3.845857140381904e-05, 9.2226003803052119e-05, 1.3207397581988376e-05,
+                              1.0715331135622811e-05, 2.0396379123687548e-05};
   Parameters p("beetstra");
   p.setText("filtered", "true");
   p.setText("parcel_size_factor", "true");  // the reference values include exp(0.05 (1 - 5))
@@ -96,7 +96,8 @@ TEST(RadlSundaresan, FilteredBeetstraMatchesIndependentValues) {
 }
 
 // Terminal velocity from the reference gas (1.12 kg/m3, 1.8e-5 Pa s) or from the parcel's own gas
-// (1.5 kg/m3, 2e-5 Pa s); eps 0.6, slip 0.5, cell 4 mm, cg 5, k 0.05 (python3 tests/models/reference_values.py).
+// (1.5 kg/m3, 2e-5 Pa s); eps 0.6, slip 0.5, cell 4 mm, cg 5, k 0.05 (python3
+// tests/models/reference_values.py).
 TEST(RadlSundaresan, TerminalVelocityFromReferenceOrLocalGas) {
   Parameters local("beetstra");
   local.setText("filtered", "true");
@@ -108,7 +109,9 @@ TEST(RadlSundaresan, TerminalVelocityFromReferenceOrLocalGas) {
   Batch b;
   b.add(0.6, 0.5, kD, 5.0, 1.5, 2.0e-5, 4e-3);
   double K_local = 0, K_ref = 0;
-  Registry::instance().makeDrag("beetstra", local)->coefficients(b.view(), constants(5.0), &K_local);
+  Registry::instance()
+      .makeDrag("beetstra", local)
+      ->coefficients(b.view(), constants(5.0), &K_local);
   Registry::instance().makeDrag("beetstra", ref)->coefficients(b.view(), constants(5.0), &K_ref);
   EXPECT_TRUE(close(K_local, 2.6122240879227543e-05, 1e-10)) << K_local;
   EXPECT_TRUE(close(K_ref, 2.7015222887620972e-05, 1e-10)) << K_ref;

@@ -1,4 +1,6 @@
 // Every scenario name is registered, and every declared field is a real wire field name.
+#include "cosim/models/registry.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -6,7 +8,6 @@
 #include <vector>
 
 #include "cosim/link/fields.h"
-#include "cosim/models/registry.h"
 
 namespace cosim::models {
 namespace {
@@ -16,8 +17,8 @@ bool contains(const std::vector<std::string>& v, const std::string& x) {
 }
 
 const std::vector<std::string> kSampleFields = {
-    field::position,       field::velocity,          field::radius,
-    field::fluid_velocity, field::voidage,           field::fluid_density,
+    field::position,        field::velocity,          field::radius,
+    field::fluid_velocity,  field::voidage,           field::fluid_density,
     field::fluid_viscosity, field::pressure_gradient, field::precursor_fraction,
     field::cell_size};
 
@@ -29,8 +30,8 @@ void expectValidFields(const Model& m) {
 
 TEST(Registry, EveryScenarioNameIsRegistered) {
   auto& r = Registry::instance();
-  for (const auto& n : {"stokes", "schiller_naumann", "di_felice", "gidaspow", "koch_hill",
-                        "beetstra"}) {
+  for (const auto& n :
+       {"stokes", "schiller_naumann", "di_felice", "gidaspow", "koch_hill", "beetstra"}) {
     EXPECT_TRUE(contains(r.dragNames(), n)) << n;
     auto law = r.makeDrag(n, Parameters(n));
     EXPECT_EQ(law->name(), n);
@@ -66,8 +67,8 @@ TEST(Registry, DragLawsNeedTheFieldsOfTheirFormula) {
   auto& r = Registry::instance();
   for (const auto& n : {"schiller_naumann", "di_felice", "gidaspow", "koch_hill", "beetstra"}) {
     const auto f = r.makeDrag(n, Parameters(n))->requiredFields();
-    for (const auto& need : {"radius", "velocity", "fluid_velocity", "voidage", "fluid_density",
-                             "fluid_viscosity"}) {
+    for (const auto& need :
+         {"radius", "velocity", "fluid_velocity", "voidage", "fluid_density", "fluid_viscosity"}) {
       EXPECT_TRUE(contains(f, need)) << n << " lacks " << need;
     }
   }

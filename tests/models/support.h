@@ -10,10 +10,10 @@
 namespace cosim::models::test {
 
 // The paper's gas and particles (docs/physics.md section 6).
-inline constexpr double kMu = 1.8e-5;     // Pa s
-inline constexpr double kRho = 1.12;      // kg/m3
-inline constexpr double kD = 300e-6;      // m, real diameter
-inline constexpr double kRhoP = 1750.0;   // kg/m3
+inline constexpr double kMu = 1.8e-5;    // Pa s
+inline constexpr double kRho = 1.12;     // kg/m3
+inline constexpr double kD = 300e-6;     // m, real diameter
+inline constexpr double kRhoP = 1750.0;  // kg/m3
 
 struct Batch : ParcelArrays {
   // Slip of magnitude `slip` along (0.6, 0, 0.8) (a non-axis direction; 0.6^2 + 0.8^2 = 1).

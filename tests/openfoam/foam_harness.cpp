@@ -84,8 +84,8 @@ FoamRun::FoamRun(const FoamRunConfig& config) {
     args = {"mpirun", "--oversubscribe", "--allow-run-as-root", "-np",
             std::to_string(config.ranks)};
   }
-  args.insert(args.end(), {COSIM_FOAM_EXE, "--endpoint", endpoint, "--name", "fluid",
-                           "--run-id", run_id_});
+  args.insert(args.end(),
+              {COSIM_FOAM_EXE, "--endpoint", endpoint, "--name", "fluid", "--run-id", run_id_});
   if (config.ranks > 1) args.push_back("-parallel");
 
   child_ = fork();

@@ -24,11 +24,11 @@ struct FoamRunConfig {
     std::string file, from, to;  // replace text `from` by `to` in the copied case's file
   };
   std::vector<Edit> edits;
-  std::string options_yaml;                       // Welcome.config_yaml
+  std::string options_yaml;  // Welcome.config_yaml
   bool species = false;
-  std::vector<std::string> send;                  // Welcome.send
-  std::vector<std::string> receive;               // Welcome.receive
-  int ranks = 1;                                  // > 1: mpirun -np ranks ... -parallel
+  std::vector<std::string> send;     // Welcome.send
+  std::vector<std::string> receive;  // Welcome.receive
+  int ranks = 1;                     // > 1: mpirun -np ranks ... -parallel
 };
 
 class FoamRun {

@@ -20,8 +20,10 @@ constexpr double kR = 0.8e-3;
 // The column case with a slow upflow, sending voidage, cell size and gas velocity.
 FoamRunConfig columnConfig(int ranks) {
   FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0.1"}, {"inlet_precursor", "0"},
-                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.substitute = {{"inlet_velocity", "0.1"},
+                    {"inlet_precursor", "0"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
   cfg.options_yaml = "{min_voidage: 0.05}";
   cfg.send = {"voidage", "cell_size", "fluid_velocity"};
   cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
@@ -37,7 +39,8 @@ void moveAndCheck(int ranks) {
   std::vector<double> xyz;
   for (int j = 0; j < 5; ++j)
     for (int i = 0; i < 5; ++i)
-      xyz.insert(xyz.end(), {(i + 0.5) * kCell, (j + 0.5) * kCell, (2 + (i + j) % 3 + 0.5) * kCell});
+      xyz.insert(xyz.end(),
+                 {(i + 0.5) * kCell, (j + 0.5) * kCell, (2 + (i + j) % 3 + 0.5) * kCell});
   xyz.insert(xyz.end(), {-0.01, 0.01, 0.05});
   auto particles = makeParticles(xyz, kR);
   const double alone = 1 - 4.0 / 3.0 * std::numbers::pi * kR * kR * kR / (kCell * kCell * kCell);
@@ -91,7 +94,8 @@ TEST(OpenFoamParticleLocation, SamplesAheadAreThoseOfASampleWhereTheParcelsWillB
   std::vector<double> xyz, v;
   for (int j = 0; j < 5; ++j)
     for (int i = 0; i < 5; ++i) {
-      xyz.insert(xyz.end(), {(i + 0.5) * kCell, (j + 0.5) * kCell, (2 + (i + j) % 3 + 0.5) * kCell});
+      xyz.insert(xyz.end(),
+                 {(i + 0.5) * kCell, (j + 0.5) * kCell, (2 + (i + j) % 3 + 0.5) * kCell});
       v.insert(v.end(), {kCell / dt, 0.0, 0.0});
     }
   auto particles = makeParticles(xyz, kR);

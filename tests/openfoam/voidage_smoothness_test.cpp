@@ -22,8 +22,10 @@ struct Crossing {
 
 Crossing cross(int divisions) {
   FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0"}, {"inlet_precursor", "0"},
-                    {"write_steps", "100000"}, {"wall_U", "slip"}};
+  cfg.substitute = {{"inlet_velocity", "0"},
+                    {"inlet_precursor", "0"},
+                    {"write_steps", "100000"},
+                    {"wall_U", "slip"}};
   cfg.options_yaml = "{min_voidage: 0.05, voidage_divisions: " + std::to_string(divisions) + "}";
   cfg.send = {"voidage"};
   cfg.receive = {"position", "radius"};
@@ -56,9 +58,10 @@ TEST(OpenFoamVoidage, SmoothWhenAParcelCrossesAFace) {
   const Crossing centre = cross(1);
   EXPECT_NEAR(centre.total, fraction, 1e-12);
   EXPECT_NEAR(centre.largestStep, fraction, 1e-12);
-  std::printf("parcel fraction %.4f: largest step %.2f %% of it with 27 satellites, %.0f %% "
-              "without\n", fraction, 100 * smooth.largestStep / fraction,
-              100 * centre.largestStep / fraction);
+  std::printf(
+      "parcel fraction %.4f: largest step %.2f %% of it with 27 satellites, %.0f %% "
+      "without\n",
+      fraction, 100 * smooth.largestStep / fraction, 100 * centre.largestStep / fraction);
 }
 
 }  // namespace

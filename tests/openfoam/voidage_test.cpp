@@ -19,8 +19,8 @@ constexpr double kCellVolume = kCell * kCell * kCell;
 
 FoamRunConfig columnConfig(const std::string& options) {
   FoamRunConfig cfg;
-  cfg.substitute = {{"inlet_velocity", "0"}, {"inlet_precursor", "0"},
-                    {"write_steps", "1"}, {"wall_U", "slip"}};
+  cfg.substitute = {
+      {"inlet_velocity", "0"}, {"inlet_precursor", "0"}, {"write_steps", "1"}, {"wall_U", "slip"}};
   cfg.options_yaml = options;
   cfg.send = {"voidage", "cell_size"};
   cfg.receive = {"position", "radius", "velocity", "drag_coefficient"};
@@ -38,8 +38,10 @@ int cellIndex(double x, double y, double z) {
 TEST(OpenFoamVoidage, ExactPerCellForParcelsWhollyInsideCells) {
   const double r = 0.7e-3;
   // Cell (i,j,k) gets (i + j + k) % 5 parcels at fixed spots at least r + 0.3 mm from its faces
-  const double spots[4][3] = {{1.0e-3, 1.0e-3, 1.0e-3}, {3.0e-3, 3.0e-3, 1.0e-3},
-                              {1.0e-3, 3.0e-3, 3.0e-3}, {3.0e-3, 1.0e-3, 3.0e-3}};
+  const double spots[4][3] = {{1.0e-3, 1.0e-3, 1.0e-3},
+                              {3.0e-3, 3.0e-3, 1.0e-3},
+                              {1.0e-3, 3.0e-3, 3.0e-3},
+                              {3.0e-3, 1.0e-3, 3.0e-3}};
   std::vector<double> xyz;
   std::map<int, int> count;
   for (int k = 2; k < 12; ++k) {
@@ -47,8 +49,8 @@ TEST(OpenFoamVoidage, ExactPerCellForParcelsWhollyInsideCells) {
       for (int i = 0; i < 5; ++i) {
         const int n = (i + j + k) % 5;
         for (int s = 0; s < std::min(n, 4); ++s) {
-          xyz.insert(xyz.end(), {i * kCell + spots[s][0], j * kCell + spots[s][1],
-                                 k * kCell + spots[s][2]});
+          xyz.insert(xyz.end(),
+                     {i * kCell + spots[s][0], j * kCell + spots[s][1], k * kCell + spots[s][2]});
           ++count[i + 5 * j + 25 * k];
         }
       }
@@ -91,8 +93,8 @@ TEST(OpenFoamVoidage, ConservesTotalParcelVolumeAnywhere) {
     xyz.insert(xyz.end(), {0.02 * uniform(), 0.02 * uniform(), 0.005 + 0.045 * uniform()});
   }
   for (const int divisions : {2, 4}) {
-    FoamRun run(columnConfig("{min_voidage: 0.01, voidage_divisions: " +
-                             std::to_string(divisions) + "}"));
+    FoamRun run(
+        columnConfig("{min_voidage: 0.01, voidage_divisions: " + std::to_string(divisions) + "}"));
     const auto reply = run.sample(makeParticles(xyz, r));
     ASSERT_TRUE(reply.lost.empty());
     run.advance(1e-3, cosim::link::ParticleData{});

@@ -10,8 +10,8 @@
 #include <iterator>
 
 #include "cosim/link/errors.h"
-#include "cosim/util/child_process.h"
 #include "cosim/link/transport.h"
+#include "cosim/util/child_process.h"
 #include "expression.h"
 #include "plan.h"
 #include "scenario.h"
@@ -381,16 +381,16 @@ TEST(HostileSceneParameters, ValuesTheSolversWouldFailOnAreRefusedByName) {
 TEST(HostileLongInput, AHugeSetValueIsQuotedCutWithItsLength) {
   const fs::path log = fs::temp_directory_path() / ("cosim-long-set-" + std::to_string(getpid()));
   const std::string value(10000, '7');
-  cosim::util::ChildProcess p({(fs::path(COSIM_BIN_DIR) / "cosim").string(), "validate",
-                               std::string(COSIM_SOURCE_DIR) + "/scenarios/settling-sphere",
-                               "--set", "u_up=x" + value},
-                              fs::temp_directory_path(), log, {});
+  cosim::util::ChildProcess p(
+      {(fs::path(COSIM_BIN_DIR) / "cosim").string(), "validate",
+       std::string(COSIM_SOURCE_DIR) + "/scenarios/settling-sphere", "--set", "u_up=x" + value},
+      fs::temp_directory_path(), log, {});
   EXPECT_EQ(p.wait(), 1);
   std::ifstream in(log);
   const std::string out((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   fs::remove(log);
   EXPECT_LT(out.size(), 1000u) << out.substr(0, 2000);
-  EXPECT_NE(out.find("(10006 characters in all)"), std::string::npos) << out;  // u_up=x7...7
+  EXPECT_NE(out.find("(10006 characters in all)"), std::string::npos) << out;   // u_up=x7...7
   EXPECT_NE(out.find("(10001 characters in all)'"), std::string::npos) << out;  // 'x7...7'
   EXPECT_NE(out.find("parameters.u_up"), std::string::npos) << out;
 }

@@ -136,7 +136,8 @@ TEST(Protocol, ReceiveIsBoundedInTime) {
   link::Hub hub(ep);
   const auto t0 = std::chrono::steady_clock::now();
   auto in = hub.receive(link::Millis(200));
-  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   EXPECT_FALSE(in.has_value());
   EXPECT_LT(waited, 2.0);
 }
@@ -150,7 +151,8 @@ link::Capabilities caps() {
   return c;
 }
 
-wire::Envelope fromOrchestrator(std::uint64_t step, std::uint32_t version = wire::PROTOCOL_VERSION) {
+wire::Envelope fromOrchestrator(std::uint64_t step,
+                                std::uint32_t version = wire::PROTOCOL_VERSION) {
   wire::Envelope e;
   e.mutable_header()->set_protocol_version(version);
   e.mutable_header()->set_run_id("run1");
@@ -171,7 +173,8 @@ TEST(Protocol, WrongProtocolVersionIsRefusedAtHandshake) {
   std::thread orch([&] {
     auto hello = hub.receive(link::Millis(5000));
     ASSERT_TRUE(hello && hello->envelope && hello->envelope->has_hello());
-    EXPECT_EQ(hello->envelope->header().protocol_version(), static_cast<unsigned>(wire::PROTOCOL_VERSION));
+    EXPECT_EQ(hello->envelope->header().protocol_version(),
+              static_cast<unsigned>(wire::PROTOCOL_VERSION));
     auto w = fromOrchestrator(0);
     w.mutable_welcome();
     hub.send(hello->peer, w);

@@ -81,11 +81,11 @@ TEST(Scenario, SetOverridesParametersAndKeys) {
 // A parameter marked show: true is kept with its value (after --set) and doc for cosim validate;
 // one without it, or with show: false, is not; a show that is not a yes/no is refused by key.
 TEST(Scenario, ParametersMarkedShowAreListedWithValueAndDoc) {
-  const std::string text = mutate(
-      "  u: ${flow_lpm / 60000 / 0.01}\n",
-      "  u: ${flow_lpm / 60000 / 0.01}\n"
-      "  area: {value: 0.01, show: false}\n"
-      "  ratio: {value: \"${u / 0.075}\", show: true, doc: \"u / u_mf\"}\n");
+  const std::string text =
+      mutate("  u: ${flow_lpm / 60000 / 0.01}\n",
+             "  u: ${flow_lpm / 60000 / 0.01}\n"
+             "  area: {value: 0.01, show: false}\n"
+             "  ratio: {value: \"${u / 0.075}\", show: true, doc: \"u / u_mf\"}\n");
   Scenario sc = parse(text, {"flow_lpm=100"});
   ASSERT_EQ(sc.shown.size(), 1u);
   EXPECT_EQ(sc.shown[0].name, "ratio");

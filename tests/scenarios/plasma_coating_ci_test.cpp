@@ -7,21 +7,22 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <chrono>
 #include <fstream>
-#include <random>
-#include <thread>
 #include <iterator>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "batch_command.h"
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/report.h"
@@ -29,7 +30,6 @@
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/fields.h"
 #include "cosim/util/child_process.h"
-#include "batch_command.h"
 #include "coupler.h"
 #include "run_pack.h"
 #include "scenario.h"
@@ -95,7 +95,8 @@ pid_t childNamed(const std::string& name) {
 // (before, the file ended at the last output time and the passes went on: 71 % apart on the
 // default bed), which `cosim report` checks parcel by parcel.
 TEST(PlasmaCoatingCi, AParticleSolverKilledMidRunLeavesRecordsThatAgree) {
-  const fs::path out = fs::temp_directory_path() / ("cosim-plasma-kill-" + std::to_string(getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("cosim-plasma-kill-" + std::to_string(getpid()));
   fs::remove_all(out);
   RunOptions o;
   o.quiet = true;
@@ -258,8 +259,10 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   const auto batch = cosim::analysis::readJsonFile(r.folder / "batch" / "batch.json");
   const auto& points = batch.at("points");
   ASSERT_GE(points.size(), 3u);
-  EXPECT_NEAR(points[0].at("mean_kg").get<double>(), on_particles / double(n), 1e-9 * on_particles / double(n));
-  EXPECT_NEAR(points[0].at("never_coated_share").get<double>(), 1.0 - double(coated) / double(n), 1e-12);
+  EXPECT_NEAR(points[0].at("mean_kg").get<double>(), on_particles / double(n),
+              1e-9 * on_particles / double(n));
+  EXPECT_NEAR(points[0].at("never_coated_share").get<double>(), 1.0 - double(coated) / double(n),
+              1e-12);
   for (std::size_t i = 1; i < points.size(); ++i) {
     EXPECT_GE(points[i].at("mean_kg").get<double>(), points[i - 1].at("mean_kg").get<double>());
     EXPECT_LE(points[i].at("never_coated_share").get<double>(),
@@ -337,9 +340,7 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
     RunOptions no;
     no.quiet = true;
     no.output = base / "no-checkpoints";
-    RunResult plain =
-        Coupler(loadScenario(scene, {"coupling.end_time=0.0102"}), no)
-            .run();
+    RunResult plain = Coupler(loadScenario(scene, {"coupling.end_time=0.0102"}), no).run();
     ASSERT_EQ(plain.exit_code, 0) << plain.message;
     const auto tp = cosim::analysis::readTimeSeries(base / "no-checkpoints/timeseries.csv");
     const double pa = ta.at("pressure_drop")[row(ta, 0.0102)];
@@ -543,7 +544,8 @@ TEST(PlasmaCoatingCi, OverlappedSchemeKeepsTheBalanceAndAgreesWithParallel) {
 // participants gone. The settling here is made long (2 s of DEM at 5e-6 s, minutes of wall time)
 // so that the run could only stop in time by not waiting for it.
 TEST(PlasmaCoatingCi, CtrlCDuringTheSettlingStopsAtOnce) {
-  const fs::path out = fs::temp_directory_path() / ("cosim-plasma-ctrlc-" + std::to_string(getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("cosim-plasma-ctrlc-" + std::to_string(getpid()));
   fs::remove_all(out);
   fs::create_directories(out);
   cosim::util::ChildProcess run(
@@ -563,7 +565,8 @@ TEST(PlasmaCoatingCi, CtrlCDuringTheSettlingStopsAtOnce) {
   const auto t0 = std::chrono::steady_clock::now();
   ::kill(run.pid(), SIGINT);
   const int code = run.wait();
-  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   std::printf("Ctrl-C during the settling: cosim stopped after %.2f s\n", waited);
   EXPECT_EQ(code, 130);
   EXPECT_LT(waited, 20.0) << "cosim waited for the settling to end";
@@ -584,7 +587,8 @@ TEST(PlasmaCoatingCi, CtrlCDuringTheSettlingStopsAtOnce) {
 // resume agrees with the uninterrupted run's to round-off in the pressure drop and the precursor
 // columns, as on one rank; each parcel's coating stays the sum of its passes.
 TEST(PlasmaCoatingCi, ResumedOnTwoParticleRanksAgreesToRoundOff) {
-  const fs::path base = fs::temp_directory_path() / ("cosim-plasma-2ranks-" + std::to_string(getpid()));
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-plasma-2ranks-" + std::to_string(getpid()));
   fs::remove_all(base);
   const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml";
   const std::vector<std::string> sets = {"checkpoint.interval=0.01", "coupling.end_time=0.03",
@@ -637,19 +641,21 @@ TEST(PlasmaCoatingCi, ResumedOnTwoParticleRanksAgreesToRoundOff) {
 // snapshots are the output times, each once; each parcel's passes follow each other without
 // overlap; the time series has one row per step; summary.json is complete.
 TEST(PlasmaCoatingCi, KilledFiveTimesAndResumedTheRecordsAgree) {
-  const fs::path base = fs::temp_directory_path() / ("cosim-plasma-kills-" + std::to_string(getpid()));
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-plasma-kills-" + std::to_string(getpid()));
   fs::remove_all(base);
   fs::create_directories(base);
   const fs::path run = base / "run";
   const std::string cosim = std::string(COSIM_BINARY_DIR) + "/cosim";
-  const std::vector<std::string> sets = {"--set", "checkpoint.interval=0.004", "--set",
-                                         "output.interval=0.005", "--set", "coupling.end_time=0.08"};
+  const std::vector<std::string> sets = {"--set", "checkpoint.interval=0.004",
+                                         "--set", "output.interval=0.005",
+                                         "--set", "coupling.end_time=0.08"};
   std::mt19937 rng(20261205);
   std::uniform_int_distribution<int> after(20, 120);  // steps past where the piece resumed
   const auto rows = [&] {
     std::ifstream in(run / "timeseries.csv");
-    return static_cast<int>(std::count(std::istreambuf_iterator<char>(in),
-                                       std::istreambuf_iterator<char>(), '\n'));
+    return static_cast<int>(
+        std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n'));
   };
   const auto snapshots = [&] {
     if (!fs::exists(run / "particles.h5")) return std::size_t{0};
@@ -659,8 +665,9 @@ TEST(PlasmaCoatingCi, KilledFiveTimesAndResumedTheRecordsAgree) {
   for (int piece = 0; piece < 6; ++piece) {
     std::vector<std::string> argv = {cosim};
     if (piece == 0) {
-      argv.insert(argv.end(), {"run", std::string(COSIM_SOURCE_DIR) + "/scenarios/plasma-coating-bed/ci.yaml",
-                               "-o", run.string(), "--quiet"});
+      argv.insert(argv.end(),
+                  {"run", std::string(COSIM_SOURCE_DIR) + "/scenarios/plasma-coating-bed/ci.yaml",
+                   "-o", run.string(), "--quiet"});
       argv.insert(argv.end(), sets.begin(), sets.end());
     } else {
       argv.insert(argv.end(), {"resume", run.string(), "--quiet"});
@@ -729,8 +736,8 @@ TEST(PlasmaCoatingCi, KilledFiveTimesAndResumedTheRecordsAgree) {
             1e-4 * in);
   EXPECT_NEAR(t.at("coating_credited_kg").get<double>(), t.at("precursor_removed_kg").get<double>(),
               1e-12 * in);
-  EXPECT_NEAR(t.at("coating_on_particles_kg").get<double>(), t.at("coating_credited_kg").get<double>(),
-              1e-12 * in);
+  EXPECT_NEAR(t.at("coating_on_particles_kg").get<double>(),
+              t.at("coating_credited_kg").get<double>(), 1e-12 * in);
 
   // snapshots: the output times 0, 0.005, ..., 0.08, each once
   const cosim::analysis::ParticleFile file(run / "particles.h5");

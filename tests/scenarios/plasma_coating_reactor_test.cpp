@@ -35,8 +35,8 @@ std::map<std::string, int> patchFaces(const fs::path& boundary) {
   std::map<std::string, int> out;
   const std::string text = readText(boundary);
   const std::regex entry(R"((\w+)\s*\{[^}]*?nFaces\s+(\d+);)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator();
-       ++it)
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry);
+       it != std::sregex_iterator(); ++it)
     out[(*it)[1]] = std::stoi((*it)[2]);
   return out;
 }
@@ -65,10 +65,10 @@ TEST(PlasmaCoatingReactorTiny, MeshNozzleGrainsAndZoneAsCountedByHand) {
   EXPECT_NE(owner.find("nCells:" + std::to_string(108 * 15 + 32 * 14)), std::string::npos)
       << owner.substr(0, 600);
   const auto faces = patchFaces(r.folder / "fluid/constant/polyMesh/boundary");
-  EXPECT_EQ(faces.at("distributor"), 108);       // the plate around the nozzle: one layer's cells
-  EXPECT_EQ(faces.at("nozzle"), 32);             // the nozzle's exit
-  EXPECT_EQ(faces.at("nozzleWall"), 16);         // its side: 16 faces round, one layer high
-  EXPECT_EQ(faces.at("walls"), 4 * 6 * 15);      // 24 faces round, 15 layers
+  EXPECT_EQ(faces.at("distributor"), 108);   // the plate around the nozzle: one layer's cells
+  EXPECT_EQ(faces.at("nozzle"), 32);         // the nozzle's exit
+  EXPECT_EQ(faces.at("nozzleWall"), 16);     // its side: 16 faces round, one layer high
+  EXPECT_EQ(faces.at("walls"), 4 * 6 * 15);  // 24 faces round, 15 layers
   EXPECT_EQ(faces.at("outlet"), 108 + 32);
 
   // The nozzle: a 16-sided polygon of the area of the 7.9 mm round nozzle, fed at u_nozzle with

@@ -28,7 +28,7 @@ struct Shipped {
 double parcelsOf(double mass) {
   return std::round(mass / (1750 * std::numbers::pi / 6 * 3e-3 * 3e-3 * 3e-3));
 }
-const double kFt4Quick = parcelsOf(0.0475);  // 47.5 g: 1,920
+const double kFt4Quick = parcelsOf(0.0475);   // 47.5 g: 1,920
 const double kSpoutQuick = parcelsOf(0.100);  // 0.1 kg: 4,042
 
 class ShippedScene : public ::testing::TestWithParam<Shipped> {};
@@ -54,19 +54,18 @@ TEST_P(ShippedScene, StartsWithEveryParcelItStates) {
   fs::remove_all(o.output);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    CountedScenes, ShippedScene,
-    ::testing::Values(Shipped{"settling-bed/scenario.yaml", 1000},
-                      Shipped{"ft4-rheometer/scenario.yaml", kFt4Quick},
-                      Shipped{"fluidized-bed/scenario.yaml", 1000},
-                      Shipped{"fluidized-cylinder/scenario.yaml", 1000},
-                      Shipped{"plasma-coating-bed/scenario.yaml", 4000},
-                      Shipped{"spout-2d/scenario.yaml", kSpoutQuick}),
-    [](const ::testing::TestParamInfo<Shipped>& info) {
-      std::string n = info.param.scene;
-      n = n.substr(0, n.find('/'));
-      std::string out;
-      for (char c : n) out += (c == '-') ? '_' : c;
-      return out;
-    });
+INSTANTIATE_TEST_SUITE_P(CountedScenes, ShippedScene,
+                         ::testing::Values(Shipped{"settling-bed/scenario.yaml", 1000},
+                                           Shipped{"ft4-rheometer/scenario.yaml", kFt4Quick},
+                                           Shipped{"fluidized-bed/scenario.yaml", 1000},
+                                           Shipped{"fluidized-cylinder/scenario.yaml", 1000},
+                                           Shipped{"plasma-coating-bed/scenario.yaml", 4000},
+                                           Shipped{"spout-2d/scenario.yaml", kSpoutQuick}),
+                         [](const ::testing::TestParamInfo<Shipped>& info) {
+                           std::string n = info.param.scene;
+                           n = n.substr(0, n.find('/'));
+                           std::string out;
+                           for (char c : n) out += (c == '-') ? '_' : c;
+                           return out;
+                         });
 }  // namespace

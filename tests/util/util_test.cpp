@@ -107,7 +107,8 @@ TEST(LongQuotes, AQuotedInputIsCutToAReadableLengthAndSaysHowLongItWas) {
   EXPECT_EQ(cosim::util::cutInput("abc"), "abc");
   const std::string value(10000, 'x');
   EXPECT_EQ(cosim::util::cutInput(value), std::string(200, 'x') + "... (10000 characters in all)");
-  const std::string msg = "parameters.u: expected a number, got '" + value + "' (see the scene's doc)";
+  const std::string msg =
+      "parameters.u: expected a number, got '" + value + "' (see the scene's doc)";
   const std::string cut = cosim::util::cutLongQuotes(msg);
   EXPECT_EQ(cut, "parameters.u: expected a number, got '" + std::string(200, 'x') +
                      "... (10000 characters in all)' (see the scene's doc)");

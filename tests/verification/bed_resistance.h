@@ -66,7 +66,8 @@ inline std::vector<double> readFoamScalarField(const std::filesystem::path& file
   s >> type >> count >> paren;
   v.resize(count);
   for (auto& x : v) s >> x;
-  if (!s || count != n) throw std::runtime_error(file.string() + ": expected " + std::to_string(n) + " cells");
+  if (!s || count != n)
+    throw std::runtime_error(file.string() + ": expected " + std::to_string(n) + " cells");
   return v;
 }
 

@@ -22,7 +22,8 @@ std::vector<double> g_fixed_bed_voidage;  // cell voidages of the slowest run (t
 
 double pressureDrop(double u0) {
   const std::string u = std::to_string(u0);
-  auto r = runScene("fluidized-bed", {"u0=" + u, "end_time=0.2", "average_after=0.1"}, "fluidization-" + u);
+  auto r = runScene("fluidized-bed", {"u0=" + u, "end_time=0.2", "average_after=0.1"},
+                    "fluidization-" + u);
   EXPECT_EQ(r.exit_code, 0) << r.message;
   if (g_fixed_bed_voidage.empty() && r.exit_code == 0) {
     g_fixed_bed_voidage = cosim::verification::readFoamScalarField(
@@ -37,10 +38,12 @@ double pressureDrop(double u0) {
 
 TEST(FluidizationCurve, RisesLinearlyThenFlatAtBedWeight) {
   constexpr double kPlateau = 118.43 + 0.705;  // Pa
-  constexpr double kWenYu = 0.0512;             // m/s
+  constexpr double kWenYu = 0.0512;            // m/s
   const double dp1 = pressureDrop(0.02), dp2 = pressureDrop(0.04), dp3 = pressureDrop(0.15);
-  std::printf("fluidization curve: dp(0.02) = %.4g Pa, dp(0.04) = %.4g Pa, dp(0.15) = %.4g Pa (plateau %.4g)\n",
-              dp1, dp2, dp3, kPlateau);
+  std::printf(
+      "fluidization curve: dp(0.02) = %.4g Pa, dp(0.04) = %.4g Pa, dp(0.15) = %.4g Pa (plateau "
+      "%.4g)\n",
+      dp1, dp2, dp3, kPlateau);
   // fixed bed: pressure drop proportional to the velocity (Darcy; the inertial Ergun term is a
   // few % at particle Re 0.75)
   EXPECT_NEAR(dp2 / dp1, 2.0, 0.05);  // reached 1.981
@@ -50,7 +53,8 @@ TEST(FluidizationCurve, RisesLinearlyThenFlatAtBedWeight) {
   // minimum fluidization: the fixed-bed line through the origin meets the plateau
   const double slope = (dp1 / 0.02 + dp2 / 0.04) / 2;
   const double u_mf = kPlateau / slope;
-  std::printf("u_mf from the curve %.4g m/s, Wen-Yu %.4g m/s (ratio %.3g)\n", u_mf, kWenYu, u_mf / kWenYu);
+  std::printf("u_mf from the curve %.4g m/s, Wen-Yu %.4g m/s (ratio %.3g)\n", u_mf, kWenYu,
+              u_mf / kWenYu);
   EXPECT_GT(u_mf, 0.04);  // above the fixed-bed points
   EXPECT_LT(u_mf, 0.15);  // below the fluidized point
   // Independent: the superficial velocity at which Beetstra's law on the fixed bed's own cell
@@ -67,7 +71,7 @@ TEST(FluidizationCurve, RisesLinearlyThenFlatAtBedWeight) {
     (bedDrop(mid) < 118.43 ? lo : hi) = mid;
   }
   const double u_mf_law = 0.5 * (lo + hi);
-  std::printf("u_mf from Beetstra on the fixed bed's cell voidages %.4g m/s; curve/law %.4f\n", u_mf_law,
-              u_mf / u_mf_law);
+  std::printf("u_mf from Beetstra on the fixed bed's cell voidages %.4g m/s; curve/law %.4f\n",
+              u_mf_law, u_mf / u_mf_law);
   EXPECT_NEAR(u_mf / u_mf_law, 1.0, 0.03);
 }

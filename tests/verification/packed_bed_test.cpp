@@ -5,13 +5,14 @@
 // runtime checks (NaN/Inf, voidage in (0, 1], particle speed, Courant) pass for every step, the
 // bed stays put, and the pressure drop is positive and below the bed weight less buoyancy
 // (1000 * pi/6 * (1.5e-3)^3 * (1750 - 1.1231) * 9.81 / 0.016^2 = 118.43 Pa) plus the gas
-// column (1.1231 * 9.81 * 0.064 = 0.705 Pa): a fixed bed carries only part of its weight on the gas.
+// column (1.1231 * 9.81 * 0.064 = 0.705 Pa): a fixed bed carries only part of its weight on the
+// gas.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "cosim/link/fields.h"
 #include "bed_resistance.h"
+#include "cosim/link/fields.h"
 #include "run_scene.h"
 
 using cosim::verification::runScene;
@@ -54,10 +55,10 @@ void expectBedDropMatchesLaw(const char* law, const std::function<double(double,
   using namespace cosim::verification;
   constexpr double u0 = 0.02, d = 300e-6, cell = 0.004;
   constexpr Gas gas{1.123079, 1.8e-5};
-  auto r = runScene("fluidized-bed",
-                    {"u0=0.02", "end_time=0.05", "average_after=0.02",
-                     std::string("models.drag.law=") + law},
-                    std::string("packed-") + law);
+  auto r = runScene(
+      "fluidized-bed",
+      {"u0=0.02", "end_time=0.05", "average_after=0.02", std::string("models.drag.law=") + law},
+      std::string("packed-") + law);
   ASSERT_EQ(r.exit_code, 0) << r.message;
   double dp = NAN;
   for (const auto& o : r.observables) {
@@ -66,8 +67,10 @@ void expectBedDropMatchesLaw(const char* law, const std::function<double(double,
   const fs::path last = latestTime(r.folder / "fluid");
   const auto eps = readFoamScalarField(last / "voidage", 4 * 4 * 16);
   const double ref = bedPressureDrop(eps, 16, cell, u0, d, gas, f) + gas.rho * 9.81 * 0.064;
-  std::printf("packed bed (%s): pressure drop %.5g Pa, drag law over the cell voidages (%s) %.5g Pa: %+.3f %%\n",
-              law, dp, last.filename().c_str(), ref, 100 * (dp / ref - 1));
+  std::printf(
+      "packed bed (%s): pressure drop %.5g Pa, drag law over the cell voidages (%s) %.5g Pa: %+.3f "
+      "%%\n",
+      law, dp, last.filename().c_str(), ref, 100 * (dp / ref - 1));
   EXPECT_NEAR(dp / ref, 1.0, tolerance);
 }
 }  // namespace

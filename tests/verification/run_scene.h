@@ -12,12 +12,15 @@
 
 namespace cosim::verification {
 
-inline orchestrator::RunResult runScene(const std::string& scene, const std::vector<std::string>& sets,
+inline orchestrator::RunResult runScene(const std::string& scene,
+                                        const std::vector<std::string>& sets,
                                         const std::string& tag) {
   namespace fs = std::filesystem;
-  const fs::path out = fs::temp_directory_path() / ("cosim-verify-" + tag + "-" + std::to_string(getpid()));
+  const fs::path out =
+      fs::temp_directory_path() / ("cosim-verify-" + tag + "-" + std::to_string(getpid()));
   fs::remove_all(out);
-  orchestrator::Scenario sc = orchestrator::loadScenario(fs::path(COSIM_SOURCE_DIR) / "scenarios" / scene, sets);
+  orchestrator::Scenario sc =
+      orchestrator::loadScenario(fs::path(COSIM_SOURCE_DIR) / "scenarios" / scene, sets);
   orchestrator::RunOptions o;
   o.quiet = true;
   o.output = out;

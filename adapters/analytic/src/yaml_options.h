@@ -22,7 +22,9 @@ class Options {
   const YAML::Node& root() const { return root_; }
   bool has(const std::string& k) const { return static_cast<bool>(root_[k]); }
 
-  double number(const std::string& k, double fallback) const { return has(k) ? number(root_[k], k) : fallback; }
+  double number(const std::string& k, double fallback) const {
+    return has(k) ? number(root_[k], k) : fallback;
+  }
   double number(const YAML::Node& n, const std::string& k) const {
     try {
       return n.as<double>();
@@ -64,7 +66,8 @@ class Options {
         ok = ok || k == a;
         list += (list.empty() ? "" : ", ") + std::string(a);
       }
-      if (!ok) throw std::runtime_error(owner_ + ": unknown option '" + k + "' (known: " + list + ")");
+      if (!ok)
+        throw std::runtime_error(owner_ + ": unknown option '" + k + "' (known: " + list + ")");
     }
   }
 

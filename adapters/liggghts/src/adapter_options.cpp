@@ -1,10 +1,10 @@
 #include "cosim/liggghts/adapter_options.h"
 
+#include <yaml-cpp/yaml.h>
+
 #include <cmath>
 #include <set>
 #include <stdexcept>
-
-#include <yaml-cpp/yaml.h>
 
 namespace cosim::liggghts {
 
@@ -28,14 +28,18 @@ AdapterOptions AdapterOptions::parse(const std::string& yaml_text) {
     throw std::runtime_error(std::string(kWhere) +
                              " is empty; the liggghts adapter needs at least `script: <your "
                              "LIGGGHTS input file>`");
-  if (!root.IsMap()) throw std::runtime_error(std::string(kWhere) + " must be a mapping (key: value)");
+  if (!root.IsMap())
+    throw std::runtime_error(std::string(kWhere) + " must be a mapping (key: value)");
   const std::set<std::string> known = {"script", "impact_speed", "dt_check"};
   for (const auto& kv : root) {
     const auto key = kv.first.as<std::string>();
     if (!known.count(key))
-      fail(key, "unknown option for the liggghts adapter; known options: script, impact_speed, dt_check");
+      fail(
+          key,
+          "unknown option for the liggghts adapter; known options: script, impact_speed, dt_check");
   }
-  if (!root["script"]) fail("script", "missing; give the LIGGGHTS input script, e.g. `script: in.liggghts`");
+  if (!root["script"])
+    fail("script", "missing; give the LIGGGHTS input script, e.g. `script: in.liggghts`");
   try {
     o.script = root["script"].as<std::string>();
   } catch (const YAML::Exception&) {
@@ -58,10 +62,14 @@ AdapterOptions AdapterOptions::parse(const std::string& yaml_text) {
     } catch (const YAML::Exception&) {
       fail("dt_check", "expected one of refuse, warn, off");
     }
-    if (v == "refuse") o.dt_check = DtCheckPolicy::refuse;
-    else if (v == "warn") o.dt_check = DtCheckPolicy::warn;
-    else if (v == "off") o.dt_check = DtCheckPolicy::off;
-    else fail("dt_check", "'" + v + "' is not one of refuse, warn, off");
+    if (v == "refuse")
+      o.dt_check = DtCheckPolicy::refuse;
+    else if (v == "warn")
+      o.dt_check = DtCheckPolicy::warn;
+    else if (v == "off")
+      o.dt_check = DtCheckPolicy::off;
+    else
+      fail("dt_check", "'" + v + "' is not one of refuse, warn, off");
   }
   return o;
 }

@@ -7,9 +7,10 @@ namespace cosim::liggghts {
 
 double hertzContactTime(double effective_mass, double effective_radius, double effective_modulus,
                         double impact_speed) {
-  return 2.87 * std::pow(effective_mass * effective_mass /
-                             (effective_radius * effective_modulus * effective_modulus * impact_speed),
-                         0.2);
+  return 2.87 *
+         std::pow(effective_mass * effective_mass /
+                      (effective_radius * effective_modulus * effective_modulus * impact_speed),
+                  0.2);
 }
 
 namespace {

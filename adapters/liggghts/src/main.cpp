@@ -7,9 +7,9 @@
 #include <exception>
 #include <vector>
 
-#include "cosim/link/session.h"
 #include "cosim/liggghts/liggghts_solver.h"
 #include "cosim/liggghts/scene_check.h"
+#include "cosim/link/session.h"
 
 int main(int argc, char** argv) {
   if (cosim::link::checkOptionsRequested(argc, argv)) {

@@ -1,8 +1,8 @@
 #include "cosim/liggghts/timestep_check.h"
 
-#include <algorithm>
-
 #include <fmt/format.h>
+
+#include <algorithm>
 
 namespace cosim::liggghts {
 
@@ -12,7 +12,8 @@ TimestepVerdict judgeTimestep(const TimestepReport& r) {
     v.summary = fmt::format("DEM dt {:.3g} s: no particles yet, nothing to check", r.dt);
     return v;
   }
-  v.suggested_dt = std::min(kWarnRayleighFraction * r.rayleigh_time, kWarnHertzFraction * r.hertz_time);
+  v.suggested_dt =
+      std::min(kWarnRayleighFraction * r.rayleigh_time, kWarnHertzFraction * r.hertz_time);
   v.summary = fmt::format(
       "DEM dt {:.3g} s = {:.3g} x Rayleigh time ({:.3g} s) and {:.3g} x Hertz contact time "
       "({:.3g} s at {:.3g} m/s impact), smallest radius {:.3g} m",

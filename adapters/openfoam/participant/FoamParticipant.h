@@ -33,11 +33,11 @@ class FoamParticipant : public cosim::link::Solver {
   const RankBridge& bridge_;
   std::vector<std::string> foamArgs_;
   std::unique_ptr<GasDomain> gas_;
-  std::vector<std::string> send_;          // Welcome.send
-  std::vector<std::int64_t> sampledIds_;   // ids of the last Sample, in its order
+  std::vector<std::string> send_;         // Welcome.send
+  std::vector<std::int64_t> sampledIds_;  // ids of the last Sample, in its order
   bool species_ = false;
-  double sampleSeconds_ = 0;     // wall time of the last Sample (reported with the Advance)
-  std::size_t lostCount_ = 0;    // particles in no cell at the last Sample
+  double sampleSeconds_ = 0;   // wall time of the last Sample (reported with the Advance)
+  std::size_t lostCount_ = 0;  // particles in no cell at the last Sample
 };
 
 // Other ranks: obey rank 0's commands until it says quit. Returns the exit code.

@@ -18,8 +18,8 @@ namespace {
 fs::path moduleFile() {
   if (const char* env = std::getenv("COSIM_FOAM_GAS_LIBRARY")) return env;
   const fs::path exeDir = fs::read_symlink("/proc/self/exe").parent_path();
-  for (const fs::path& p : {exeDir / ".." / "lib" / "libcosimFoamGas.so",
-                            exeDir / "libcosimFoamGas.so"}) {
+  for (const fs::path& p :
+       {exeDir / ".." / "lib" / "libcosimFoamGas.so", exeDir / "libcosimFoamGas.so"}) {
     if (fs::exists(p)) return p;
   }
   throw std::runtime_error("cosimFoam: libcosimFoamGas.so not found in " +

@@ -24,8 +24,8 @@ double kochHillF(double phi, double Re) {
                                         (1.0 + 0.681 * phi - 11.03 * phi2 + 15.41 * phi3) +
                                     w * dense
                               : dense;
-  const double F3 = phi < 0.0953 ? 0.9351 * phi + 0.03667
-                                 : 0.0673 + 0.212 * phi + 0.0232 / (eps3 * eps * eps);
+  const double F3 =
+      phi < 0.0953 ? 0.9351 * phi + 0.03667 : 0.0673 + 0.212 * phi + 0.0232 / (eps3 * eps * eps);
   if (phi <= 0.01) {
     const double re_t1 = (F2 - 1.0) / (3.0 / 8.0 - F3);
     return Re <= re_t1 ? 1.0 + 3.0 / 8.0 * Re : F2 + F3 * Re;
@@ -39,9 +39,8 @@ double kochHillF(double phi, double Re) {
 std::vector<std::string> KochHillDrag::requiredFields() const { return denseDragFields(); }
 
 void KochHillDrag::coefficients(const ParcelBatch& p, const SceneConstants& c, double* K) const {
-  evaluateDrag(*this, p, c, K, [](double eps, double Re) {
-    return eps * eps * kochHillF(1.0 - eps, 0.5 * Re);
-  });
+  evaluateDrag(*this, p, c, K,
+               [](double eps, double Re) { return eps * eps * kochHillF(1.0 - eps, 0.5 * Re); });
 }
 
 }  // namespace cosim::models

@@ -51,8 +51,8 @@ struct SingleSphere {
 SingleSphere singleSphere(double x) {
   constexpr double c = 0.413 / 24.0;
   const double Re = std::exp(x);
-  const double s = std::exp(0.5 * x);      // sqrt(Re)
-  const double q = std::exp(0.657 * x);    // Re^0.657
+  const double s = std::exp(0.5 * x);    // sqrt(Re)
+  const double q = std::exp(0.657 * x);  // Re^0.657
   const double A = Re + 8.4 * q;
   const double ReDA = Re + 8.4 * 0.657 * q;  // Re dA/dRe
   const double B = s / (s + 1.0);
@@ -82,7 +82,10 @@ double beetstraTerminalVelocity(double d, double rho_p, double rho, double mu, d
   for (int it = 0; it < 200; ++it) {
     const SingleSphere ss = singleSphere(x);
     const double h = x + ss.lnF - lnT;
-    if (h > 0.0) hi = std::min(hi, x); else lo = std::max(lo, x);
+    if (h > 0.0)
+      hi = std::min(hi, x);
+    else
+      lo = std::max(lo, x);
     double next = x - h / (1.0 + ss.dlnF);
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
     const bool done = std::abs(next - x) < 1e-14 * std::max(1.0, std::abs(x)) || hi - lo < 1e-15;

@@ -16,9 +16,8 @@ std::vector<std::string> RanzMarshallTransfer::requiredFields() const {
 
 void RanzMarshallTransfer::transferCoefficients(const ParcelBatch& p, const SceneConstants& c,
                                                 double* k) const {
-  evaluateTransfer(*this, p, c, k, [](double, double Re, double sc13) {
-    return 2.0 + 0.6 * std::sqrt(Re) * sc13;
-  });
+  evaluateTransfer(*this, p, c, k,
+                   [](double, double Re, double sc13) { return 2.0 + 0.6 * std::sqrt(Re) * sc13; });
 }
 
 }  // namespace cosim::models

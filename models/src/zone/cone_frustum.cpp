@@ -12,7 +12,8 @@ ConeFrustumZone::ConeFrustumZone(const Parameters& p) {
   r0_ = p.number("base_radius", 0.0, std::numeric_limits<double>::infinity());
   r1_ = p.number("top_radius", 0.0, std::numeric_limits<double>::infinity());
   if (r0_ == 0.0 && r1_ == 0.0) {
-    throw ModelError(p.owner() + ": base_radius and top_radius are both 0; at least one must "
+    throw ModelError(p.owner() +
+                     ": base_radius and top_radius are both 0; at least one must "
                      "be > 0");
   }
 }

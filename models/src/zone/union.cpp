@@ -14,7 +14,8 @@ UnionZone::UnionZone(const Parameters& p) {
     const Parameters& part = parts[i];
     const std::string where = p.owner() + " part " + std::to_string(i + 1);
     if (!part.has("shape")) {
-      throw ModelError(where + ": missing parameter 'shape' (one of: cylinder, cone_frustum, "
+      throw ModelError(where +
+                       ": missing parameter 'shape' (one of: cylinder, cone_frustum, "
                        "box, sphere, union)");
     }
     const std::string shape = part.text("shape");

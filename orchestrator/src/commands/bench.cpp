@@ -1,8 +1,9 @@
 // cosim bench SCENARIO [--steps N] [--warmup N] [--set K=V] [-o FOLDER]
+#include "../bench.h"
+
 #include <iostream>
 #include <memory>
 
-#include "../bench.h"
 #include "commands.h"
 
 namespace cosim::orchestrator {

@@ -1,12 +1,13 @@
 // cosim report RUN [RUN...] [options]: coating statistics, fits, extrapolation, the whole batch,
 // plots, HTML
+#include "cosim/analysis/report.h"
+
 #include <charconv>
 #include <cstring>
 #include <memory>
 #include <optional>
 
 #include "commands.h"
-#include "cosim/analysis/report.h"
 
 namespace cosim::orchestrator {
 
@@ -31,7 +32,8 @@ std::optional<std::pair<const a::MixingCriterion*, double>> mixingOverride(const
 
 std::string criterionNames() {
   std::string names;
-  for (const auto& k : a::kMixingCriteria) names += (names.empty() ? "" : ", ") + std::string(k.name);
+  for (const auto& k : a::kMixingCriteria)
+    names += (names.empty() ? "" : ", ") + std::string(k.name);
   return names;
 }
 
@@ -51,7 +53,8 @@ void addReportCommand(CLI::App& app, Commands& commands) {
   rep->add_option("-o,--output", r.output,
                   "report folder (default: RUN/report for one run, report-comparison beside the "
                   "runs for several)");
-  rep->add_option("--fit-start", r.fit_start, "start of the fit window [s] (default: first snapshot)");
+  rep->add_option("--fit-start", r.fit_start,
+                  "start of the fit window [s] (default: first snapshot)");
   rep->add_option("--fit-end", r.fit_end, "end of the fit window [s] (default: last snapshot)");
   rep->add_option("--coating-start", r.coating_start,
                   "time coating starts [s], origin of mu = a1 t");
@@ -82,9 +85,9 @@ void addReportCommand(CLI::App& app, Commands& commands) {
          "max_uncoated_share=0.3); the report then says it was judged with non-default criteria")
       ->check(CLI::Validator(
           [](std::string& m) {
-            return mixingOverride(m) ? std::string()
-                                     : "expected NAME=VALUE with VALUE >= 0 and NAME one of " +
-                                           criterionNames();
+            return mixingOverride(m)
+                       ? std::string()
+                       : "expected NAME=VALUE with VALUE >= 0 and NAME one of " + criterionNames();
           },
           "NAME=VALUE"));
   rep->add_flag("--no-plots{false}", r.plots, "numbers and HTML only, no matplotlib");

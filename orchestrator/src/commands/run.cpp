@@ -15,7 +15,8 @@ void addRunCommand(CLI::App& app, Commands& commands) {
     RunOptions run;
   };
   auto o = std::make_shared<Options>();
-  auto* run = app.add_subcommand("run", "Run a scenario (a scenario.yaml, or a folder holding one)");
+  auto* run =
+      app.add_subcommand("run", "Run a scenario (a scenario.yaml, or a folder holding one)");
   run->add_option("scenario", o->scenario, "scenario file or folder")->required();
   run->add_option("--set", o->sets, kSetHelp)->take_all();
   run->add_option("--unset", o->unsets, kUnsetHelp)->take_all();

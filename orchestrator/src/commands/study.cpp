@@ -1,8 +1,9 @@
 // cosim study SCENARIO --vary K=v1,v2 [--vary ...] [--set K=V] [-o FOLDER] [--finest N]
+#include "study.h"
+
 #include <memory>
 
 #include "commands.h"
-#include "study.h"
 
 namespace cosim::orchestrator {
 

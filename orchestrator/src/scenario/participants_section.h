@@ -36,9 +36,9 @@ struct ParticipantSpec {
   // starts it with --workdir WORKDIR/<run id>/<name> and sends its files over the link
   // (docs/cluster.md). Empty: the run folder is shared (one machine, or a shared filesystem).
   std::string workdir;
-  std::filesystem::path files;     // case folder to copy and template into the run folder
-  double timeout = 300.0;          // seconds one step may take before it counts as hung
-  YAML::Node options;              // adapter-specific, sent verbatim in Welcome.config_yaml
+  std::filesystem::path files;  // case folder to copy and template into the run folder
+  double timeout = 300.0;       // seconds one step may take before it counts as hung
+  YAML::Node options;           // adapter-specific, sent verbatim in Welcome.config_yaml
 
   static const std::vector<KeySpec>& keys();
 };

@@ -8,14 +8,14 @@
 namespace cosim::analysis {
 
 struct CoatingStatistics {
-  double time = 0;           // [s]
-  std::size_t count = 0;     // parcels
-  double mean = 0;           // [kg]
-  double std_dev = 0;        // [kg] population standard deviation (all parcels are the population)
-  double variance = 0;       // [kg^2] std_dev^2
-  double cv = 0;             // std_dev / mean; NaN when mean <= 0
-  double min = 0, max = 0;   // [kg]
-  double total = 0;          // [kg] sum over parcels
+  double time = 0;          // [s]
+  std::size_t count = 0;    // parcels
+  double mean = 0;          // [kg]
+  double std_dev = 0;       // [kg] population standard deviation (all parcels are the population)
+  double variance = 0;      // [kg^2] std_dev^2
+  double cv = 0;            // std_dev / mean; NaN when mean <= 0
+  double min = 0, max = 0;  // [kg]
+  double total = 0;         // [kg] sum over parcels
   double uncoated_threshold = 0;  // [kg] a parcel at or below this counts as never coated
   double uncoated_share = 0;      // [-] fraction of parcels at or below the threshold
   double skewness = 0;            // g1 = m3 / m2^1.5 (NaN if m2 = 0)

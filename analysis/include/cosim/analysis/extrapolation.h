@@ -13,7 +13,7 @@
 namespace cosim::analysis {
 
 struct CvPrediction {
-  std::vector<double> tau;                // [s] since coating start
+  std::vector<double> tau;  // [s] since coating start
   std::vector<double> cv, cv_low, cv_high;
   double band = 0.2;
 };
@@ -23,9 +23,9 @@ CvPrediction predictCv(const GrowthFit& fit, double tau_end = 3600.0, std::size_
                        double band = 0.2);
 
 struct PredictedDistribution {
-  double tau = 0;     // [s] since coating start
-  double mean = 0;    // [kg] a1 tau
-  double sigma = 0;   // [kg] a2 sqrt(tau)
+  double tau = 0;    // [s] since coating start
+  double mean = 0;   // [kg] a1 tau
+  double sigma = 0;  // [kg] a2 sqrt(tau)
   double cv = 0;
   double sigma_low = 0, sigma_high = 0;  // with a2 -+ band
 };
@@ -33,7 +33,7 @@ struct PredictedDistribution {
 PredictedDistribution predictDistribution(const GrowthFit& fit, double tau, double band = 0.2);
 
 struct PredictionCheckPoint {
-  double time = 0;  // [s] absolute
+  double time = 0;                                                // [s] absolute
   double simulated_mean = 0, predicted_mean = 0, mean_error = 0;  // error = (pred - sim) / sim
   double simulated_std = 0, predicted_std = 0, std_error = 0;
   double simulated_cv = 0, predicted_cv = 0, cv_error = 0;
@@ -44,6 +44,7 @@ struct PredictionCheck {
   double max_abs_mean_error = 0, max_abs_std_error = 0, max_abs_cv_error = 0;
 };
 
-PredictionCheck checkPrediction(const GrowthFit& fit, const std::vector<CoatingStatistics>& snapshots);
+PredictionCheck checkPrediction(const GrowthFit& fit,
+                                const std::vector<CoatingStatistics>& snapshots);
 
 }  // namespace cosim::analysis

@@ -16,7 +16,7 @@ namespace cosim::analysis {
 
 struct GrowthFit {
   bool ok = false;
-  std::string problem;   // why no fit, when !ok
+  std::string problem;  // why no fit, when !ok
   double t0 = 0, t1 = 0, coating_start = 0;
   std::vector<double> time;      // snapshot times used [s] (absolute)
   std::vector<double> tau;       // time - coating_start [s]

@@ -20,6 +20,7 @@ struct Histogram {
 double quantileSorted(const std::vector<double>& sorted, double q);
 
 // bins = 0 chooses by the rule above; bins > 0 uses that many equal bins over [min, max].
-Histogram histogram(const std::vector<double>& values, std::size_t bins = 0, std::size_t max_bins = 100);
+Histogram histogram(const std::vector<double>& values, std::size_t bins = 0,
+                    std::size_t max_bins = 100);
 
 }  // namespace cosim::analysis

@@ -32,7 +32,7 @@ struct Compartments {
 
 // The record: per parcel present in every snapshot used, its compartment and coating at each.
 struct CoatingDatabase {
-  double interval = 0;  // [s] between two snapshots
+  double interval = 0;        // [s] between two snapshots
   std::vector<double> times;  // [s] of the snapshots used
   Compartments grid;
   std::vector<std::int64_t> ids;

@@ -16,20 +16,20 @@
 namespace cosim::analysis {
 
 struct MassBalance {
-  double precursor_in = 0;     // [kg]
-  double precursor_out = 0;    // [kg]
+  double precursor_in = 0;                  // [kg]
+  double precursor_out = 0;                 // [kg]
   double held_start = 0, held_end = 0;      // [kg] precursor in the gas
-  double held_change = 0;      // [kg]
-  double expected_coating = 0; // [kg]
+  double held_change = 0;                   // [kg]
+  double expected_coating = 0;              // [kg]
   double coated_start = 0, coated_end = 0;  // [kg] on the particles
-  double obtained_coating = 0; // [kg]
-  double error = 0;            // [kg] expected - obtained
-  double error_percent = 0;    // [%]; NaN when expected = 0
-  bool has_removed = false;    // the time series has precursor_removed
-  double removed = 0;          // [kg] taken from the gas by the sink (fluid side)
-  double pending = 0;          // [kg] removed - obtained: not yet credited at the last row
-  std::string initial_state;   // where held_start/coated_start came from, in words
-  std::string obtained_source; // where the coating on particles was read, in words
+  double obtained_coating = 0;              // [kg]
+  double error = 0;                         // [kg] expected - obtained
+  double error_percent = 0;                 // [%]; NaN when expected = 0
+  bool has_removed = false;                 // the time series has precursor_removed
+  double removed = 0;                       // [kg] taken from the gas by the sink (fluid side)
+  double pending = 0;           // [kg] removed - obtained: not yet credited at the last row
+  std::string initial_state;    // where held_start/coated_start came from, in words
+  std::string obtained_source;  // where the coating on particles was read, in words
 };
 
 MassBalance massBalance(double in, double out, double held_start, double held_end,

@@ -13,10 +13,10 @@ namespace cosim::analysis {
 
 struct NormalityTest {
   bool valid = false;
-  std::string problem;        // why not valid
+  std::string problem;  // why not valid
   std::size_t n = 0;
-  double skewness = 0;        // g1 (biased)
-  double kurtosis = 0;        // b2 = m4/m2^2 (normal: 3)
+  double skewness = 0;  // g1 (biased)
+  double kurtosis = 0;  // b2 = m4/m2^2 (normal: 3)
   double z_skewness = 0;
   double z_kurtosis = 0;
   double k2 = 0;

@@ -127,7 +127,7 @@ struct RunAnalysis {
   // holds fewer than 3 evenly spaced snapshots or the options turn it off (then the reason)
   std::optional<BatchPrediction> batch;
   std::string batch_problem;
-  OperatingConditions conditions;             // flow, u / u_mf, parcels, cg, grain scale, ...
+  OperatingConditions conditions;  // flow, u / u_mf, parcels, cg, grain scale, ...
   // The units the pages show: one for every coating mass (from the largest mean coating per
   // parcel; a comparison puts every run in the same), one for the layer thickness.
   DisplayUnit mass_unit, thickness_unit;

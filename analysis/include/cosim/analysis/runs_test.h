@@ -11,11 +11,11 @@
 namespace cosim::analysis {
 
 struct RunsTest {
-  bool valid = false;      // needs at least one residual of each sign
+  bool valid = false;  // needs at least one residual of each sign
   std::size_t positive = 0, negative = 0, runs = 0;
   double expected_runs = 0;
   double z = 0;
-  double p_too_few = 1;    // one-sided p-value for "fewer runs than chance"
+  double p_too_few = 1;  // one-sided p-value for "fewer runs than chance"
 };
 
 RunsTest runsTest(const std::vector<double>& residuals);

@@ -60,8 +60,8 @@ class TimeSeriesRecorder {
 };
 
 struct TimeSeries {
-  std::vector<std::string> columns;          // including "time" first
-  std::vector<std::vector<double>> values;   // values[c][row]
+  std::vector<std::string> columns;         // including "time" first
+  std::vector<std::vector<double>> values;  // values[c][row]
   bool has(const std::string& name) const;
   // Column by name; throws std::runtime_error naming the file and the column if absent.
   const std::vector<double>& at(const std::string& name) const;

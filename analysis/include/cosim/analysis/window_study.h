@@ -15,24 +15,25 @@
 namespace cosim::analysis {
 
 struct WindowStudyPoint {
-  double t_end = 0;               // [s] last snapshot in the window (nominal end if no fit)
-  double wall_seconds = 0;        // [s] wall time to simulate up to t_end; NaN if unknown
-  bool ok = false;                // fit possible
+  double t_end = 0;         // [s] last snapshot in the window (nominal end if no fit)
+  double wall_seconds = 0;  // [s] wall time to simulate up to t_end; NaN if unknown
+  bool ok = false;          // fit possible
   double a1 = 0, a1_se = 0, a2 = 0, a2_se = 0;
-  double cv_horizon = 0;          // CV predicted at the horizon
-  double cv_run_end = 0;          // CV predicted at the last snapshot
-  double cv_run_end_error = 0;    // (predicted - simulated) / simulated at the last snapshot; NaN for the full window
+  double cv_horizon = 0;  // CV predicted at the horizon
+  double cv_run_end = 0;  // CV predicted at the last snapshot
+  double cv_run_end_error =
+      0;  // (predicted - simulated) / simulated at the last snapshot; NaN for the full window
 };
 
 struct WindowStudy {
-  double horizon = 0;             // [s] since coating start
-  double run_end = 0;             // [s] time of the last snapshot
+  double horizon = 0;  // [s] since coating start
+  double run_end = 0;  // [s] time of the last snapshot
   double simulated_cv_run_end = 0;
   std::vector<WindowStudyPoint> points;
 };
 
 // wall: a time series with time and wall_seconds columns (may be empty: wall times unknown).
-WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, double t0, double coating_start,
-                           double horizon, const TimeSeries* wall = nullptr);
+WindowStudy studyFitWindow(const std::vector<CoatingStatistics>& snapshots, double t0,
+                           double coating_start, double horizon, const TimeSeries* wall = nullptr);
 
 }  // namespace cosim::analysis

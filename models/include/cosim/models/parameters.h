@@ -22,10 +22,12 @@ class Parameters {
   void set(const std::string& key, double v) { numbers_[key] = v; }
   void setText(const std::string& key, const std::string& v) { texts_[key] = v; }
   void setList(const std::string& key, std::vector<double> v) { lists_[key] = std::move(v); }
-  void setChild(const std::string& key, std::vector<Parameters> v) { children_[key] = std::move(v); }
+  void setChild(const std::string& key, std::vector<Parameters> v) {
+    children_[key] = std::move(v);
+  }
 
   bool has(const std::string& key) const;
-  double number(const std::string& key) const;                 // required
+  double number(const std::string& key) const;                   // required
   double number(const std::string& key, double fallback) const;  // optional
   // Required, checked lo <= v <= hi (use +-inf for open ends); error names model + key + range.
   double number(const std::string& key, double lo, double hi) const;

@@ -36,7 +36,7 @@ class BeetstraDrag final : public DragLaw {
   bool parcel_factor_ = false;
   double k_ = 0.05;
   double particle_density_ = 0.0;
-  double reference_density_ = 0.0;    // > 0: terminal velocity from the reference gas state
+  double reference_density_ = 0.0;  // > 0: terminal velocity from the reference gas state
   double reference_viscosity_ = 0.0;
 };
 

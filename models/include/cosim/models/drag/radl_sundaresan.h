@@ -2,8 +2,10 @@
 // Euler-Lagrange meshes, coefficients as tabulated in docs/physics.md section 2.
 //   corr(phi, Delta) = 1 - h(phi) / (a(phi) L_c / Delta + 1)   (-> 1 as Delta -> 0)
 //   L_c = (u_t^2 / g) Fr_p^(-2/3),  Fr_p = u_t^2 / (g d)
-//   u_t: terminal velocity of one real particle, from (rho_p - rho) g d^2 / (18 mu) = u_t F(1, Re_t)
-//        with Beetstra's F (solved for Re_t: Ar / 18 = Re_t F(1, Re_t), Ar = rho (rho_p - rho) g d^3 / mu^2)
+//   u_t: terminal velocity of one real particle, from (rho_p - rho) g d^2 / (18 mu) = u_t F(1,
+//   Re_t)
+//        with Beetstra's F (solved for Re_t: Ar / 18 = Re_t F(1, Re_t), Ar = rho (rho_p - rho) g
+//        d^3 / mu^2)
 #pragma once
 
 namespace cosim::models {

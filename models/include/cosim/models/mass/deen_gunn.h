@@ -1,5 +1,6 @@
 // Deen et al. (2014), Chem. Eng. Sci. 116:710-724: modified Gunn correlation (paper's choice):
-//   Sh = (7 - 10 eps + 5 eps^2)(1 + 0.17 Re^0.2 Sc^(1/3)) + (1.33 - 2.31 eps + 1.16 eps^2) Re^0.7 Sc^(1/3)
+//   Sh = (7 - 10 eps + 5 eps^2)(1 + 0.17 Re^0.2 Sc^(1/3)) + (1.33 - 2.31 eps + 1.16 eps^2) Re^0.7
+//   Sc^(1/3)
 #pragma once
 
 #include "cosim/models/model.h"

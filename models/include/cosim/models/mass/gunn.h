@@ -1,5 +1,6 @@
 // Gunn (1978), Int. J. Heat Mass Transfer 21:467-476, original coefficients:
-//   Sh = (7 - 10 eps + 5 eps^2)(1 + 0.7 Re^0.2 Sc^(1/3)) + (1.33 - 2.4 eps + 1.2 eps^2) Re^0.7 Sc^(1/3)
+//   Sh = (7 - 10 eps + 5 eps^2)(1 + 0.7 Re^0.2 Sc^(1/3)) + (1.33 - 2.4 eps + 1.2 eps^2) Re^0.7
+//   Sc^(1/3)
 #pragma once
 
 #include "cosim/models/model.h"
