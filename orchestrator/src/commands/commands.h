@@ -23,6 +23,9 @@ extern const char* const kUnsetHelp;
 // `pipe`: a closed pipe is an error to handle, not a signal that ends the process.
 void catchStopSignals(bool ignore_pipe = true);
 
+// "a, b, c", or "(none)"
+std::string joinNames(const std::vector<std::string>& names);
+
 void addRunCommand(CLI::App& app, Commands& commands);
 void addResumeCommand(CLI::App& app, Commands& commands);
 void addPackCommand(CLI::App& app, Commands& commands);

@@ -17,12 +17,6 @@ namespace cosim::orchestrator {
 
 namespace {
 
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
-  return s.empty() ? "(none)" : s;
-}
-
 int validate(const std::string& file, const std::vector<std::string>& sets,
              const std::vector<std::string>& unsets) {
   Scenario sc = loadScenario(file, sets, unsets);
@@ -37,10 +31,11 @@ int validate(const std::string& file, const std::vector<std::string>& sets,
                    std::llround((sc.coupling.end_time - sc.coupling.start_time) / sc.coupling.dt))
             << " steps), scheme " << sc.coupling.scheme << "\n";
   std::cout << "  particles: " << sc.participants.at("particles").adapter << "; sends "
-            << join(p.particles_send) << "; receives " << join(p.particles_receive) << "\n";
+            << joinNames(p.particles_send) << "; receives " << joinNames(p.particles_receive)
+            << "\n";
   if (p.fluid) {
     std::cout << "  fluid: " << sc.participants.at("fluid").adapter << "; sends "
-              << join(p.fluid_send) << "; receives " << join(p.fluid_receive) << "\n";
+              << joinNames(p.fluid_send) << "; receives " << joinNames(p.fluid_receive) << "\n";
   }
   std::cout << "  models: drag " << (sc.models.drag ? sc.models.drag->law : "none") << ", forces "
             << sc.models.forces.size() << ", mass transfer "

@@ -20,6 +20,12 @@ const char* const kUnsetHelp =
     "remove a node (and everything below it) before the --set overrides, e.g. "
     "models.coating_zone";
 
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& x : names) s += (s.empty() ? "" : ", ") + x;
+  return s.empty() ? "(none)" : s;
+}
+
 void catchStopSignals(bool ignore_pipe) {
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
