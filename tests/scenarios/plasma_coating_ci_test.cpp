@@ -66,6 +66,30 @@ long long dumpStep(const fs::path& file, std::map<long long, std::vector<double>
   }
   return step;
 }
+// The row of a time series at `time` (a failure when there is none).
+std::size_t rowAt(const cosim::analysis::TimeSeries& ts, double time) {
+  const auto& times = ts.at("time");
+  for (std::size_t r = 0; r < times.size(); ++r)
+    if (std::fabs(times[r] - time) < 1e-9) return r;
+  ADD_FAILURE() << "no row at t = " << time;
+  return 0;
+}
+
+// The first step after a resume, at `time`, against the uninterrupted run's: the pressure drop and
+// the precursor columns to 1e-11 (relative).
+void expectFirstStepAgrees(const fs::path& full, const fs::path& resumed, double time) {
+  const auto ta = cosim::analysis::readTimeSeries(full / "timeseries.csv");
+  const auto tb = cosim::analysis::readTimeSeries(resumed / "timeseries.csv");
+  const std::size_t ra = rowAt(ta, time), rb = rowAt(tb, time);
+  for (const char* c : {"precursor_in", "precursor_out", "precursor_held", "precursor_removed",
+                        "coated_mass", "pressure_drop"}) {
+    const double va = ta.at(c)[ra], vb = tb.at(c)[rb];
+    std::printf("first step after the resume: %s %.3g relative\n", c,
+                std::fabs(va - vb) / std::max(std::fabs(va), 1e-300));
+    EXPECT_LE(std::fabs(va - vb), 1e-11 * std::fabs(va)) << c << " at t = " << time;
+  }
+}
+
 // The process `name` started by this one (the participants of an in-process Coupler), or 0.
 pid_t childNamed(const std::string& name) {
   for (const auto& e : fs::directory_iterator("/proc")) {
@@ -323,15 +347,8 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   EXPECT_NEAR(t.at("coating_credited_kg"), coated, 2e-6 * coated);
 
   // The first step after the resume (t = 0.0301 s) as the uninterrupted run's, to round-off
+  expectFirstStepAgrees(base / "full", base / "cut", 0.0301);
   const auto ta = cosim::analysis::readTimeSeries(base / "full/timeseries.csv");
-  const auto tb = cosim::analysis::readTimeSeries(base / "cut/timeseries.csv");
-  const auto row = [](const cosim::analysis::TimeSeries& ts, double time) {
-    const auto& times = ts.at("time");
-    for (std::size_t r = 0; r < times.size(); ++r)
-      if (std::fabs(times[r] - time) < 1e-9) return r;
-    ADD_FAILURE() << "no row at t = " << time;
-    return std::size_t{0};
-  };
   // Writing a checkpoint barely changes the run: the step after the one at 0.01 s against a run
   // without checkpoints. LIGGGHTS re-initialises at write_restart; the forces and torques the
   // next step starts from are kept (before: 1e-5 relative in that step's pressure drop), what
@@ -343,19 +360,11 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
     RunResult plain = Coupler(loadScenario(scene, {"coupling.end_time=0.0102"}), no).run();
     ASSERT_EQ(plain.exit_code, 0) << plain.message;
     const auto tp = cosim::analysis::readTimeSeries(base / "no-checkpoints/timeseries.csv");
-    const double pa = ta.at("pressure_drop")[row(ta, 0.0102)];
-    const double pp = tp.at("pressure_drop")[row(tp, 0.0102)];
+    const double pa = ta.at("pressure_drop")[rowAt(ta, 0.0102)];
+    const double pp = tp.at("pressure_drop")[rowAt(tp, 0.0102)];
     std::printf("step after a checkpoint vs no checkpoint: pressure drop %.3g relative\n",
                 std::fabs(pa - pp) / pp);
     EXPECT_LE(std::fabs(pa - pp), 5e-7 * std::fabs(pp));
-  }
-
-  const std::size_t ra = row(ta, 0.0301), rb = row(tb, 0.0301);
-  for (const char* c : {"precursor_in", "precursor_out", "precursor_held", "precursor_removed",
-                        "coated_mass", "pressure_drop"}) {
-    const double va = ta.at(c)[ra], vb = tb.at(c)[rb];
-    EXPECT_LE(std::fabs(va - vb), 1e-11 * std::fabs(va))
-        << c << " at the first step after the resume";
   }
 
   const auto& a = full.final_state;
@@ -483,19 +492,9 @@ TEST(PlasmaCoatingCi, DecomposedFluidResumesToRoundOff) {
   ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
   EXPECT_EQ(resumed.steps, full.steps);
 
-  const auto ta = cosim::analysis::readTimeSeries(base / "full/timeseries.csv");
-  const auto tb = cosim::analysis::readTimeSeries(base / "cut/timeseries.csv");
-  ASSERT_EQ(ta.rows(), tb.rows());
-  const auto& times = ta.at("time");
-  std::size_t r = 0;
-  while (r < times.size() && std::fabs(times[r] - 0.0101) > 1e-9) ++r;
-  ASSERT_LT(r, times.size()) << "no row at 0.0101 s";
-  for (const char* c : {"precursor_in", "precursor_out", "precursor_held", "precursor_removed",
-                        "coated_mass", "pressure_drop"}) {
-    const double va = ta.at(c)[r], vb = tb.at(c)[r];
-    EXPECT_LE(std::fabs(va - vb), 1e-11 * std::fabs(va))
-        << c << " at the first step after the resume";
-  }
+  EXPECT_EQ(cosim::analysis::readTimeSeries(base / "full/timeseries.csv").rows(),
+            cosim::analysis::readTimeSeries(base / "cut/timeseries.csv").rows());
+  expectFirstStepAgrees(base / "full", base / "cut", 0.0101);
   const auto& t = resumed.totals;
   const double in = t.at("precursor_in_kg");
   EXPECT_LT(std::fabs(t.at("coating_on_particles_kg") - t.at("coating_credited_kg")), 1e-12 * in);
@@ -605,23 +604,7 @@ TEST(PlasmaCoatingCi, ResumedOnTwoParticleRanksAgreesToRoundOff) {
   ro.resume = base / "cut";
   RunResult resumed = Coupler(loadScenario(scene, sets), ro).run();
   ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
-  const auto ta = cosim::analysis::readTimeSeries(base / "full/timeseries.csv");
-  const auto tb = cosim::analysis::readTimeSeries(base / "cut/timeseries.csv");
-  const auto row = [](const cosim::analysis::TimeSeries& ts, double time) {
-    const auto& times = ts.at("time");
-    for (std::size_t r = 0; r < times.size(); ++r)
-      if (std::fabs(times[r] - time) < 1e-9) return r;
-    ADD_FAILURE() << "no row at t = " << time;
-    return std::size_t{0};
-  };
-  const std::size_t ra = row(ta, 0.0201), rb = row(tb, 0.0201);
-  for (const char* c : {"precursor_in", "precursor_out", "precursor_held", "precursor_removed",
-                        "coated_mass", "pressure_drop"}) {
-    const double va = ta.at(c)[ra], vb = tb.at(c)[rb];
-    std::printf("two ranks, first step after the resume: %s %.3g relative\n", c,
-                std::fabs(va - vb) / std::max(std::fabs(va), 1e-300));
-    EXPECT_LE(std::fabs(va - vb), 1e-11 * std::fabs(va)) << c;
-  }
+  expectFirstStepAgrees(base / "full", base / "cut", 0.0201);
   std::map<std::int64_t, double> inPasses;
   for (const auto& p : cosim::analysis::readZonePasses(base / "cut" / "zone_passes.csv"))
     inPasses[p.parcel_id] += p.coating;
