@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <signal.h>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -40,7 +41,33 @@ bool writeWhole(const std::filesystem::path& path, const std::string& text) {
 
 }  // namespace
 
+namespace {
+// Ctrl-C (SIGINT) and SIGTERM held back while a file is written and renamed into place, and
+// delivered at once after: a command stopped by them (e.g. `cosim report` in its default
+// disposition) leaves each file whole or as it was, and no `.tmp` beside it.
+class StopSignalsHeld {
+ public:
+  StopSignalsHeld() {
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGTERM);
+    held_ = pthread_sigmask(SIG_BLOCK, &stop, &before_) == 0;
+  }
+  ~StopSignalsHeld() {
+    if (held_) pthread_sigmask(SIG_SETMASK, &before_, nullptr);
+  }
+  StopSignalsHeld(const StopSignalsHeld&) = delete;
+  StopSignalsHeld& operator=(const StopSignalsHeld&) = delete;
+
+ private:
+  sigset_t before_{};
+  bool held_ = false;
+};
+}  // namespace
+
 void writeFileAtomically(const std::filesystem::path& path, const std::string& text) {
+  const StopSignalsHeld held;
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   if (!writeWhole(tmp, text)) {

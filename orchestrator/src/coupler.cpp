@@ -105,7 +105,11 @@ RunResult Coupler::run() {
       progress->update(time_, k + 1, state_.size());
       result.steps = k + 1;
       interrupted = g_stop_signal != 0 && k + 1 < nsteps_;
-      if (interrupted || checkpointDue(k + 1 == nsteps_)) writeCheckpoint();
+      if (interrupted || checkpointDue(k + 1 == nsteps_)) {
+        writeCheckpoint();
+        // Ctrl-C while that checkpoint was written: it holds this state, stop with it
+        interrupted = g_stop_signal != 0 && k + 1 < nsteps_;
+      }
     }
     if (interrupted) {
       status = "interrupted";

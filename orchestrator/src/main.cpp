@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
     add(app, commands);
 
   CLI11_PARSE(app, argc, argv);
+  stopAtOnceOnSignals();  // run, resume, study and bench catch them to stop with a checkpoint
   try {
     for (const auto& c : commands)
       if (*c.app) return c.run();

@@ -753,3 +753,105 @@ TEST(PlasmaCoatingCi, KilledFiveTimesAndResumedTheRecordsAgree) {
   EXPECT_NEAR(parcels, passes, 1e-12 * passes);
   fs::remove_all(base);
 }
+
+// Ctrl-C in the phases not covered above: while a checkpoint is being written, and while `cosim
+// report` analyses the stopped run. The run stops with the checkpoint it was writing (status
+// interrupted, exit 130, its summary ending where that checkpoint is, no partial checkpoint left)
+// and resumes from it to the end; the report stops at once (exit 130) leaving no half-written or
+// temporary file, the run's records as they were, and a later report complete.
+TEST(PlasmaCoatingCi, CtrlCDuringACheckpointOrAReportStopsCleanly) {
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-plasma-ctrlc2-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  const fs::path run = base / "run";
+  const std::string cosim = std::string(COSIM_BINARY_DIR) + "/cosim";
+  const auto since = [](std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
+  {
+    cosim::util::ChildProcess p(
+        {cosim, "run", std::string(COSIM_SOURCE_DIR) + "/scenarios/plasma-coating-bed/ci.yaml",
+         "-o", run.string(), "--quiet", "--set", "checkpoint.interval=0.004", "--set",
+         "coupling.end_time=0.06", "--set", "output.interval=0.005"},
+        base, base / "run.out", {});
+    const auto t0 = std::chrono::steady_clock::now();
+    // past t = 0.025 s (250 steps: snapshots enough for the report's fits and bootstrap), a
+    // checkpoint being written while an earlier one is complete
+    const auto rows = [&] {
+      std::ifstream in(run / "timeseries.csv");
+      return std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n');
+    };
+    while (p.running() && since(t0) < 180 && rows() < 250)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    bool aimed = false;
+    while (p.running() && since(t0) < 180 && !aimed) {
+      bool complete = false, partial = false;
+      std::error_code ec;
+      for (const auto& e : fs::directory_iterator(run / "checkpoints", ec))
+        (e.path().filename().string().rfind(".partial", 0) == 0 ? partial : complete) = true;
+      aimed = complete && partial;
+      if (!aimed) std::this_thread::sleep_for(std::chrono::microseconds(200));
+    }
+    ASSERT_TRUE(aimed && p.running()) << "no checkpoint write to aim at: " << p.exitDescription();
+    const auto t1 = std::chrono::steady_clock::now();
+    ::kill(p.pid(), SIGINT);
+    const int code = p.wait();
+    const double waited = since(t1);
+    std::printf("Ctrl-C during a checkpoint write: cosim stopped after %.2f s\n", waited);
+    EXPECT_EQ(code, 130);
+    EXPECT_LT(waited, 5.0);
+  }
+  const auto summary = cosim::analysis::readJsonFile(run / "summary.json");
+  EXPECT_EQ(summary.at("status"), "interrupted");
+  double newest = -1;
+  for (const auto& e : fs::directory_iterator(run / "checkpoints")) {
+    const std::string name = e.path().filename().string();
+    EXPECT_NE(name.rfind(".partial", 0), 0u) << "a partial checkpoint was left: " << name;
+    if (name.front() != '.') newest = std::max(newest, std::stod(name));
+  }
+  // stopped with the checkpoint it was writing (not a step later, with another)
+  EXPECT_NEAR(summary.at("end_time_s").get<double>(), newest, 1e-9);
+
+  // Ctrl-C while the report analyses the run (made long by many bootstrap resamples)
+  const auto bytes = [](const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  const std::string series = bytes(run / "timeseries.csv"), passes = bytes(run / "zone_passes.csv");
+  {
+    cosim::util::ChildProcess r({cosim, "report", run.string(), "--no-plots", "--bootstrap",
+                                 "2000000", "-o", (base / "report").string()},
+                                base, base / "report.out", {});
+    for (int i = 0; i < 300 && bytes(base / "report.out").find("analysing") == std::string::npos;
+         ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    ASSERT_TRUE(r.running()) << "the report ended before the Ctrl-C: " << r.exitDescription();
+    const auto t1 = std::chrono::steady_clock::now();
+    ::kill(r.pid(), SIGINT);
+    const int code = r.wait();
+    const double waited = since(t1);
+    std::printf("Ctrl-C during cosim report: stopped after %.2f s\n", waited);
+    EXPECT_EQ(code, 130);
+    EXPECT_LT(waited, 5.0);
+  }
+  for (const auto& e : fs::recursive_directory_iterator(base))
+    EXPECT_NE(e.path().extension(), ".tmp") << e.path();
+  EXPECT_EQ(bytes(run / "timeseries.csv"), series);
+  EXPECT_EQ(bytes(run / "zone_passes.csv"), passes);
+  EXPECT_EQ(cosim::analysis::readJsonFile(run / "summary.json"), summary);
+
+  // the run resumes from that checkpoint to its end, and its report is complete
+  cosim::util::ChildProcess resumed({cosim, "resume", run.string(), "--quiet"}, base,
+                                    base / "resume.out", {});
+  ASSERT_EQ(resumed.wait(), 0) << bytes(base / "resume.out");
+  cosim::analysis::ReportOptions ro;
+  ro.runs = {run};
+  ro.output = base / "report";
+  ro.plots = false;
+  ASSERT_EQ(cosim::analysis::runReport(ro), 0);
+  const auto report = cosim::analysis::readJsonFile(base / "report" / "report.json");
+  EXPECT_TRUE(report.at("zone_passes").at("ledgers_agree").get<bool>());
+  fs::remove_all(base);
+}

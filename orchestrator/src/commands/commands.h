@@ -22,6 +22,11 @@ extern const char* const kUnsetHelp;
 // Ctrl-C and SIGTERM stop a run after its step with a checkpoint (a second one at once);
 // `pipe`: a closed pipe is an error to handle, not a signal that ends the process.
 void catchStopSignals(bool ignore_pipe = true);
+// Ctrl-C and SIGTERM end a command at once, whatever its parent left them set to (a script's
+// background job inherits Ctrl-C ignored): every command but those that catch them as above.
+// Each file it writes is whole or as it was (analysis::writeFileAtomically holds them back
+// while it writes).
+void stopAtOnceOnSignals();
 
 // "a, b, c", or "(none)"
 std::string joinNames(const std::vector<std::string>& names);

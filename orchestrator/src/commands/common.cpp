@@ -32,4 +32,9 @@ void catchStopSignals(bool ignore_pipe) {
   if (ignore_pipe) std::signal(SIGPIPE, SIG_IGN);
 }
 
+void stopAtOnceOnSignals() {
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+}
+
 }  // namespace cosim::orchestrator
