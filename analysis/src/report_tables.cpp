@@ -7,6 +7,7 @@
 
 #include "cosim/analysis/report.h"
 #include "report_internal.h"
+#include "report_json.h"
 
 namespace cosim::analysis {
 
@@ -14,42 +15,6 @@ namespace {
 Json series(const std::vector<CoatingStatistics>& s, double CoatingStatistics::*member) {
   Json a = Json::array();
   for (const auto& x : s) a.push_back(x.*member);
-  return a;
-}
-
-Json toJson(const CoatingStatistics& s) {
-  Json j = Json::object();
-  j["time"] = s.time;
-  j["count"] = static_cast<unsigned long long>(s.count);
-  j["mean"] = s.mean;
-  j["std"] = s.std_dev;
-  j["variance"] = s.variance;
-  j["cv"] = s.cv;
-  j["min"] = s.min;
-  j["max"] = s.max;
-  j["total"] = s.total;
-  j["uncoated_threshold"] = s.uncoated_threshold;
-  j["uncoated_share"] = s.uncoated_share;
-  j["skewness"] = s.skewness;
-  j["excess_kurtosis"] = s.excess_kurtosis;
-  return j;
-}
-
-Json toJson(const RunsTest& r) {
-  Json j = Json::object();
-  j["valid"] = r.valid;
-  j["positive"] = static_cast<unsigned long long>(r.positive);
-  j["negative"] = static_cast<unsigned long long>(r.negative);
-  j["runs"] = static_cast<unsigned long long>(r.runs);
-  j["expected_runs"] = r.expected_runs;
-  j["z"] = r.z;
-  j["p_too_few"] = r.p_too_few;
-  return j;
-}
-
-Json strings(const std::vector<std::string>& v) {
-  Json a = Json::array();
-  for (const auto& s : v) a.push_back(s);
   return a;
 }
 
@@ -83,24 +48,22 @@ class Csv {
 }  // namespace
 
 Json conditionsJson(const OperatingConditions& c) {
-  Json j = Json::object();
-  j["flow_lpm"] = c.flow_lpm;
-  j["superficial_velocity_m_per_s"] = c.superficial_velocity;
-  j["u_mf_m_per_s"] = c.u_mf;
-  j["u_mf_source"] = c.u_mf_source;
-  j["u_over_umf"] = c.uOverUmf();
-  j["nozzle_velocity_m_per_s"] = c.nozzle_velocity;
-  j["precursor_mass_fraction"] = c.precursor_fraction;
-  j["parcels"] = static_cast<unsigned long long>(c.parcels);
-  j["cg"] = c.grain.cg;
-  j["cg_source"] = c.cg_source;
-  j["coating_time_s"] = c.coating_time;
-  j["parcel_diameter_m"] = c.parcel_diameter;
-  j["parcel_diameter_source"] = c.parcel_diameter_source;
-  j["grain_diameter_m"] = c.grain.grain_diameter;
-  j["coating_density_kg_per_m3"] = c.grain.coating_density;
-  j["coating_density_source"] = c.coating_density_source;
-  return j;
+  return {{"flow_lpm", c.flow_lpm},
+          {"superficial_velocity_m_per_s", c.superficial_velocity},
+          {"u_mf_m_per_s", c.u_mf},
+          {"u_mf_source", c.u_mf_source},
+          {"u_over_umf", c.uOverUmf()},
+          {"nozzle_velocity_m_per_s", c.nozzle_velocity},
+          {"precursor_mass_fraction", c.precursor_fraction},
+          {"parcels", c.parcels},
+          {"cg", c.grain.cg},
+          {"cg_source", c.cg_source},
+          {"coating_time_s", c.coating_time},
+          {"parcel_diameter_m", c.parcel_diameter},
+          {"parcel_diameter_source", c.parcel_diameter_source},
+          {"grain_diameter_m", c.grain.grain_diameter},
+          {"coating_density_kg_per_m3", c.grain.coating_density},
+          {"coating_density_source", c.coating_density_source}};
 }
 
 Json unitsJson(const RunAnalysis& a) {
@@ -112,218 +75,130 @@ Json unitsJson(const RunAnalysis& a) {
           {"thickness_m", a.thickness_unit.si}};
 }
 
-Json toJson(const RunAnalysis& a, const ReportOptions& o) {
-  Json j = Json::object();
-  j["format"] = "cosim-report";
-  j["version"] = 1;
-  j["run"] = a.run.string();
-  j["label"] = a.label;
-  j["run_status"] = a.run_status;
-  // Every number below is in SI units (kg, m, s); `units` is what the pages and plots show.
-  j["units"] = unitsJson(a);
-  j["conditions"] = conditionsJson(a.conditions);
-  {
-    const auto& l = a.snapshots.back();
-    const auto& gs = a.conditions.grain;
-    j["end_of_run"] = {{"time", l.time},
-                       {"mean_per_parcel_kg", l.mean},
-                       {"sd_per_parcel_kg", l.std_dev},
-                       {"mean_per_grain_kg", gs.perGrain(l.mean)},
-                       {"sd_per_grain_kg", gs.perGrain(l.std_dev)},
-                       {"layer_thickness_m", gs.thickness(l.mean)},
-                       {"layer_thickness_sd_m", gs.thickness(l.std_dev)},
-                       {"cv", l.cv},
-                       {"uncoated_share", l.uncoated_share}};
-  }
-  Json& opt = j["options"] = Json::object();
-  opt["fit_start"] = a.fit.t0;
-  opt["fit_end"] = a.fit.t1;
-  opt["coating_start"] = o.coating_start;
-  opt["predict_times"] = Json(o.predict_times);
-  opt["predict_until"] = o.predict_until;
-  opt["band"] = o.band;
-  opt["uncoated_relative"] = o.uncoated_relative;
-  Json& cr = opt["criteria"] = Json::object();
-  for (const auto& k : kMixingCriteria) cr[k.name] = o.criteria.*k.value;
-
-  Json& s = j["snapshots"] = Json::object();
-  s["time"] = series(a.snapshots, &CoatingStatistics::time);
+// The snapshots' statistics as one array per statistic
+Json snapshotsJson(const std::vector<CoatingStatistics>& snapshots) {
   Json counts = Json::array();
-  for (const auto& x : a.snapshots) counts.push_back(static_cast<unsigned long long>(x.count));
-  s["count"] = counts;
-  s["mean"] = series(a.snapshots, &CoatingStatistics::mean);
-  s["std"] = series(a.snapshots, &CoatingStatistics::std_dev);
-  s["variance"] = series(a.snapshots, &CoatingStatistics::variance);
-  s["cv"] = series(a.snapshots, &CoatingStatistics::cv);
-  s["uncoated_share"] = series(a.snapshots, &CoatingStatistics::uncoated_share);
-  s["total"] = series(a.snapshots, &CoatingStatistics::total);
-  s["skewness"] = series(a.snapshots, &CoatingStatistics::skewness);
-  s["excess_kurtosis"] = series(a.snapshots, &CoatingStatistics::excess_kurtosis);
+  for (const auto& x : snapshots) counts.push_back(x.count);
+  return {{"time", series(snapshots, &CoatingStatistics::time)},
+          {"count", counts},
+          {"mean", series(snapshots, &CoatingStatistics::mean)},
+          {"std", series(snapshots, &CoatingStatistics::std_dev)},
+          {"variance", series(snapshots, &CoatingStatistics::variance)},
+          {"cv", series(snapshots, &CoatingStatistics::cv)},
+          {"uncoated_share", series(snapshots, &CoatingStatistics::uncoated_share)},
+          {"total", series(snapshots, &CoatingStatistics::total)},
+          {"skewness", series(snapshots, &CoatingStatistics::skewness)},
+          {"excess_kurtosis", series(snapshots, &CoatingStatistics::excess_kurtosis)}};
+}
 
-  Json& hs = j["histograms"] = Json::array();
-  for (const auto& h : a.histograms) {
-    Json x = toJson(h.stats);
-    x["requested"] = h.requested;
-    x["edges"] = Json(h.histogram.edges);
-    Json c = Json::array();
-    for (auto n : h.histogram.counts) c.push_back(static_cast<unsigned long long>(n));
-    x["counts"] = c;
-    x["rule"] = h.histogram.rule;
-    hs.push_back(x);
-  }
+// The last snapshot per parcel, per grain and as a layer
+Json endOfRunJson(const RunAnalysis& a) {
+  const auto& l = a.snapshots.back();
+  const auto& gs = a.conditions.grain;
+  return {{"time", l.time},
+          {"mean_per_parcel_kg", l.mean},
+          {"sd_per_parcel_kg", l.std_dev},
+          {"mean_per_grain_kg", gs.perGrain(l.mean)},
+          {"sd_per_grain_kg", gs.perGrain(l.std_dev)},
+          {"layer_thickness_m", gs.thickness(l.mean)},
+          {"layer_thickness_sd_m", gs.thickness(l.std_dev)},
+          {"cv", l.cv},
+          {"uncoated_share", l.uncoated_share}};
+}
 
+Json optionsJson(const RunAnalysis& a, const ReportOptions& o) {
+  Json criteria = Json::object();
+  for (const auto& k : kMixingCriteria) criteria[k.name] = o.criteria.*k.value;
+  return {{"fit_start", a.fit.t0},
+          {"fit_end", a.fit.t1},
+          {"coating_start", o.coating_start},
+          {"predict_times", o.predict_times},
+          {"predict_until", o.predict_until},
+          {"band", o.band},
+          {"uncoated_relative", o.uncoated_relative},
+          {"criteria", criteria}};
+}
+
+// Eqs. 9-10 fitted, with the errors of a1 and a2 (HC3, classic, bootstrap)
+Json fitJson(const RunAnalysis& a) {
   const GrowthFit& f = a.fit;
-  Json& fit = j["fit"] = Json::object();
-  fit["ok"] = f.ok;
-  fit["problem"] = f.problem;
-  fit["t0"] = f.t0;
-  fit["t1"] = f.t1;
-  fit["coating_start"] = f.coating_start;
-  fit["time"] = Json(f.time);
-  fit["tau"] = Json(f.tau);
-  fit["mean"] = Json(f.mean);
-  fit["variance"] = Json(f.variance);
-  fit["mean_residual"] = Json(f.mean_fit.residuals);
-  fit["variance_residual"] = Json(f.variance_fit.residuals);
-  fit["a1"] = f.a1;
-  fit["a1_se"] = f.a1_se;
-  fit["a1_se_classic"] = f.a1_se_classic;
-  fit["a2"] = f.a2;
-  fit["a2_se"] = f.a2_se;
-  fit["a2_se_classic"] = f.a2_se_classic;
-  fit["bootstrap_ok"] = a.bootstrap.ok;
-  fit["bootstrap_problem"] = a.bootstrap.problem;
-  fit["bootstrap_resamples"] = static_cast<unsigned long long>(a.bootstrap.resamples);
-  fit["bootstrap_snapshots"] = static_cast<unsigned long long>(a.bootstrap.snapshots);
-  fit["a1_se_bootstrap"] = a.bootstrap.ok ? Json(a.bootstrap.a1_se) : Json();
-  fit["a2_se_bootstrap"] = a.bootstrap.ok ? Json(a.bootstrap.a2_se) : Json();
-  fit["a1_error"] = a.a1Error();  // the one shown: bootstrap if available, else HC3
-  fit["a2_error"] = a.a2Error();
-  fit["mean_relative_rms"] = f.mean_relative_rms;
-  fit["variance_relative_rms"] = f.variance_relative_rms;
+  const auto& b = a.bootstrap;
+  return {{"ok", f.ok},
+          {"problem", f.problem},
+          {"t0", f.t0},
+          {"t1", f.t1},
+          {"coating_start", f.coating_start},
+          {"time", f.time},
+          {"tau", f.tau},
+          {"mean", f.mean},
+          {"variance", f.variance},
+          {"mean_residual", f.mean_fit.residuals},
+          {"variance_residual", f.variance_fit.residuals},
+          {"a1", f.a1},
+          {"a1_se", f.a1_se},
+          {"a1_se_classic", f.a1_se_classic},
+          {"a2", f.a2},
+          {"a2_se", f.a2_se},
+          {"a2_se_classic", f.a2_se_classic},
+          {"bootstrap_ok", b.ok},
+          {"bootstrap_problem", b.problem},
+          {"bootstrap_resamples", b.resamples},
+          {"bootstrap_snapshots", b.snapshots},
+          {"a1_se_bootstrap", b.ok ? Json(b.a1_se) : Json()},
+          {"a2_se_bootstrap", b.ok ? Json(b.a2_se) : Json()},
+          {"a1_error", a.a1Error()},  // the one shown: bootstrap if available, else HC3
+          {"a2_error", a.a2Error()},
+          {"mean_relative_rms", f.mean_relative_rms},
+          {"variance_relative_rms", f.variance_relative_rms}};
+}
 
+Json verdictJson(const RunAnalysis& a, const ReportOptions& o) {
   const MixingVerdict& v = a.verdict;
-  Json& vj = j["verdict"] = Json::object();
-  vj["well_mixed"] = v.well_mixed;
-  vj["summary"] = v.summary();
-  vj["short"] = shortVerdict(v);
-  vj["plain"] = plainVerdict(a, o);
-  vj["reasons"] = strings(v.reasons);
-  vj["warnings"] = strings(v.warnings);
-  vj["relaxed_criteria"] = strings(v.relaxed);
-  vj["last_time"] = v.last_time;
-  vj["uncoated_share"] = v.uncoated_share;
-  Json& nj = vj["normality"] = Json::object();
-  nj["valid"] = v.normality.valid;
-  nj["problem"] = v.normality.problem;
-  nj["n"] = static_cast<unsigned long long>(v.normality.n);
-  nj["skewness"] = v.normality.skewness;
-  nj["kurtosis"] = v.normality.kurtosis;
-  nj["z_skewness"] = v.normality.z_skewness;
-  nj["z_kurtosis"] = v.normality.z_kurtosis;
-  nj["k2"] = v.normality.k2;
-  nj["p_value"] = v.normality.p_value;
-  nj["fading"] = v.fading_non_normal;
-  Json& tj = nj["trend"] = Json::object();
-  tj["measured"] = v.trend.measured;
-  tj["from"] = v.trend.from;
-  tj["to"] = v.trend.to;
-  tj["snapshots"] = static_cast<unsigned long long>(v.trend.snapshots);
-  tj["skewness_decay"] = v.trend.skewness_decay;
-  tj["kurtosis_decay"] = v.trend.kurtosis_decay;
-  tj["at"] = v.trend.at;
-  tj["projected_skewness"] = v.trend.projected_skewness;
-  tj["projected_excess_kurtosis"] = v.trend.projected_excess_kurtosis;
-  vj["runs_mean"] = toJson(v.mean_runs);
-  vj["runs_variance"] = toJson(v.variance_runs);
+  Json normality = v.normality;
+  normality["fading"] = v.fading_non_normal;
+  normality["trend"] = v.trend;
+  return {{"well_mixed", v.well_mixed},
+          {"summary", v.summary()},
+          {"short", shortVerdict(v)},
+          {"plain", plainVerdict(a, o)},
+          {"reasons", v.reasons},
+          {"warnings", v.warnings},
+          {"relaxed_criteria", v.relaxed},
+          {"last_time", v.last_time},
+          {"uncoated_share", v.uncoated_share},
+          {"normality", normality},
+          {"runs_mean", v.mean_runs},
+          {"runs_variance", v.variance_runs}};
+}
 
-  Json& cv = j["cv_prediction"] = Json::object();
-  cv["tau"] = Json(a.cv_prediction.tau);
-  cv["cv"] = Json(a.cv_prediction.cv);
-  cv["cv_low"] = Json(a.cv_prediction.cv_low);
-  cv["cv_high"] = Json(a.cv_prediction.cv_high);
-  cv["band"] = a.cv_prediction.band;
-
-  Json& ds = j["distributions"] = Json::array();
-  for (const auto& d : a.distributions) {
-    Json x = Json::object();
-    x["tau"] = d.tau;
-    x["mean"] = d.mean;
-    x["sigma"] = d.sigma;
-    x["cv"] = d.cv;
-    x["sigma_low"] = d.sigma_low;
-    x["sigma_high"] = d.sigma_high;
-    ds.push_back(x);
-  }
-
-  Json& pc = j["prediction_check"] = Json::object();
-  Json pts = Json::array();
-  for (const auto& p : a.prediction_check.points) {
-    Json x = Json::object();
-    x["time"] = p.time;
-    x["simulated_mean"] = p.simulated_mean;
-    x["predicted_mean"] = p.predicted_mean;
-    x["mean_error"] = p.mean_error;
-    x["simulated_std"] = p.simulated_std;
-    x["predicted_std"] = p.predicted_std;
-    x["std_error"] = p.std_error;
-    x["simulated_cv"] = p.simulated_cv;
-    x["predicted_cv"] = p.predicted_cv;
-    x["cv_error"] = p.cv_error;
-    pts.push_back(x);
-  }
-  pc["points"] = pts;
-  pc["max_abs_mean_error"] = a.prediction_check.max_abs_mean_error;
-  pc["max_abs_std_error"] = a.prediction_check.max_abs_std_error;
-  pc["max_abs_cv_error"] = a.prediction_check.max_abs_cv_error;
-
-  Json& ws = j["window_study"] = Json::object();
-  ws["horizon"] = a.window_study.horizon;
-  ws["run_end"] = a.window_study.run_end;
-  ws["simulated_cv_run_end"] = a.window_study.simulated_cv_run_end;
-  Json wpts = Json::array();
-  for (const auto& p : a.window_study.points) {
-    Json x = Json::object();
-    x["t_end"] = p.t_end;
-    x["wall_seconds"] = p.wall_seconds;
-    x["ok"] = p.ok;
-    x["a1"] = p.a1;
-    x["a1_se"] = p.a1_se;
-    x["a2"] = p.a2;
-    x["a2_se"] = p.a2_se;
-    x["cv_horizon"] = p.cv_horizon;
-    x["cv_run_end"] = p.cv_run_end;
-    x["cv_run_end_error"] = p.cv_run_end_error;
-    wpts.push_back(x);
-  }
-  ws["points"] = wpts;
-
+Json toJson(const RunAnalysis& a, const ReportOptions& o) {
+  // Every number is in SI units (kg, m, s); `units` is what the pages and plots show.
+  Json j = {{"format", "cosim-report"},
+            {"version", 1},
+            {"run", a.run.string()},
+            {"label", a.label},
+            {"run_status", a.run_status},
+            {"units", unitsJson(a)},
+            {"conditions", conditionsJson(a.conditions)},
+            {"end_of_run", endOfRunJson(a)},
+            {"options", optionsJson(a, o)},
+            {"snapshots", snapshotsJson(a.snapshots)},
+            {"histograms", a.histograms},
+            {"fit", fitJson(a)},
+            {"verdict", verdictJson(a, o)},
+            {"cv_prediction", a.cv_prediction},
+            {"distributions", a.distributions},
+            {"prediction_check", a.prediction_check},
+            {"window_study", a.window_study}};
   if (a.mass_balance) {
-    const MassBalance& b = *a.mass_balance;
-    Json& mb = j["mass_balance"] = Json::object();
-    mb["precursor_in"] = b.precursor_in;
-    mb["precursor_out"] = b.precursor_out;
-    mb["held_start"] = b.held_start;
-    mb["held_end"] = b.held_end;
-    mb["held_change"] = b.held_change;
-    mb["expected_coating"] = b.expected_coating;
-    mb["coated_start"] = b.coated_start;
-    mb["coated_end"] = b.coated_end;
-    mb["obtained_coating"] = b.obtained_coating;
-    mb["error"] = b.error;
-    mb["error_percent"] = b.error_percent;
-    mb["initial_state"] = b.initial_state;
-    mb["obtained_source"] = b.obtained_source;
-    mb["removed"] = b.has_removed ? Json(b.removed) : Json();
-    mb["pending"] = b.has_removed ? Json(b.pending) : Json();
+    j["mass_balance"] = *a.mass_balance;
   } else {
-    j["mass_balance"] = nullptr;
-    j["mass_balance_problem"] = a.mass_balance_problem;
+    j.update(Json{{"mass_balance", nullptr}, {"mass_balance_problem", a.mass_balance_problem}});
   }
-  j["wall_seconds"] = a.wall_seconds;
-  j["steps"] = static_cast<unsigned long long>(a.steps);
-  j["zone_passes"] = zonePassesJson(a);
-  j["batch_model"] = batchJson(a);
+  j.update(Json{{"wall_seconds", a.wall_seconds},
+                {"steps", a.steps},
+                {"zone_passes", zonePassesJson(a)},
+                {"batch_model", batchJson(a)}});
   return j;
 }
 
