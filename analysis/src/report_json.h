@@ -12,9 +12,11 @@
 #include "cosim/analysis/mass_balance.h"
 #include "cosim/analysis/mixing_verdict.h"
 #include "cosim/analysis/normality_test.h"
+#include "cosim/analysis/parcel_places.h"
 #include "cosim/analysis/report.h"
 #include "cosim/analysis/runs_test.h"
 #include "cosim/analysis/window_study.h"
+#include "cosim/analysis/zone_pass_statistics.h"
 
 // nlohmann's NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE for our Json (an ordered_json: the keys stay in
 // the order given), serialising only: report.json is written, never read back into these types.
@@ -82,6 +84,32 @@ inline void to_json(Json& j, const HistogramAt& h) {
   j["edges"] = h.histogram.edges;
   j["counts"] = h.histogram.counts;
   j["rule"] = h.histogram.rule;
+}
+
+// A spread of values with its histogram (zone passes: passes per parcel, cycle times, ...)
+inline void to_json(Json& j, const Spread& s) {
+  j = {{"n", s.n},
+       {"mean", s.mean},
+       {"sd", s.sd},
+       {"min", s.min},
+       {"p10", s.p10},
+       {"p25", s.p25},
+       {"p50", s.p50},
+       {"p75", s.p75},
+       {"p90", s.p90},
+       {"max", s.max},
+       {"edges", s.histogram.edges},
+       {"counts", s.histogram.counts}};
+}
+
+COSIM_JSON_FIELDS(MannPrediction, t, mean, sd, cv, cv_with_pass_spread, passes_mean)
+
+inline void to_json(Json& j, const PlaceOfGroup& p) {
+  j = {{"parcels", p.parcels},
+       {"mean_height_m", p.mean_height},
+       {"mean_radius_m", p.mean_radius},
+       {"start_height_m", p.start_height},
+       {"start_radius_m", p.start_radius}};
 }
 
 }  // namespace cosim::analysis

@@ -15,6 +15,7 @@
 #include "cosim/analysis/report.h"
 #include "cosim/link/fields.h"
 #include "report_internal.h"
+#include "report_json.h"
 
 namespace cosim::analysis {
 
@@ -33,33 +34,6 @@ std::string pct(double v) {
 }
 std::string span(double s) { return htmlDuration(s); }
 std::string mm(double m) { return num(1e3 * m, "{:.1f}"); }
-
-Json spreadJson(const Spread& s) {
-  Json j = Json::object();
-  j["n"] = static_cast<unsigned long long>(s.n);
-  j["mean"] = s.mean;
-  j["sd"] = s.sd;
-  j["min"] = s.min;
-  j["p10"] = s.p10;
-  j["p25"] = s.p25;
-  j["p50"] = s.p50;
-  j["p75"] = s.p75;
-  j["p90"] = s.p90;
-  j["max"] = s.max;
-  j["edges"] = Json(s.histogram.edges);
-  Json c = Json::array();
-  for (auto n : s.histogram.counts) c.push_back(static_cast<unsigned long long>(n));
-  j["counts"] = c;
-  return j;
-}
-
-Json placeJson(const PlaceOfGroup& p) {
-  return {{"parcels", static_cast<unsigned long long>(p.parcels)},
-          {"mean_height_m", p.mean_height},
-          {"mean_radius_m", p.mean_radius},
-          {"start_height_m", p.start_height},
-          {"start_radius_m", p.start_radius}};
-}
 
 // Each parcel's coating at the last snapshot, less its coating at the first, against the coating
 // of its passes: the first parcel (in id order) whose two ledgers differ by more than round-off,
@@ -184,55 +158,42 @@ Json zonePassesJson(const RunAnalysis& a) {
   if (!a.zone_passes) return Json{{"recorded", false}, {"problem", a.zone_passes_problem}};
   const auto& r = *a.zone_passes;
   const auto& s = r.stats;
-  Json j = Json::object();
-  j["recorded"] = true;
-  j["start"] = s.start;
-  j["end"] = s.end;
-  j["parcels"] = static_cast<unsigned long long>(s.parcels);
-  j["passes"] = static_cast<unsigned long long>(s.passes);
-  j["complete_passes"] = static_cast<unsigned long long>(s.complete_passes);
-  j["entries"] = static_cast<unsigned long long>(s.entries);
-  j["never_entered"] = static_cast<unsigned long long>(s.never_entered);
-  j["never_entered_share"] = s.never_entered_share;
-  j["parcels_without_cycle"] = static_cast<unsigned long long>(s.at_most_one_entry);
-  j["passes_per_parcel"] = spreadJson(s.passes_per_parcel);
-  j["passes_cv"] = s.passes_cv;
-  j["time_in_zone_per_parcel_s"] = spreadJson(s.time_in_zone_per_parcel);
-  j["time_in_zone_share"] = s.time_in_zone_share;
-  j["pass_duration_s"] = spreadJson(s.pass_duration);
-  j["cycle_time_s"] = spreadJson(s.cycle_time);
-  j["cycle_time_from_rate_s"] = s.cycle_time_from_rate;
-  j["coating_per_pass_kg"] = spreadJson(s.coating_per_pass);
-  j["coating_in_passes_kg"] = s.coating_in_passes;
-  j["coating_on_parcels_kg"] = r.coating_on_parcels;
-  j["ledgers_agree"] = r.ledger_problem.empty();
+  Json j = {{"recorded", true},
+            {"start", s.start},
+            {"end", s.end},
+            {"parcels", s.parcels},
+            {"passes", s.passes},
+            {"complete_passes", s.complete_passes},
+            {"entries", s.entries},
+            {"never_entered", s.never_entered},
+            {"never_entered_share", s.never_entered_share},
+            {"parcels_without_cycle", s.at_most_one_entry},
+            {"passes_per_parcel", s.passes_per_parcel},
+            {"passes_cv", s.passes_cv},
+            {"time_in_zone_per_parcel_s", s.time_in_zone_per_parcel},
+            {"time_in_zone_share", s.time_in_zone_share},
+            {"pass_duration_s", s.pass_duration},
+            {"cycle_time_s", s.cycle_time},
+            {"cycle_time_from_rate_s", s.cycle_time_from_rate},
+            {"coating_per_pass_kg", s.coating_per_pass},
+            {"coating_in_passes_kg", s.coating_in_passes},
+            {"coating_on_parcels_kg", r.coating_on_parcels},
+            {"ledgers_agree", r.ledger_problem.empty()}};
   if (!r.ledger_problem.empty()) j["ledger_problem"] = r.ledger_problem;
-  j["w0_kg"] = s.w0;
-  j["simulated"] = {{"time", r.simulated_time}, {"mean", r.simulated_mean}, {"cv", r.simulated_cv}};
-  j["prediction_ok"] = s.prediction_ok;
-  j["prediction_problem"] = s.prediction_problem;
-  Json ps = Json::array();
-  for (const auto& p : r.predictions) {
-    ps.push_back({{"t", p.t},
-                  {"mean", p.mean},
-                  {"sd", p.sd},
-                  {"cv", p.cv},
-                  {"cv_with_pass_spread", p.cv_with_pass_spread},
-                  {"passes_mean", p.passes_mean}});
-  }
-  j["mann_prediction"] = ps;
-  if (r.never_entered_places.valid) {
-    const auto& pl = r.never_entered_places;
+  j.update(Json{{"w0_kg", s.w0},
+                {"simulated",
+                 {{"time", r.simulated_time}, {"mean", r.simulated_mean}, {"cv", r.simulated_cv}}},
+                {"prediction_ok", s.prediction_ok},
+                {"prediction_problem", s.prediction_problem},
+                {"mann_prediction", r.predictions}});
+  if (const auto& pl = r.never_entered_places; pl.valid) {
     j["never_entered_places"] = {{"axis_x_m", pl.axis_x},
                                  {"axis_y_m", pl.axis_y},
-                                 {"snapshots", static_cast<unsigned long long>(pl.snapshots)},
-                                 {"never_entered", placeJson(pl.group)},
-                                 {"others", placeJson(pl.others)}};
+                                 {"snapshots", pl.snapshots},
+                                 {"never_entered", pl.group},
+                                 {"others", pl.others}};
   }
-  j["cycles_cut_by_run"] = r.cycles_cut_by_run;
-  Json notes = Json::array();
-  for (const auto& n : r.notes) notes.push_back(n);
-  j["notes"] = notes;
+  j.update(Json{{"cycles_cut_by_run", r.cycles_cut_by_run}, {"notes", r.notes}});
   return j;
 }
 
