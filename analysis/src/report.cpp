@@ -102,71 +102,69 @@ double parameter(const RunAnalysis& a, const std::string& name) {
   return std::nan("");
 }
 
+namespace {
+// One run's line of the comparison: its end, fit, verdict, batch CVs and zone passes
+Json comparedRunJson(const RunAnalysis& a, const std::string& folder,
+                     const std::vector<std::string>& varied, const ReportOptions& o) {
+  const auto& l = a.snapshots.back();
+  std::string legend = a.label;
+  Json parameters = Json::object();
+  for (const auto& n : varied) {
+    parameters[n] = parameter(a, n);
+    // 4 significant digits: a legend, not a record (parameters keep full precision)
+    legend += fmt::format(" {}={:.4g}", n, parameter(a, n));
+  }
+  Json cv_batch = Json::array();  // at batch_times_s; null for a poorly mixed run (refused)
+  for (double t : batchTimes(o)) {
+    cv_batch.push_back(
+        a.verdict.well_mixed && a.fit.ok ? Json(predictDistribution(a.fit, t, o.band).cv) : Json());
+  }
+  const double nan = std::nan("");
+  const auto* zp = a.zone_passes ? &a.zone_passes->stats : nullptr;
+  return {{"label", a.label},
+          {"parameters", parameters},
+          {"legend", legend},
+          {"run", a.run.string()},
+          {"report", folder + "/report.json"},
+          {"end_time", l.time},
+          {"total", l.total},
+          {"mean", l.mean},
+          {"cv", l.cv},
+          {"uncoated_share", l.uncoated_share},
+          {"fit_ok", a.fit.ok},
+          {"a1", a.fit.a1},
+          {"a1_se", a.a1Error()},
+          {"a2", a.fit.a2},
+          {"a2_se", a.a2Error()},
+          {"well_mixed", a.verdict.well_mixed},
+          {"verdict", a.verdict.summary()},
+          {"verdict_short", shortVerdict(a.verdict)},
+          {"verdict_plain", plainVerdict(a, o)},
+          {"conditions", conditionsJson(a.conditions)},
+          {"mean_per_grain", a.conditions.grain.perGrain(l.mean)},
+          {"layer_thickness_m", a.conditions.grain.thickness(l.mean)},
+          {"cv_batch", cv_batch},
+          {"mass_balance_error_percent", a.mass_balance ? a.mass_balance->error_percent : nan},
+          {"wall_seconds", a.wall_seconds},
+          {"never_in_zone_share", zp ? zp->never_entered_share : nan},
+          {"cycle_time_s", zp ? zp->cycle_time.mean : nan},
+          {"cycle_time_from_rate_s", zp ? zp->cycle_time_from_rate : nan},
+          {"pass_duration_s", zp ? zp->pass_duration.mean : nan}};
+}
+}  // namespace
+
 Json comparisonJson(const std::vector<RunAnalysis>& runs, const std::vector<std::string>& folders,
                     const ReportOptions& o) {
-  Json j = Json::object();
-  j["format"] = "cosim-comparison";
-  j["version"] = 1;
-  j["units"] = unitsJson(runs.front());  // the same for every run of a comparison
-  Json bt = Json::array();
-  for (double t : batchTimes(o)) bt.push_back(t);
-  j["batch_times_s"] = bt;
   const auto varied = variedParameters(runs);
-  Json v = Json::array();
-  for (const auto& n : varied) v.push_back(n);
-  j["varied_parameters"] = v;
-  Json& rs = j["runs"] = Json::array();
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    const auto& a = runs[i];
-    const auto& l = a.snapshots.back();
-    Json r = Json::object();
-    r["label"] = a.label;
-    std::string legend = a.label;
-    Json ps = Json::object();
-    for (const auto& n : varied) {
-      ps[n] = parameter(a, n);
-      // 4 significant digits: a legend, not a record (parameters keep full precision)
-      legend += fmt::format(" {}={:.4g}", n, parameter(a, n));
-    }
-    r["parameters"] = ps;
-    r["legend"] = legend;
-    r["run"] = a.run.string();
-    r["report"] = folders[i] + "/report.json";
-    r["end_time"] = l.time;
-    r["total"] = l.total;
-    r["mean"] = l.mean;
-    r["cv"] = l.cv;
-    r["uncoated_share"] = l.uncoated_share;
-    r["fit_ok"] = a.fit.ok;
-    r["a1"] = a.fit.a1;
-    r["a1_se"] = a.a1Error();
-    r["a2"] = a.fit.a2;
-    r["a2_se"] = a.a2Error();
-    r["well_mixed"] = a.verdict.well_mixed;
-    r["verdict"] = a.verdict.summary();
-    r["verdict_short"] = shortVerdict(a.verdict);
-    r["verdict_plain"] = plainVerdict(a, o);
-    r["conditions"] = conditionsJson(a.conditions);
-    r["mean_per_grain"] = a.conditions.grain.perGrain(l.mean);
-    r["layer_thickness_m"] = a.conditions.grain.thickness(l.mean);
-    Json cvBatch = Json::array();
-    for (double t : batchTimes(o)) {
-      cvBatch.push_back(a.verdict.well_mixed && a.fit.ok
-                            ? Json(predictDistribution(a.fit, t, o.band).cv)
-                            : Json());
-    }
-    r["cv_batch"] = cvBatch;  // at batch_times_s; null for a poorly mixed run (refused)
-    r["mass_balance_error_percent"] = a.mass_balance ? a.mass_balance->error_percent : std::nan("");
-    r["wall_seconds"] = a.wall_seconds;
-    const double nan = std::nan("");
-    const auto* zp = a.zone_passes ? &a.zone_passes->stats : nullptr;
-    r["never_in_zone_share"] = zp ? zp->never_entered_share : nan;
-    r["cycle_time_s"] = zp ? zp->cycle_time.mean : nan;
-    r["cycle_time_from_rate_s"] = zp ? zp->cycle_time_from_rate : nan;
-    r["pass_duration_s"] = zp ? zp->pass_duration.mean : nan;
-    rs.push_back(r);
-  }
-  return j;
+  Json compared = Json::array();
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    compared.push_back(comparedRunJson(runs[i], folders[i], varied, o));
+  return {{"format", "cosim-comparison"},
+          {"version", 1},
+          {"units", unitsJson(runs.front())},  // the same for every run of a comparison
+          {"batch_times_s", batchTimes(o)},
+          {"varied_parameters", varied},
+          {"runs", compared}};
 }
 
 void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::filesystem::path& dir) {
