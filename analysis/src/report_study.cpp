@@ -21,30 +21,36 @@ std::optional<double> number(const Json& o, const char* key) {
 }
 }  // namespace
 
-void to_json(Json& j, const StudyRecord& s) {
-  j = Json::object();
-  j["scenario"] = s.scenario;
-  j["vary"] = s.vary;
-  Json& refs = j["references"] = Json::object();
-  for (const auto& [name, kind] : s.references) refs[name] = kind;
-  Json& rows = j["variants"] = Json::array();
-  for (const auto& v : s.variants) {
-    Json& r = rows.emplace_back(Json::object());
-    r["label"] = v.label;
-    r["values"] = v.values;
-    r["folder"] = v.folder;
-    r["wall_s"] = v.wall_s;
-    r["ok"] = v.ok;
-    if (!v.ok) r["message"] = v.message;
-    r["pareto"] = v.pareto;
-    Json& obs = r["observables"] = Json::object();
-    for (const auto& o : v.observables) {
-      Json& x = obs[o.name] = Json::object();
-      x["value"] = o.value;
-      if (o.reference) x["reference"] = *o.reference;
-      if (o.error) x["error"] = *o.error;
-    }
+namespace {
+// One variant: what it set, where it ran, what it cost and measured
+Json variantJson(const StudyRecord::Variant& v) {
+  Json observables = Json::object();
+  for (const auto& o : v.observables) {
+    Json x = {{"value", o.value}};
+    if (o.reference) x.update(Json{{"reference", *o.reference}});
+    if (o.error) x.update(Json{{"error", *o.error}});
+    observables[o.name] = x;
   }
+  Json r = {{"label", v.label},
+            {"values", v.values},
+            {"folder", v.folder},
+            {"wall_s", v.wall_s},
+            {"ok", v.ok}};
+  if (!v.ok) r.update(Json{{"message", v.message}});
+  r.update(Json{{"pareto", v.pareto}, {"observables", observables}});
+  return r;
+}
+}  // namespace
+
+void to_json(Json& j, const StudyRecord& s) {
+  Json references = Json::object();
+  for (const auto& [name, kind] : s.references) references[name] = kind;
+  Json variants = Json::array();
+  for (const auto& v : s.variants) variants.push_back(variantJson(v));
+  j = {{"scenario", s.scenario},
+       {"vary", s.vary},
+       {"references", references},
+       {"variants", variants}};
 }
 
 void from_json(const Json& j, StudyRecord& s) {

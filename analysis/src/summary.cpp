@@ -28,16 +28,14 @@ Named readNamedNumbers(const Json& j) {
   return values;
 }
 
+// Each observable: its value (or why it has none), its reference and error where it has them
 Json observablesJson(const std::vector<ObservableValue>& observables) {
   Json obs = Json::object();
   for (const auto& o : observables) {
-    Json& j = obs[o.name] = Json::object();
-    if (o.undefined.empty())
-      j["value"] = o.value;
-    else
-      j["undefined"] = o.undefined;
-    if (o.reference) j["reference"] = *o.reference;
-    if (o.relative_error) j["relative_error"] = *o.relative_error;
+    Json j = o.undefined.empty() ? Json{{"value", o.value}} : Json{{"undefined", o.undefined}};
+    if (o.reference) j.update(Json{{"reference", *o.reference}});
+    if (o.relative_error) j.update(Json{{"relative_error", *o.relative_error}});
+    obs[o.name] = j;
   }
   return obs;
 }
@@ -66,25 +64,24 @@ std::vector<ObservableValue> readObservables(const Json& obs) {
 }  // namespace
 
 void to_json(Json& j, const Summary& s) {
-  j = Json::object();
-  j["format"] = "cosim-summary";
-  j["version"] = 1;
-  j["scenario"] = s.scenario;
-  j["run_id"] = s.run_id;
-  j["status"] = s.status;
+  j = {{"format", "cosim-summary"},
+       {"version", 1},
+       {"scenario", s.scenario},
+       {"run_id", s.run_id},
+       {"status", s.status}};
   if (!s.message.empty()) j["message"] = s.message;
-  j["start_time_s"] = s.start_time;
-  j["end_time_s"] = s.end_time;
-  j["steps"] = s.steps;
-  j["headline"] = namedNumbers(s.headline);
-  j["timings_s"] = namedNumbers(s.timings);
-  Json& extra = j["extra"] = Json::object();
-  extra["parameters"] = namedNumbers(s.parameters);
-  extra["coupling_dt"] = s.coupling_dt;
-  extra["dem_steps"] = s.dem_steps;
-  extra["cg"] = s.cg;
-  extra["coating"] = s.coating;
-  extra["observables"] = observablesJson(s.observables);
+  j.update(Json{{"start_time_s", s.start_time},
+                {"end_time_s", s.end_time},
+                {"steps", s.steps},
+                {"headline", namedNumbers(s.headline)},
+                {"timings_s", namedNumbers(s.timings)},
+                {"extra",
+                 {{"parameters", namedNumbers(s.parameters)},
+                  {"coupling_dt", s.coupling_dt},
+                  {"dem_steps", s.dem_steps},
+                  {"cg", s.cg},
+                  {"coating", s.coating},
+                  {"observables", observablesJson(s.observables)}}}});
 }
 
 void from_json(const Json& j, Summary& s) {
