@@ -24,36 +24,37 @@ constexpr const char* kPartialPrefix = ".partial-";
 
 Json toJson(const CoupledState& s) {
   const auto& b = s.balance;
-  Json j;
-  j["format"] = "cosim-checkpoint";
-  j["version"] = 1;
-  j["step"] = s.step;
-  j["time"] = s.time;
-  j["balance"] = {{"in", b.in},
-                  {"out", b.out},
-                  {"held", b.held},
-                  {"held_start", b.held_start},
-                  {"removed", b.removed},
-                  {"credited", b.credited},
-                  {"left_domain", b.left_domain},
-                  {"any_left", b.any_left},
-                  {"deleted_coating", b.deleted_coating},
-                  {"coating_initial", b.coating_initial}};
   Json owed = Json::array();
   for (const auto& [id, m] : s.pending) owed.push_back({id, m});
-  j["pending"] = owed;
-  j["totals"] = s.totals;
-  j["monitor"]["courant_warned"] = s.monitor.courant_warned;
-  if (s.monitor.baseline) j["monitor"]["baseline"] = *s.monitor.baseline;
-  j["initial_count"] = s.initial_count;
-  j["initial_row_written"] = s.initial_row_written;
-  j["series_rows"] = s.series_rows;
-  j["next_output"] = s.next_output;
-  j["wall_seconds"] = s.wall_seconds;
-  j["phases"] = s.phases;
-  j["compute"] = s.compute;
-  j["scene"] = s.scene;
-  j["particle_digest"] = s.particle_digest;
+  Json monitor = {{"courant_warned", s.monitor.courant_warned}};
+  if (s.monitor.baseline) monitor["baseline"] = *s.monitor.baseline;
+  Json j = {{"format", "cosim-checkpoint"},
+            {"version", 1},
+            {"step", s.step},
+            {"time", s.time},
+            {"balance",
+             {{"in", b.in},
+              {"out", b.out},
+              {"held", b.held},
+              {"held_start", b.held_start},
+              {"removed", b.removed},
+              {"credited", b.credited},
+              {"left_domain", b.left_domain},
+              {"any_left", b.any_left},
+              {"deleted_coating", b.deleted_coating},
+              {"coating_initial", b.coating_initial}}},
+            {"pending", owed},
+            {"totals", s.totals},
+            {"monitor", monitor},
+            {"initial_count", s.initial_count},
+            {"initial_row_written", s.initial_row_written},
+            {"series_rows", s.series_rows},
+            {"next_output", s.next_output},
+            {"wall_seconds", s.wall_seconds},
+            {"phases", s.phases},
+            {"compute", s.compute},
+            {"scene", s.scene},
+            {"particle_digest", s.particle_digest}};
   if (s.zone_passes) {
     Json open = Json::array();
     for (const auto& [id, p] : s.zone_passes->open)
