@@ -210,20 +210,19 @@ void writePiv(const PivResult& r, const PivOptions& o, const std::filesystem::pa
       prof += fmt::format("{},{},{},{},{}\n", formatShortest(p.height), formatShortest(p.x[i]),
                           number(p.vz[i]), p.samples[i], number(p.stderr_vz[i]));
   writeFileAtomically(folder / "profiles.csv", prof);
-  Json j;
-  j["from_s"] = o.from;
-  j["to_s"] = std::isfinite(o.to) ? Json(o.to) : Json("end");
-  j["depth_m"] = o.depth ? Json(*o.depth) : Json("parcel diameter");
-  j["front_wall_y_m"] = o.wall_y;
-  j["x_range_m"] = {o.x_min, o.x_max};
-  j["z_range_m"] = {o.z_min, o.z_max};
-  j["cell_m"] = o.cell;
-  j["heights_m"] = o.heights;
-  j["snapshots"] = r.snapshots;
-  j["first_time_s"] = r.first_time;
-  j["last_time_s"] = r.last_time;
-  j["samples"] = r.samples;
-  j["stderr_blocks"] = r.blocks;
+  const Json j = {{"from_s", o.from},
+                  {"to_s", std::isfinite(o.to) ? Json(o.to) : Json("end")},
+                  {"depth_m", o.depth ? Json(*o.depth) : Json("parcel diameter")},
+                  {"front_wall_y_m", o.wall_y},
+                  {"x_range_m", Json::array({o.x_min, o.x_max})},
+                  {"z_range_m", Json::array({o.z_min, o.z_max})},
+                  {"cell_m", o.cell},
+                  {"heights_m", o.heights},
+                  {"snapshots", r.snapshots},
+                  {"first_time_s", r.first_time},
+                  {"last_time_s", r.last_time},
+                  {"samples", r.samples},
+                  {"stderr_blocks", r.blocks}};
   writeJsonFile(folder / "piv.json", j, 2);
 }
 
