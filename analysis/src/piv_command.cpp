@@ -16,6 +16,7 @@
 #include "cosim/analysis/piv_compare.h"
 #include "cosim/analysis/piv_field.h"
 #include "cosim/analysis/report.h"
+#include "cosim/util/format.h"
 
 namespace cosim::analysis {
 
@@ -63,8 +64,6 @@ double pick(const std::optional<double>& given, const std::map<std::string, doub
       (run / "scenario.resolved.yaml").string(), parameter, option));
 }
 
-std::string mm(double v) { return fmt::format("{:.1f}", 1e3 * v); }
-
 // A table cell: a mean absolute error and its points, "-" without any.
 std::string maeText(double mae, std::size_t points) {
   return points == 0 ? std::string("-") : fmt::format("{:.3f} ({})", mae, points);
@@ -110,16 +109,17 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
       "cosim piv: {} snapshots from {} to {} s, parcels seen through the front wall y = {} m "
       "({}), {} samples on a grid of {} x {} cells of {} mm\n",
       r.snapshots, r.first_time, r.last_time, o.wall_y,
-      o.depth ? "centre within " + mm(*o.depth) + " mm" : std::string("centre within its diameter"),
-      r.samples, r.grid.nx, r.grid.nz, mm(o.cell));
+      o.depth ? "centre within " + util::fixed(1e3 * (*o.depth), 1) + " mm"
+              : std::string("centre within its diameter"),
+      r.samples, r.grid.nx, r.grid.nz, util::fixed(1e3 * (o.cell), 1));
   for (const auto& p : r.profiles) {
     out << fmt::format(
         "  profile at z = {} mm: x [mm] : vz [m/s] +- standard error ({} blocks) (samples)\n",
-        mm(p.height), r.blocks);
+        util::fixed(1e3 * (p.height), 1), r.blocks);
     std::string line;
     for (std::size_t i = 0; i < p.x.size(); ++i) {
       line +=
-          fmt::format("    {:>7} : {:>7} +- {:<6} ({})\n", mm(p.x[i]),
+          fmt::format("    {:>7} : {:>7} +- {:<6} ({})\n", util::fixed(1e3 * (p.x[i]), 1),
                       std::isfinite(p.vz[i]) ? fmt::format("{:.3f}", p.vz[i]) : "-",
                       std::isfinite(p.stderr_vz[i]) ? fmt::format("{:.3f}", p.stderr_vz[i]) : "-",
                       p.samples[i]);
@@ -132,7 +132,8 @@ int runPivCommand(const PivCommandOptions& c, std::ostream& out) {
         "cosim piv: note: {} mm do not divide into cells of {} mm: the last column is cut at "
         "x = {} mm (its centre, {} mm, is not the centre of what it holds); a cell that divides "
         "the width avoids that\n",
-        mm(o.x_max - o.x_min), mm(o.cell), mm(o.x_max), mm(r.grid.xCentre(r.grid.nx - 1)));
+        util::fixed(1e3 * (o.x_max - o.x_min), 1), util::fixed(1e3 * (o.cell), 1),
+        util::fixed(1e3 * (o.x_max), 1), util::fixed(1e3 * (r.grid.xCentre(r.grid.nx - 1)), 1));
   out << "cosim piv: grid.csv, profiles.csv and piv.json in " << folder.string() << "\n";
   if (c.plots)
     out << "cosim piv: "
@@ -164,10 +165,11 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
   const auto simulated = readProfileCsv(sim);
   const auto measured = readProfileCsv(c.measured);
   const PivComparison r = comparePiv(simulated, measured, o);
-  const std::string core_rule = c.core_band
-                                    ? fmt::format("core: {} mm <= x <= {} mm",
-                                                  mm(c.core_band->first), mm(c.core_band->second))
-                                    : std::string("core: measured vz > 0, sides: vz <= 0");
+  const std::string core_rule =
+      c.core_band
+          ? fmt::format("core: {} mm <= x <= {} mm", util::fixed(1e3 * (c.core_band->first), 1),
+                        util::fixed(1e3 * (c.core_band->second), 1))
+          : std::string("core: measured vz > 0, sides: vz <= 0");
   out << fmt::format("cosim piv-compare: {} against {} ({})\n", sim.string(), c.measured.string(),
                      core_rule);
   out << "  mean absolute error of vz [m/s] (points)\n";
@@ -179,7 +181,7 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
                        e.noise_points ? formatShortest(e.noise_mae) : std::string());
   };
   for (const auto& p : r.profiles) {
-    out << regionsRow(mm(p.height), p, errorText);
+    out << regionsRow(util::fixed(1e3 * (p.height), 1), p, errorText);
     if (p.without_simulation)
       out << fmt::format("  ({} measured points beyond the simulated profile)",
                          p.without_simulation);
@@ -197,7 +199,8 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
     // the same table for the sampling noise alone: an error near it is not resolved
     out << "  from the sampling noise alone (standard errors of the profiles) [m/s] (points "
            "with one)\n";
-    for (const auto& p : r.profiles) out << regionsRow(mm(p.height), p, noiseText) << "\n";
+    for (const auto& p : r.profiles)
+      out << regionsRow(util::fixed(1e3 * (p.height), 1), p, noiseText) << "\n";
     out << regionsRow("all", r, noiseText) << "\n";
     out << "  an error no larger than about this is what two runs of the same model differ by\n";
   }

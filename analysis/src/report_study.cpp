@@ -7,6 +7,7 @@
 
 #include "cosim/analysis/report.h"
 #include "cosim/analysis/study.h"
+#include "cosim/util/format.h"
 
 namespace cosim::analysis {
 
@@ -105,8 +106,6 @@ std::string studyCsv(const StudyRecord& s) {
   return csv;
 }
 
-std::string g6(double v) { return fmt::format("{:.6g}", v); }
-
 }  // namespace
 
 std::string studyMarkdown(const StudyRecord& s) {
@@ -123,7 +122,7 @@ std::string studyMarkdown(const StudyRecord& s) {
         continue;
       }
       const auto& o = v.observables[k];
-      md += fmt::format(" {:.6g} | {} |", o.value, o.error ? g6(*o.error) : "-");
+      md += fmt::format(" {:.6g} | {} |", o.value, o.error ? util::significant(*o.error, 6) : "-");
     }
     md += v.pareto ? " yes |\n" : " |\n";
   }

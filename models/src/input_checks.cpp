@@ -6,16 +6,16 @@
 #include <iterator>
 #include <tuple>
 
+#include "cosim/util/format.h"
+
 namespace cosim::models {
 
 namespace {
 
-std::string num(double v) { return fmt::format("{:.6g}", v); }
-
 [[noreturn]] void fail(const std::string& owner, const std::string& field, std::size_t i, double v,
                        const std::string& expected) {
   throw ModelError(owner + ": field '" + field + "' of parcel " + std::to_string(i) + " is " +
-                   num(v) + "; expected " + expected +
+                   util::significant(v, 6) + "; expected " + expected +
                    " (the value came from the adapter that provides this field: check its "
                    "case set-up, or report it as an adapter bug)");
 }
@@ -51,17 +51,19 @@ void validateConstants(const std::string& owner, const SceneConstants& c) {
     throw ModelError(owner +
                      ": constant 'cg' (coarse-graining factor, constants.cg in the "
                      "scenario) is " +
-                     num(c.cg) + "; expected a finite number >= 1");
+                     util::significant(c.cg, 6) + "; expected a finite number >= 1");
   }
   if (!(c.min_voidage > 0.0 && c.min_voidage <= 1.0)) {
     throw ModelError(owner +
                      ": constant 'min_voidage' (constants.min_voidage in the scenario) "
                      "is " +
-                     num(c.min_voidage) + "; expected a number in (0, 1], typically 0.1 to 0.4");
+                     util::significant(c.min_voidage, 6) +
+                     "; expected a number in (0, 1], typically 0.1 to 0.4");
   }
   if (!(std::isfinite(c.schmidt) && c.schmidt > 0.0)) {
     throw ModelError(owner + ": constant 'schmidt' (constants.schmidt in the scenario) is " +
-                     num(c.schmidt) + "; expected a finite number > 0 (1 for the paper's gas)");
+                     util::significant(c.schmidt, 6) +
+                     "; expected a finite number > 0 (1 for the paper's gas)");
   }
   for (double g : c.gravity) {
     if (!std::isfinite(g)) {
@@ -130,8 +132,8 @@ void checkOutputs(const std::string& owner, const char* what, const double* valu
                   std::size_t count) {
   for (std::size_t i = 0; i < count; ++i) {
     if (!std::isfinite(values[i])) {
-      throw ModelError(owner + ": computed a non-finite " + what + " (" + num(values[i]) +
-                       ") at index " + std::to_string(i) +
+      throw ModelError(owner + ": computed a non-finite " + what + " (" +
+                       util::significant(values[i], 6) + ") at index " + std::to_string(i) +
                        "; the inputs passed the checks, so this is a bug in the law: report it "
                        "with the scenario");
     }

@@ -11,6 +11,7 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/summary.h"
+#include "cosim/util/format.h"
 #include "coupler.h"
 #include "scenario.h"
 
@@ -26,8 +27,6 @@ std::string schemeOf(const std::string& stage) {
   if (stage == "coupled") return "";  // the scene's coupling.scheme
   throw std::invalid_argument("cosim bench: unknown stage '" + stage + "' (dem, cfd, coupled)");
 }
-
-std::string ms(double seconds) { return fmt::format("{:.2f}", seconds * 1e3); }
 
 double at(const std::map<std::string, double>& m, const std::string& key) {
   const auto it = m.find(key);
@@ -118,14 +117,16 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
          "fluid_reply\n";
   for (const auto& name : opt.stages) {
     const auto& st = stages.at(name);
-    out << std::left << std::setw(10) << name << std::right << std::setw(8) << ms(st.total());
-    for (const char* p : kPhases) out << "  " << std::setw(12) << ms(at(st.phases, p));
-    out << "  " << std::setw(17) << ms(at(st.compute, "particles")) << "  " << std::setw(13)
-        << ms(at(st.compute, "fluid")) << "  " << std::setw(20)
-        << ms(at(st.compute, "fluid_sample")) << "  " << std::setw(4)
-        << ms(at(st.compute, "advance_send")) << "  " << std::setw(15)
-        << ms(at(st.compute, "advance_particles_reply")) << "  " << std::setw(11)
-        << ms(at(st.compute, "advance_fluid_reply")) << "\n";
+    out << std::left << std::setw(10) << name << std::right << std::setw(8)
+        << util::fixed(1e3 * st.total(), 2);
+    for (const char* p : kPhases)
+      out << "  " << std::setw(12) << util::fixed(1e3 * at(st.phases, p), 2);
+    out << "  " << std::setw(17) << util::fixed(1e3 * at(st.compute, "particles"), 2) << "  "
+        << std::setw(13) << util::fixed(1e3 * at(st.compute, "fluid"), 2) << "  " << std::setw(20)
+        << util::fixed(1e3 * at(st.compute, "fluid_sample"), 2) << "  " << std::setw(4)
+        << util::fixed(1e3 * at(st.compute, "advance_send"), 2) << "  " << std::setw(15)
+        << util::fixed(1e3 * at(st.compute, "advance_particles_reply"), 2) << "  " << std::setw(11)
+        << util::fixed(1e3 * at(st.compute, "advance_fluid_reply"), 2) << "\n";
   }
   const BenchRatios r = benchRatios(stages);
   auto total = [&](const char* n) { return stages.count(n) ? stages.at(n).total() : 0.0; };

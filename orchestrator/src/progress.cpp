@@ -8,17 +8,11 @@
 #include <cmath>
 #include <string>
 
+#include "cosim/util/format.h"
+
 namespace cosim::orchestrator {
 
 namespace {
-std::string duration(double s) {
-  if (!std::isfinite(s) || s < 0) return "?";
-  if (s < 60) return fmt::format("{:.0f} s", s);
-  const int whole = static_cast<int>(s);
-  if (s < 3600) return fmt::format("{} min {:02d} s", whole / 60, whole % 60);
-  return fmt::format("{} h {:02d} min", whole / 3600, (whole % 3600) / 60);
-}
-
 double steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
@@ -43,9 +37,10 @@ void Progress::print(double t, std::uint64_t steps, std::size_t particles, bool 
   fmt::print(out_,
              "{}t = {:.4g} / {:.4g} s ({:5.1f}%)  step {}  {} particles  wall {}  {} steps/s  ETA "
              "{}{}",
-             tty_ ? "\r\033[K" : "", t, t1_, 100.0 * frac, steps, particles, duration(wall),
+             tty_ ? "\r\033[K" : "", t, t1_, 100.0 * frac, steps, particles,
+             util::clockDuration(wall),
              std::isfinite(steps_per_s) ? fmt::format("{:.1f}", steps_per_s) : std::string("?"),
-             final ? "0 s" : duration(time_rate_.eta(t1_)), tty_ && !final ? "" : "\n");
+             final ? "0 s" : util::clockDuration(time_rate_.eta(t1_)), tty_ && !final ? "" : "\n");
   std::fflush(out_);
   open_line_ = tty_ && !final;
 }
@@ -69,7 +64,7 @@ void Progress::finish(double t, std::uint64_t steps) {
   if (quiet_) return;
   if (open_line_) std::fputs("\n", out_);
   fmt::print(out_, "cosim: reached t = {:.6g} s in {} coupling steps, wall {}\n", t, steps,
-             duration(clock_() - start_));
+             util::clockDuration(clock_() - start_));
   std::fflush(out_);
   open_line_ = false;
 }

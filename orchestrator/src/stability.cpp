@@ -16,14 +16,13 @@
 
 #include "cosim/link/fields.h"
 #include "cosim/util/all_finite.h"
+#include "cosim/util/format.h"
 
 namespace cosim::orchestrator {
 
 double relaxationTime(double mass, double K) { return K > 0 ? mass / K : INFINITY; }
 
-namespace {
-std::string g(double v) { return fmt::format("{:.3g}", v); }
-}  // namespace
+namespace {}  // namespace
 
 namespace {
 // Snapshots from t = `from` to the run's end, the one at `from` included: one per output.interval,
@@ -54,12 +53,12 @@ std::optional<std::string> checkDiskSpace(const Scenario& sc, const Plan& plan,
   const auto gb = [](double b) { return fmt::format("{:.3g} GB", b / 1e9); };
   return "warning: particles.h5 will grow by about " + gb(bytes) + " over the run (" +
          fmt::format("{:.0f}", snapshotsLeft(sc, from)) + " snapshots of " +
-         std::to_string(state.size()) + " particles, output.interval " + g(sc.output.interval) +
-         " s), but only " + gb(available) +
+         std::to_string(state.size()) + " particles, output.interval " +
+         util::significant(sc.output.interval, 3) + " s), but only " + gb(available) +
          " are free on the run folder's disk: the run would stop when the disk is full (what it "
          "wrote stays readable; with checkpoint.interval set it resumes from the last one); free "
          "space, or record less often (output.interval: " +
-         g(fits) + " would take half of the free space)";
+         util::significant(fits, 3) + " would take half of the free space)";
 }
 
 std::string byteText(std::uintmax_t bytes) {
@@ -101,9 +100,9 @@ std::optional<std::string> checkDiskFilling(double t0, double free0, double t, d
   if (!(full < end)) return std::nullopt;
   const auto bytes = [](double b) { return byteText(static_cast<std::uintmax_t>(b)); };
   return "warning: the run folder's disk has been filling by " + bytes(rate) +
-         " per simulated second since t = " + g(t0) +
-         " s; at that rate it is full at t = " + g(full) + " s, before the run's end at " + g(end) +
-         " s (" + bytes(free_now) +
+         " per simulated second since t = " + util::significant(t0, 3) +
+         " s; at that rate it is full at t = " + util::significant(full, 3) +
+         " s, before the run's end at " + util::significant(end, 3) + " s (" + bytes(free_now) +
          " free now). The largest parts of the run folder: " + largest() +
          ". Free space, or write less: output.interval (particles.h5), the fluid's writeInterval "
          "and the particles' dumps (the shipped scenes' write_interval), the fluid's "
@@ -131,21 +130,23 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/
                                double reported_dt_over_rayleigh) {
   StabilityReport r;
   const double dem_dt = sc.coupling.dt / sc.coupling.dem_steps;
-  r.lines.push_back("coupling interval " + g(sc.coupling.dt) +
-                    " s = " + std::to_string(sc.coupling.dem_steps) + " DEM steps of " + g(dem_dt) +
-                    " s; " + std::to_string(s.size()) + " particles at start");
+  r.lines.push_back("coupling interval " + util::significant(sc.coupling.dt, 3) +
+                    " s = " + std::to_string(sc.coupling.dem_steps) + " DEM steps of " +
+                    util::significant(dem_dt, 3) + " s; " + std::to_string(s.size()) +
+                    " particles at start");
   if (s.size() == 0)
     r.lines.push_back("warning: the particle participant reports no particles at start");
   if (sc.checkpoint.interval > 0 && sc.checkpoint.interval < sc.coupling.dt) {
     const double span = sc.coupling.end_time - sc.coupling.start_time;
     const double steps = span / sc.coupling.dt;
-    r.lines.push_back("warning: checkpoint.interval " + g(sc.checkpoint.interval) +
-                      " s is shorter than the coupling interval " + g(sc.coupling.dt) +
-                      " s: a checkpoint of both solvers' whole state after every coupling step (" +
-                      fmt::format("{:.0f}", steps) +
-                      " in this run), which costs more than the steps themselves; a long run "
-                      "needs one every few minutes of wall time (e.g. checkpoint.interval: " +
-                      g(std::max(100.0 * sc.coupling.dt, 0.1 * span)) + ")");
+    r.lines.push_back(
+        "warning: checkpoint.interval " + util::significant(sc.checkpoint.interval, 3) +
+        " s is shorter than the coupling interval " + util::significant(sc.coupling.dt, 3) +
+        " s: a checkpoint of both solvers' whole state after every coupling step (" +
+        fmt::format("{:.0f}", steps) +
+        " in this run), which costs more than the steps themselves; a long run "
+        "needs one every few minutes of wall time (e.g. checkpoint.interval: " +
+        util::significant(std::max(100.0 * sc.coupling.dt, 0.1 * span), 3) + ")");
   }
 
   // DEM dt / Rayleigh time from the constants, where they are given
@@ -166,24 +167,26 @@ StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/
     if (from_constants && std::fabs(*from_constants / ratio - 1.0) > 0.01)
       r.lines.push_back(
           "warning: constants.youngs_modulus and poisson_ratio give DEM dt / Rayleigh time = " +
-          g(*from_constants) + ", the particle participant's own material data " + g(ratio) +
+          util::significant(*from_constants, 3) +
+          ", the particle participant's own material data " + util::significant(ratio, 3) +
           ": the participant's is used (it is what its contacts are computed with); correct or "
           "remove the constants");
   } else if (from_constants) {
     ratio = *from_constants;
-    source = "constants.youngs_modulus, poisson_ratio, particle_density, r = " + g(rmin) + " m";
+    source = "constants.youngs_modulus, poisson_ratio, particle_density, r = " +
+             util::significant(rmin, 3) + " m";
   } else {
     return r;
   }
   const double tR = dem_dt / ratio;
-  std::string line =
-      "DEM dt / Rayleigh time = " + g(ratio) + " (t_R = " + g(tR) + " s, from " + source + ")";
+  std::string line = "DEM dt / Rayleigh time = " + util::significant(ratio, 3) +
+                     " (t_R = " + util::significant(tR, 3) + " s, from " + source + ")";
   if (ratio > util::kRefuseRayleighFraction) {
     const double dt_max = util::kWarnRayleighFraction * tR;
     r.refusals.push_back(
         line + ": unstable contacts; use coupling.dem_steps >= " +
         std::to_string(static_cast<long long>(std::ceil(sc.coupling.dt / dt_max))) +
-        " (DEM dt <= 0.2 t_R = " + g(dt_max) + " s)");
+        " (DEM dt <= 0.2 t_R = " + util::significant(dt_max, 3) + " s)");
     line += " REFUSED";
   } else if (ratio > util::kWarnRayleighFraction) {
     line += " warning: above the usual 10-20 %";
@@ -215,10 +218,10 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
       }
     }
     if (std::isfinite(tmin)) {
-      std::string line = "shortest particle relaxation time tau_p = " + g(tmin) + " s (particle " +
-                         std::to_string(who) +
-                         "): coupling interval = " + g(sc.coupling.dt / tmin) +
-                         " tau_p, DEM dt = " + g(dem_dt / tmin) + " tau_p";
+      std::string line = "shortest particle relaxation time tau_p = " + util::significant(tmin, 3) +
+                         " s (particle " + std::to_string(who) +
+                         "): coupling interval = " + util::significant(sc.coupling.dt / tmin, 3) +
+                         " tau_p, DEM dt = " + util::significant(dem_dt / tmin, 3) + " tau_p";
       if (sc.coupling.dt > tmin) {
         line +=
             "; drag is stiff: it stays stable because the particle adapter relaxes the velocity "
@@ -241,13 +244,15 @@ StabilityReport checkFirstStep(const Scenario& sc, const link::ParticleData& sta
       ratio_max = std::max(ratio_max, q);
     }
     if (std::isfinite(ratio_min)) {
-      std::string line = "cell size / parcel diameter = " + g(ratio_min) + " .. " + g(ratio_max);
+      std::string line = "cell size / parcel diameter = " + util::significant(ratio_min, 3) +
+                         " .. " + util::significant(ratio_max, 3);
       if (ratio_min < 1.0) {
         const double dmax = 2.0 * *std::max_element(rad.begin(), rad.end());
         r.refusals.push_back(line +
                              ": cells smaller than a parcel make the voidage meaningless; use "
                              "cells of at least 2 parcel diameters (>= " +
-                             g(2 * dmax) + " m) or a smaller coarse-graining factor");
+                             util::significant(2 * dmax, 3) +
+                             " m) or a smaller coarse-graining factor");
         line += " REFUSED";
       } else if (ratio_min < 2.0 || ratio_max > 4.4) {
         line +=

@@ -12,6 +12,7 @@
 #include "checkpoints.h"
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/summary.h"
+#include "cosim/util/format.h"
 #include "coupler.h"
 #include "scenario.h"
 
@@ -105,8 +106,6 @@ bool reuseCompleted(const fs::path& folder, const Scenario& sc, Variant& v) {
   return true;
 }
 
-std::string g6(double v) { return fmt::format("{:.6g}", v); }
-
 // A variant stopped before its end (Ctrl-C, a kill, a job's time limit), or one that completed
 // and is now asked to run longer, whose newest checkpoint was written with this scene up to what a
 // resume may change (the end time, output, ...): the checkpoint's time, to resume from it instead
@@ -146,8 +145,9 @@ std::vector<Variant> combinations(const StudyOptions& opt) {
 }
 
 void printOutcome(const Variant& v, const std::string& before) {
-  std::cout << "study:   " << before << "wall " << g6(v.wall) << " s";
-  for (const auto& o : v.observables) std::cout << ", " << o.name << " = " << g6(o.value);
+  std::cout << "study:   " << before << "wall " << util::significant(v.wall, 6) << " s";
+  for (const auto& o : v.observables)
+    std::cout << ", " << o.name << " = " << util::significant(o.value, 6);
   if (v.exit_code != 0) std::cout << "  FAILED: " << v.message.substr(0, v.message.find('\n'));
   std::cout << std::endl;
 }
@@ -183,7 +183,8 @@ void runVariant(const StudyOptions& opt, Variant& v) {
     ro.resume = v.folder;
     if (!opt.quiet)
       std::cout << "study:   resuming " << v.folder.string()
-                << " from its checkpoint at t = " << g6(*from) << " s" << std::endl;
+                << " from its checkpoint at t = " << util::significant(*from, 6) << " s"
+                << std::endl;
   } else {
     // A folder holding a run of another scene (or a failed one) is kept under another name,
     // never written over; --rerun asks for the variant's folder to be replaced.

@@ -2,12 +2,14 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "cosim/util/child_process.h"
 #include "cosim/util/cpu_binding.h"
+#include "cosim/util/format.h"
 #include "cosim/util/long_quotes.h"
 #include "cosim/util/rayleigh_time.h"
 #include "cosim/util/text_file.h"
@@ -119,4 +121,22 @@ TEST(LongQuotes, AQuotedInputIsCutToAReadableLengthAndSaysHowLongItWas) {
                 "... (10003 characters in all) not a number");  // the colon was part of the run
   const std::string prose = "a message in words, 'a name', the scene's doc: nothing to cut";
   EXPECT_EQ(cosim::util::cutLongQuotes(prose), prose);
+}
+
+// The exact form reads back as the same double, for every double (here: hard ones); the others
+// are the printf forms people read.
+TEST(NumberFormats, ExactReadsBackAndTheOthersAreAsPrintfWritesThem) {
+  for (double v : {0.1, 1.0 / 3.0, 0.1 + 0.2, 1e-5, 6.02214076e23, -2.5e-308, 4.9e-324,
+                   1.7976931348623157e308, 123456789.0}) {
+    EXPECT_EQ(std::strtod(cosim::util::exact(v).c_str(), nullptr), v) << cosim::util::exact(v);
+  }
+  EXPECT_EQ(cosim::util::exact(0.1), "0.1");
+  EXPECT_EQ(cosim::util::exact(0.1 + 0.2), "0.30000000000000004");
+  EXPECT_EQ(cosim::util::significant(0.0123456, 3), "0.0123");
+  EXPECT_EQ(cosim::util::significant(123456.0, 3), "1.23e+05");
+  EXPECT_EQ(cosim::util::fixed(12.3456, 2), "12.35");
+  EXPECT_EQ(cosim::util::clockDuration(42.4), "42 s");
+  EXPECT_EQ(cosim::util::clockDuration(185.0), "3 min 05 s");
+  EXPECT_EQ(cosim::util::clockDuration(7625.0), "2 h 07 min");
+  EXPECT_EQ(cosim::util::clockDuration(-1.0), "?");
 }

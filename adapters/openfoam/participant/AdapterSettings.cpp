@@ -6,6 +6,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "cosim/util/format.h"
+
 namespace cosim::foam {
 namespace {
 
@@ -13,12 +15,6 @@ const char* const kWhere = "scenario participants.<fluid>.options";
 
 std::runtime_error bad(const std::string& key, const std::string& expected) {
   return std::runtime_error(std::string(kWhere) + "." + key + ": expected " + expected);
-}
-
-std::string shortest(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.12g", v);
-  return text;
 }
 
 double number(const YAML::Node& n, const std::string& key, double lo, double hi) {
@@ -29,7 +25,8 @@ double number(const YAML::Node& n, const std::string& key, double lo, double hi)
     throw bad(key, "a number, got '" + YAML::Dump(n) + "'");
   }
   if (!(v >= lo && v <= hi)) {
-    throw bad(key, "a value in [" + shortest(lo) + ", " + shortest(hi) + "], got " + shortest(v));
+    throw bad(key, "a value in [" + cosim::util::exact(lo) + ", " + cosim::util::exact(hi) +
+                       "], got " + cosim::util::exact(v));
   }
   return v;
 }
