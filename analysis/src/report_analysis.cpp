@@ -25,61 +25,44 @@ std::string runLabel(const std::filesystem::path& run) {
 }
 }  // namespace
 
-RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o) {
-  RunAnalysis a;
-  a.run = run;
-  a.label = runLabel(run);
-  if (!std::filesystem::is_directory(run)) {
-    throw std::runtime_error("run folder " + run.string() +
-                             " does not exist (give the folder a `cosim run` wrote, "
-                             "e.g. runs/plasma-coating-bed)");
+namespace {
+// The run's status and scenario parameters (a sweep's comparison shows what differs), and the cg
+// it used, from summary.json when there is one.
+std::optional<double> readRunSummary(const std::filesystem::path& run, RunAnalysis& a) {
+  if (!std::filesystem::exists(run / kSummaryFile)) return std::nullopt;
+  try {
+    const Summary summary = readSummary(run / kSummaryFile);
+    a.run_status = summary.status;
+    a.parameters = summary.parameters;
+    return summary.cg;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string(e.what()) + "; move it away to report the run without it");
   }
-  std::optional<double> cg;  // what the run used (summary.json)
-  if (std::filesystem::exists(run / kSummaryFile)) {
-    // Status and scenario parameters of the run (a sweep's comparison shows what differs).
-    try {
-      const Summary summary = readSummary(run / kSummaryFile);
-      a.run_status = summary.status;
-      a.parameters = summary.parameters;
-      cg = summary.cg;
-    } catch (const std::exception& e) {
-      throw std::runtime_error(std::string(e.what()) +
-                               "; move it away to report the run without it");
-    }
-  }
-  ParticleFile file(run / kParticlesFile);
-  if (!file.hasField(cosim::field::coating_mass)) {
-    throw std::runtime_error(file.path().string() +
-                             " has no coating_mass field: this scene has no coating "
-                             "(no mass_transfer model), so there is nothing to report on coating");
-  }
-  const auto& snaps = file.snapshots();
-  if (snaps.empty()) throw std::runtime_error(file.path().string() + " holds no snapshot yet");
+}
 
-  // Histogram snapshot choice: nearest snapshot to each requested time.
-  const double last = snaps.back().time;
-  std::vector<double> wanted = o.histogram_times;
+// The snapshot nearest to each requested histogram time (default: a quarter, half, three
+// quarters and all of the record).
+std::vector<std::size_t> nearestSnapshots(const std::vector<SnapshotInfo>& snaps,
+                                          std::vector<double>& wanted) {
   if (wanted.empty()) {
-    const double first = snaps.front().time;
+    const double first = snaps.front().time, last = snaps.back().time;
     for (double f : {0.25, 0.5, 0.75, 1.0}) wanted.push_back(first + f * (last - first));
   }
-  std::vector<std::size_t> histIndex;
+  std::vector<std::size_t> nearest;
   for (double t : wanted) {
     std::size_t best = 0;
     for (std::size_t i = 1; i < snaps.size(); ++i) {
       if (std::abs(snaps[i].time - t) < std::abs(snaps[best].time - t)) best = i;
     }
-    histIndex.push_back(best);
+    nearest.push_back(best);
   }
+  return nearest;
+}
 
-  const double t0 = std::isnan(o.fit_start) ? snaps.front().time : o.fit_start;
-  const double t1 = std::isnan(o.fit_end) ? last : o.fit_end;
-  if (t1 <= t0) {
-    throw std::runtime_error("fit window [" + std::to_string(t0) + ", " + std::to_string(t1) +
-                             "] s is empty: give --fit-start below --fit-end");
-  }
-  // Snapshots kept per parcel for the bootstrap: at most bootstrap_snapshots, evenly spread
-  // over the fitted ones.
+// Snapshots kept per parcel for the bootstrap: at most bootstrap_snapshots, evenly spread over
+// the fitted ones (1 = kept).
+std::vector<char> bootstrapSnapshots(const std::vector<SnapshotInfo>& snaps, double t0, double t1,
+                                     const ReportOptions& o) {
   std::vector<std::size_t> fitted;
   for (std::size_t i = 0; i < snaps.size(); ++i) {
     if (snaps[i].time >= t0 && snaps[i].time <= t1 && snaps[i].time > o.coating_start &&
@@ -94,17 +77,25 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
       keep[fitted[k == 1 ? 0 : j * (fitted.size() - 1) / (k - 1)]] = 1;
     }
   }
-  ParcelHistories histories;
-  std::unordered_map<std::int64_t, std::size_t> parcelColumn;
-  std::vector<std::pair<std::vector<std::int64_t>, std::vector<double>>> kept;
+  return keep;
+}
 
-  std::vector<double> lastValues;
+// Every snapshot's statistics, the histograms asked for, and the kept snapshots' coating per
+// parcel (one column per parcel, NaN where a parcel is absent) for the bootstrap.
+ParcelHistories readSnapshots(const ParticleFile& file, const ReportOptions& o,
+                              const std::vector<char>& keep, RunAnalysis& a) {
+  const auto& snaps = file.snapshots();
+  std::vector<double> wanted = o.histogram_times;
+  const auto nearest = nearestSnapshots(snaps, wanted);
   a.histograms.resize(wanted.size());
+  ParcelHistories histories;
+  std::unordered_map<std::int64_t, std::size_t> column;
+  std::vector<std::pair<std::vector<std::int64_t>, std::vector<double>>> kept;
   for (std::size_t i = 0; i < snaps.size(); ++i) {
     std::vector<double> m = file.read(i, cosim::field::coating_mass);
     a.snapshots.push_back(coatingStatistics(snaps[i].time, m, o.uncoated_relative));
     for (std::size_t h = 0; h < wanted.size(); ++h) {
-      if (histIndex[h] == i) {
+      if (nearest[h] == i) {
         a.histograms[h].requested = wanted[h];
         a.histograms[h].stats = a.snapshots.back();
         a.histograms[h].histogram = histogram(m);
@@ -112,24 +103,25 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     }
     if (keep[i]) {
       auto ids = file.ids(i);
-      for (auto id : ids) parcelColumn.emplace(id, parcelColumn.size());
+      for (auto id : ids) column.emplace(id, column.size());
       histories.time.push_back(snaps[i].time);
-      kept.emplace_back(std::move(ids), m);
+      kept.emplace_back(std::move(ids), std::move(m));
     }
-    if (i + 1 == snaps.size()) lastValues = std::move(m);
   }
+  for (const auto& [ids, m] : kept) {
+    std::vector<double> row(column.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t j = 0; j < ids.size(); ++j) row[column.at(ids[j])] = m[j];
+    histories.mass.push_back(std::move(row));
+  }
+  return histories;
+}
 
-  a.fit = fitGrowth(a.snapshots, t0, t1, o.coating_start);
-  if (a.fit.ok && kept.size() >= 3) {
-    for (const auto& [ids, m] : kept) {
-      std::vector<double> row(parcelColumn.size(), std::numeric_limits<double>::quiet_NaN());
-      for (std::size_t j = 0; j < ids.size(); ++j) row[parcelColumn.at(ids[j])] = m[j];
-      histories.mass.push_back(std::move(row));
-    }
-    kept.clear();
-    a.bootstrap = bootstrapGrowthErrors(histories, o.coating_start, o.bootstrap_resamples);
-  }
-  // The verdict looks at the last snapshot of the fit window (what the fit saw).
+// The verdict on the last snapshot of the fit window (what the fit saw), with the window's
+// snapshots telling a skewed distribution on its way to normal (a well-mixed bed's skewness falls
+// as t^-1/2) from one that stays skewed.
+MixingVerdict judgeRun(const ParticleFile& file, const RunAnalysis& a, double t0, double t1,
+                       const ReportOptions& o) {
+  const auto& snaps = file.snapshots();
   std::size_t lastInWindow = snaps.size() - 1;
   for (std::size_t i = snaps.size(); i-- > 0;) {
     if (snaps[i].time <= t1) {
@@ -137,10 +129,7 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
       break;
     }
   }
-  if (lastInWindow != snaps.size() - 1)
-    lastValues = file.read(lastInWindow, cosim::field::coating_mass);
-  // The fit window's snapshots tell a skewed distribution on its way to normal (a well-mixed
-  // bed's skewness falls as t^-1/2) from one that stays skewed.
+  const std::vector<double> values = file.read(lastInWindow, cosim::field::coating_mass);
   NormalityHistory history;
   history.coating_start = o.coating_start;
   history.predict_at = o.predict_times.empty()
@@ -150,7 +139,76 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
     if (a.snapshots[i].time >= t0 && a.snapshots[i].time > o.coating_start)
       history.snapshots.push_back(a.snapshots[i]);
   }
-  a.verdict = judgeMixing(a.fit, a.snapshots[lastInWindow], lastValues, o.criteria, history);
+  return judgeMixing(a.fit, a.snapshots[lastInWindow], values, o.criteria, history);
+}
+
+// From timeseries.csv: the fit-window study with wall times, the run's steps and wall time, and
+// the precursor balance (with the coating on the particles themselves when particles.h5 holds
+// the state at the end of the series and an initial state before its first row).
+void readTimeSeriesChecks(const std::filesystem::path& run, const ParticleFile& file, double t0,
+                          const ReportOptions& o, RunAnalysis& a) {
+  const auto tsPath = run / kTimeSeriesFile;
+  const double horizon = o.predict_times.empty() ? o.predict_until : o.predict_times.back();
+  if (!std::filesystem::exists(tsPath)) {
+    a.mass_balance_problem = tsPath.string() + " is missing: no mass balance";
+    a.window_study = studyFitWindow(a.snapshots, t0, o.coating_start, horizon);
+    return;
+  }
+  TimeSeries ts = readTimeSeries(tsPath);
+  a.window_study = studyFitWindow(a.snapshots, t0, o.coating_start, horizon, &ts);
+  a.steps = ts.rows();
+  if (ts.has(column::wall_seconds) && ts.rows() > 0)
+    a.wall_seconds = ts.at(column::wall_seconds).back();
+  try {
+    a.mass_balance = massBalance(ts);
+    const auto& times = ts.at(column::time);
+    const double tEnd = times.back();
+    const double tol = 1e-9 * std::max(1.0, std::abs(tEnd));
+    if (a.snapshots.size() >= 2 && std::abs(a.snapshots.back().time - tEnd) <= tol &&
+        a.snapshots.front().time < times.front() - tol) {
+      const auto& first = a.snapshots.front();
+      const auto& lastSnap = a.snapshots.back();
+      a.mass_balance = withParticleCoating(
+          *a.mass_balance, first.total, lastSnap.total,
+          file.path().string() + ": sum of coating_mass at t = " + std::to_string(lastSnap.time) +
+              " s minus at t = " + std::to_string(first.time) + " s");
+    }
+  } catch (const std::exception& e) {
+    a.mass_balance_problem = std::string("no mass balance: ") + e.what();
+  }
+}
+}  // namespace
+
+RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o) {
+  RunAnalysis a;
+  a.run = run;
+  a.label = runLabel(run);
+  if (!std::filesystem::is_directory(run)) {
+    throw std::runtime_error("run folder " + run.string() +
+                             " does not exist (give the folder a `cosim run` wrote, "
+                             "e.g. runs/plasma-coating-bed)");
+  }
+  const std::optional<double> cg = readRunSummary(run, a);  // what the run used
+  ParticleFile file(run / kParticlesFile);
+  if (!file.hasField(cosim::field::coating_mass)) {
+    throw std::runtime_error(file.path().string() +
+                             " has no coating_mass field: this scene has no coating "
+                             "(no mass_transfer model), so there is nothing to report on coating");
+  }
+  const auto& snaps = file.snapshots();
+  if (snaps.empty()) throw std::runtime_error(file.path().string() + " holds no snapshot yet");
+  const double t0 = std::isnan(o.fit_start) ? snaps.front().time : o.fit_start;
+  const double t1 = std::isnan(o.fit_end) ? snaps.back().time : o.fit_end;
+  if (t1 <= t0) {
+    throw std::runtime_error("fit window [" + std::to_string(t0) + ", " + std::to_string(t1) +
+                             "] s is empty: give --fit-start below --fit-end");
+  }
+
+  const ParcelHistories histories = readSnapshots(file, o, bootstrapSnapshots(snaps, t0, t1, o), a);
+  a.fit = fitGrowth(a.snapshots, t0, t1, o.coating_start);
+  if (a.fit.ok && histories.time.size() >= 3)
+    a.bootstrap = bootstrapGrowthErrors(histories, o.coating_start, o.bootstrap_resamples);
+  a.verdict = judgeRun(file, a, t0, t1, o);
   if (a.fit.ok) {
     // The extrapolation is computed whenever a fit exists (the check against later simulated
     // times is what tells a user how far to trust it); the report shows it only as a prediction
@@ -160,39 +218,7 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
       a.distributions.push_back(predictDistribution(a.fit, t, o.band));
     a.prediction_check = checkPrediction(a.fit, a.snapshots);
   }
-
-  const auto tsPath = run / kTimeSeriesFile;
-  const double horizon = o.predict_times.empty() ? o.predict_until : o.predict_times.back();
-  if (!std::filesystem::exists(tsPath)) {
-    a.mass_balance_problem = tsPath.string() + " is missing: no mass balance";
-    a.window_study = studyFitWindow(a.snapshots, t0, o.coating_start, horizon);
-  } else {
-    TimeSeries ts = readTimeSeries(tsPath);
-    a.window_study = studyFitWindow(a.snapshots, t0, o.coating_start, horizon, &ts);
-    a.steps = ts.rows();
-    if (ts.has(column::wall_seconds) && ts.rows() > 0)
-      a.wall_seconds = ts.at(column::wall_seconds).back();
-    try {
-      a.mass_balance = massBalance(ts);
-      // Coating on the particles themselves when particles.h5 holds the state at the end of the
-      // time series (the orchestrator records the final state after its last credit) and an
-      // initial state before its first row.
-      const auto& times = ts.at(column::time);
-      const double tEnd = times.back();
-      const double tol = 1e-9 * std::max(1.0, std::abs(tEnd));
-      if (a.snapshots.size() >= 2 && std::abs(a.snapshots.back().time - tEnd) <= tol &&
-          a.snapshots.front().time < times.front() - tol) {
-        const auto& first = a.snapshots.front();
-        const auto& lastSnap = a.snapshots.back();
-        a.mass_balance = withParticleCoating(
-            *a.mass_balance, first.total, lastSnap.total,
-            file.path().string() + ": sum of coating_mass at t = " + std::to_string(lastSnap.time) +
-                " s minus at t = " + std::to_string(first.time) + " s");
-      }
-    } catch (const std::exception& e) {
-      a.mass_balance_problem = std::string("no mass balance: ") + e.what();
-    }
-  }
+  readTimeSeriesChecks(run, file, t0, o, a);
   a.zone_passes = analyseZonePasses(run, file, a, o, a.zone_passes_problem);
   a.batch = analyseBatch(file, o, a.batch_problem);
   a.conditions = readOperatingConditions(
