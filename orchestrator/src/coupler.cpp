@@ -163,38 +163,45 @@ RunResult Coupler::run() {
   if (!result.message.empty()) {
     log_.file(result.message);
     result.message += "\n  everything recorded so far is in " + record_.folder().string();
-    // A run stopped before its end by a failure continues from its newest checkpoint
-    const bool at_restore = !opt_.resume.empty() && (unreadable_checkpoint_ ||
-                                                     (resume_accepted_ && step_ <= resumed_step_));
-    if (status == "failed" && at_restore) {
-      // The resume failed before it completed a step: perhaps the checkpoint itself cannot be read
-      // back; the others are another way on.
-      std::string others, next;
-      for (const auto& c : checkpoints_->all()) {
-        if (c == resumed_from_) continue;
-        others += (others.empty() ? "" : ", ") + c.filename().string() + " s";
-        next = c.filename().string();  // the newest of the others
-      }
-      result.message +=
-          resumed_from_.empty()
-              ? std::string()
-              : "; the resume from the checkpoint at t = " + resumed_from_.filename().string() +
-                    " s failed before it completed a step";
-      if (!others.empty())
-        result.message += "; the run's other complete checkpoints: " + others +
-                          ". If that checkpoint is damaged, continue from another, e.g.\n  "
-                          "cosim resume " +
-                          record_.folder().string() + " --from " + next;
-    } else if (status == "failed" && result.steps < nsteps_ &&
-               (opt_.resume.empty() || resume_accepted_)) {
-      if (const auto newest = checkpoints_->newest()) {
-        result.message += "; its newest checkpoint is t = " + newest->filename().string() +
-                          " s: once the cause is fixed, continue with\n  cosim resume " +
-                          record_.folder().string();
-      }
-    }
+    result.message += howToContinue(status, result.steps);
   }
   return result;
+}
+
+// The end of the message of a failed run: how to continue it (from which checkpoint), or "".
+std::string Coupler::howToContinue(const std::string& status, std::uint64_t steps_done) const {
+  std::string message;
+  // A run stopped before its end by a failure continues from its newest checkpoint
+  const bool at_restore = !opt_.resume.empty() &&
+                          (unreadable_checkpoint_ || (resume_accepted_ && step_ <= resumed_step_));
+  if (status == "failed" && at_restore) {
+    // The resume failed before it completed a step: perhaps the checkpoint itself cannot be read
+    // back; the others are another way on.
+    std::string others, next;
+    for (const auto& c : checkpoints_->all()) {
+      if (c == resumed_from_) continue;
+      others += (others.empty() ? "" : ", ") + c.filename().string() + " s";
+      next = c.filename().string();  // the newest of the others
+    }
+    message +=
+        resumed_from_.empty()
+            ? std::string()
+            : "; the resume from the checkpoint at t = " + resumed_from_.filename().string() +
+                  " s failed before it completed a step";
+    if (!others.empty())
+      message += "; the run's other complete checkpoints: " + others +
+                 ". If that checkpoint is damaged, continue from another, e.g.\n  "
+                 "cosim resume " +
+                 record_.folder().string() + " --from " + next;
+  } else if (status == "failed" && steps_done < nsteps_ &&
+             (opt_.resume.empty() || resume_accepted_)) {
+    if (const auto newest = checkpoints_->newest()) {
+      message += "; its newest checkpoint is t = " + newest->filename().string() +
+                 " s: once the cause is fixed, continue with\n  cosim resume " +
+                 record_.folder().string();
+    }
+  }
+  return message;
 }
 
 std::uint64_t Coupler::resumeFromCheckpoint() {

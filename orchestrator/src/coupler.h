@@ -100,6 +100,7 @@ class Coupler {
   // their state into state_.
   void reportParticleState(const link::ParticleData& terms);
   void finishRun();
+  std::string howToContinue(const std::string& status, std::uint64_t steps_done) const;
   void resetTimings();
   // Scenes with a coating zone whose membership is decided at every step (not cosim bench).
   bool recordsZonePasses() const;
