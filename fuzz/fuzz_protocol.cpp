@@ -9,15 +9,16 @@
 #include "cosim.pb.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/link/transport.h"
 
 namespace {
 
 void decodeFields(const cosim::wire::FieldSet& fields) {
   try {
-    const auto d = cosim::link::ParticleData::fromWire(fields);
+    const auto d = cosim::link::fromWire(fields);
     cosim::wire::FieldSet back;
-    d.toWire(back);  // what a reply built from it would carry
+    cosim::link::toWire(d, back);  // what a reply built from it would carry
   } catch (const cosim::link::ProtocolError&) {
   }
 }

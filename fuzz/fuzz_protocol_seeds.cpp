@@ -11,6 +11,7 @@
 #include "cosim.pb.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/link/transport.h"
 
 namespace fs = std::filesystem;
@@ -80,13 +81,13 @@ int main(int argc, char** argv) {
   write("refused", refused);
 
   auto sample = withHeader(3);
-  particles({field::position, field::radius, field::velocity})
-      .toWire(*sample.mutable_sample()->mutable_particles());
+  cosim::link::toWire(particles({field::position, field::radius, field::velocity}),
+                      *sample.mutable_sample()->mutable_particles());
   write("sample", sample);
 
   auto samples = withHeader(3);
-  particles({field::fluid_velocity, field::voidage, field::pressure_gradient})
-      .toWire(*samples.mutable_samples()->mutable_at_particles());
+  cosim::link::toWire(particles({field::fluid_velocity, field::voidage, field::pressure_gradient}),
+                      *samples.mutable_samples()->mutable_at_particles());
   samples.mutable_samples()->add_lost_ids(7);
   samples.mutable_samples()->set_wall_seconds(0.002);
   write("samples", samples);
@@ -94,15 +95,16 @@ int main(int argc, char** argv) {
   auto advance = withHeader(4);
   advance.mutable_advance()->set_dt(1e-4);
   advance.mutable_advance()->set_substeps(10);
-  particles({field::drag_coefficient, field::fluid_velocity, field::explicit_force,
-             field::coating_increment})
-      .toWire(*advance.mutable_advance()->mutable_terms());
+  cosim::link::toWire(particles({field::drag_coefficient, field::fluid_velocity,
+                                 field::explicit_force, field::coating_increment}),
+                      *advance.mutable_advance()->mutable_terms());
   write("advance", advance);
 
   auto advanced = withHeader(4);
   auto* a = advanced.mutable_advanced();
-  particles({field::position, field::velocity, field::radius, field::coating_mass})
-      .toWire(*a->mutable_state());
+  cosim::link::toWire(
+      particles({field::position, field::velocity, field::radius, field::coating_mass}),
+      *a->mutable_state());
   a->add_inserted_ids(9);
   a->add_deleted_ids(2);
   a->set_wall_seconds(0.01);
@@ -111,7 +113,7 @@ int main(int argc, char** argv) {
 
   auto fluid = withHeader(4);
   auto* f = fluid.mutable_advanced();
-  particles({field::precursor_removed}).toWire(*f->mutable_state());
+  cosim::link::toWire(particles({field::precursor_removed}), *f->mutable_state());
   auto* report = f->mutable_fluid();
   report->set_pressure_drop(120.5);
   report->set_max_courant(0.3);

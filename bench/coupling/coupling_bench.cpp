@@ -29,6 +29,7 @@
 #include "cosim.pb.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/link/transport.h"
 
 namespace {
@@ -99,22 +100,22 @@ wire::Envelope envelope(Body body, const ParticleData& d, std::uint64_t step) {
   h->set_time(1e-4 * static_cast<double>(step));
   switch (body) {
     case Body::sample:
-      d.toWire(*e.mutable_sample()->mutable_particles());
+      cosim::link::toWire(d, *e.mutable_sample()->mutable_particles());
       break;
     case Body::samples:
-      d.toWire(*e.mutable_samples()->mutable_at_particles());
+      cosim::link::toWire(d, *e.mutable_samples()->mutable_at_particles());
       break;
     case Body::advance: {
       auto* a = e.mutable_advance();
       a->set_dt(1e-4);
       a->set_substeps(10);
-      d.toWire(*a->mutable_terms());
+      cosim::link::toWire(d, *a->mutable_terms());
       break;
     }
     case Body::advanced: {
       auto* a = e.mutable_advanced();
       a->set_wall_seconds(0.02);
-      d.toWire(*a->mutable_state());
+      cosim::link::toWire(d, *a->mutable_state());
       break;
     }
   }
@@ -124,13 +125,13 @@ wire::Envelope envelope(Body body, const ParticleData& d, std::uint64_t step) {
 ParticleData unpack(const wire::Envelope& e) {
   switch (e.body_case()) {
     case wire::Envelope::kSample:
-      return ParticleData::fromWire(e.sample().particles());
+      return cosim::link::fromWire(e.sample().particles());
     case wire::Envelope::kSamples:
-      return ParticleData::fromWire(e.samples().at_particles());
+      return cosim::link::fromWire(e.samples().at_particles());
     case wire::Envelope::kAdvance:
-      return ParticleData::fromWire(e.advance().terms());
+      return cosim::link::fromWire(e.advance().terms());
     case wire::Envelope::kAdvanced:
-      return ParticleData::fromWire(e.advanced().state());
+      return cosim::link::fromWire(e.advanced().state());
     default:
       return {};
   }

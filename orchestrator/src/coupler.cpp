@@ -13,6 +13,7 @@
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/util/long_quotes.h"
 #include "processes.h"
 
@@ -409,14 +410,14 @@ link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
   if (!plan_.fluid) return {};
   if (auto ahead = scheme_->samplesAhead(participants_, state_)) return samplesOf(*ahead, lost);
   wire::Envelope e;
-  state_.toWire(*e.mutable_sample()->mutable_particles(), plan_.sample_state);
+  cosim::link::toWire(state_, *e.mutable_sample()->mutable_particles(), plan_.sample_state);
   const auto r = participants_.request("fluid", std::move(e), wire::Envelope::kSamples);
   participants_.addComputeSeconds("fluid_sample", r.samples().wall_seconds());
   return samplesOf(r.samples(), lost);
 }
 
 link::ParticleData Coupler::samplesOf(const wire::Samples& sm, std::vector<char>& lost) {
-  link::ParticleData samples = link::ParticleData::fromWire(sm.at_particles());
+  link::ParticleData samples = cosim::link::fromWire(sm.at_particles());
   if (samples.ids != state_.ids) {
     throw RunFailure("fluid", "returned samples for other particles than it was sent (ids differ)");
   }
@@ -458,7 +459,7 @@ AdvanceReplies Coupler::advanceBoth(const CouplingTerms& terms) {
 void Coupler::takeParticleState(const wire::Advanced& pa) {
   participants_.addComputeSeconds("particles", pa.wall_seconds());
   const std::vector<std::int64_t> before = state_.ids;
-  state_ = link::ParticleData::fromWire(pa.state());
+  state_ = cosim::link::fromWire(pa.state());
   ledger_.delivered();  // the coating paid with this step is on the parcels
   try {
     monitor_.checkParticleLedger(before, state_.ids,
@@ -475,7 +476,7 @@ void Coupler::takeParticleState(const wire::Advanced& pa) {
 void Coupler::takeFluidResults(const wire::Advanced& fa) {
   participants_.addComputeSeconds("fluid", fa.wall_seconds());
   if (plan_.coating) {
-    const auto fr = link::ParticleData::fromWire(fa.state());
+    const auto fr = cosim::link::fromWire(fa.state());
     check(fr, "fluid");
     ledger_.owe(fr);
     if (passes_) passes_->credit(fr);
@@ -564,9 +565,9 @@ void Coupler::reportParticleState(const link::ParticleData& terms) {
   wire::Envelope e;
   auto* a = e.mutable_advance();
   a->set_dt(0.0);
-  if (!terms.ids.empty()) terms.toWire(*a->mutable_terms());
+  if (!terms.ids.empty()) cosim::link::toWire(terms, *a->mutable_terms());
   const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
-  state_ = link::ParticleData::fromWire(r.advanced().state());
+  state_ = cosim::link::fromWire(r.advanced().state());
   if (r.advanced().has_particles())
     reported_dt_over_rayleigh_ = r.advanced().particles().dt_over_rayleigh_time();
   check(state_, "particles");

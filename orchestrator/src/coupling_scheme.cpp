@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/link/session.h"
 
 namespace cosim::orchestrator {
@@ -15,7 +16,7 @@ wire::Envelope particleAdvance(const Scenario& sc, const Plan& plan, const Coupl
   auto* a = e.mutable_advance();
   a->set_dt(sc.coupling.dt);
   a->set_substeps(sc.coupling.dem_steps);
-  terms.forcing.toWire(*a->mutable_terms(), plan.particles_receive);
+  cosim::link::toWire(terms.forcing, *a->mutable_terms(), plan.particles_receive);
   return e;
 }
 
@@ -24,7 +25,7 @@ wire::Envelope fluidAdvance(const Scenario& sc, const Plan& plan, const Coupling
   auto* a = e.mutable_advance();
   a->set_dt(sc.coupling.dt);
   a->set_substeps(1);
-  terms.exchange.toWire(*a->mutable_terms(), plan.fluid_advance_terms);
+  cosim::link::toWire(terms.exchange, *a->mutable_terms(), plan.fluid_advance_terms);
   return e;
 }
 
@@ -70,7 +71,8 @@ AdvanceReplies OverlappedScheme::advance(Participants& participants,
   messages["particles"] = particleAdvance(sc_, plan_, terms);
   if (plan_.fluid) {
     auto fluid = fluidAdvance(sc_, plan_, terms);
-    state.toWire(*fluid.mutable_advance()->mutable_sample_ahead(), plan_.sample_state);
+    cosim::link::toWire(state, *fluid.mutable_advance()->mutable_sample_ahead(),
+                        plan_.sample_state);
     sent_.ids.assign(state.ids.begin(), state.ids.end());  // for a checkpoint (samplingAhead)
     for (const auto& name : plan_.sample_state)
       if (state.has(name)) sent_.field(name).assign(state.get(name).begin(), state.get(name).end());
@@ -99,7 +101,7 @@ std::optional<wire::Samples> OverlappedScheme::samplesAhead(Participants& partic
                                                             const link::ParticleData& state) {
   if (resume_at_) {  // the first interval after a resume: the gas where it was sampled ahead
     wire::Envelope e;
-    resume_at_->toWire(*e.mutable_sample()->mutable_particles());
+    cosim::link::toWire(*resume_at_, *e.mutable_sample()->mutable_particles());
     resume_at_.reset();
     auto r = participants.request("fluid", std::move(e), wire::Envelope::kSamples);
     participants.addComputeSeconds("fluid_sample_ahead", r.samples().wall_seconds());

@@ -17,6 +17,7 @@
 
 #include "cosim.pb.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/link/transport.h"
 
 namespace cosim::liggghts::test {
@@ -104,7 +105,7 @@ class AdapterRun {
     auto* a = e.mutable_advance();
     a->set_dt(dt);
     a->set_substeps(substeps);
-    terms.toWire(*a->mutable_terms());
+    cosim::link::toWire(terms, *a->mutable_terms());
     hub_->send(peer_, e);
     auto reply = receive();
     if (reply.has_advanced()) {

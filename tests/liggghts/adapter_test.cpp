@@ -12,6 +12,7 @@
 
 #include "adapter_harness.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
 #include "test_dir.h"
 
 using cosim::liggghts::test::AdapterRun;
@@ -38,7 +39,7 @@ std::filesystem::path participantDir(const std::filesystem::path& base, const st
 ParticleData stateOf(const cosim::wire::Envelope& reply) {
   if (reply.has_error()) throw std::runtime_error("adapter error: " + reply.error().message());
   if (!reply.has_advanced()) throw std::runtime_error("expected Advanced");
-  return ParticleData::fromWire(reply.advanced().state());
+  return cosim::link::fromWire(reply.advanced().state());
 }
 
 struct Bed {

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "cosim/link/particle_wire.h"
+
 namespace cosim::test {
 namespace fs = std::filesystem;
 
@@ -183,11 +185,11 @@ cosim::wire::Envelope FoamRun::request(cosim::wire::Envelope env) {
 
 FoamRun::SampleReply FoamRun::sample(const cosim::link::ParticleData& particles) {
   cosim::wire::Envelope env;
-  particles.toWire(*env.mutable_sample()->mutable_particles());
+  cosim::link::toWire(particles, *env.mutable_sample()->mutable_particles());
   const auto reply = request(env);
   if (!reply.has_samples()) throw std::runtime_error("expected Samples");
   SampleReply r;
-  r.at = cosim::link::ParticleData::fromWire(reply.samples().at_particles());
+  r.at = cosim::link::fromWire(reply.samples().at_particles());
   r.lost.assign(reply.samples().lost_ids().begin(), reply.samples().lost_ids().end());
   return r;
 }
@@ -196,8 +198,8 @@ cosim::wire::Advanced FoamRun::advance(double dt, const cosim::link::ParticleDat
                                        const cosim::link::ParticleData* ahead) {
   cosim::wire::Envelope env;
   env.mutable_advance()->set_dt(dt);
-  terms.toWire(*env.mutable_advance()->mutable_terms());
-  if (ahead != nullptr) ahead->toWire(*env.mutable_advance()->mutable_sample_ahead());
+  cosim::link::toWire(terms, *env.mutable_advance()->mutable_terms());
+  if (ahead != nullptr) cosim::link::toWire(*ahead, *env.mutable_advance()->mutable_sample_ahead());
   const auto reply = request(env);
   if (!reply.has_advanced()) throw std::runtime_error("expected Advanced");
   ++step_;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "cosim/link/particle_wire.h"
 #include "cosim/link/session.h"
 #include "foam_harness.h"
 
@@ -103,7 +104,7 @@ TEST(OpenFoamParticleLocation, SamplesAheadAreThoseOfASampleWhereTheParcelsWillB
   run.sample(particles);
   const auto advanced = run.advance(dt, cosim::link::ParticleData{}, &particles);
   ASSERT_TRUE(advanced.has_ahead());
-  const auto ahead = cosim::link::ParticleData::fromWire(advanced.ahead().at_particles());
+  const auto ahead = cosim::link::fromWire(advanced.ahead().at_particles());
   std::vector<std::int64_t> lostAhead(advanced.ahead().lost_ids().begin(),
                                       advanced.ahead().lost_ids().end());
   std::sort(lostAhead.begin(), lostAhead.end());

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "cosim/link/particle_wire.h"
 #include "foam_harness.h"
 
 namespace cosim::test {
@@ -55,7 +56,7 @@ Totals runSink(double velocity, int ranks) {
     t.in += sc.precursor_in();
     t.out += sc.precursor_out();
     t.removedCells += sc.precursor_removed_cells();
-    const auto state = cosim::link::ParticleData::fromWire(a.state());
+    const auto state = cosim::link::fromWire(a.state());
     const auto& removed = state.get("precursor_removed");
     EXPECT_EQ(removed.size(), particles.size());
     t.removed += std::accumulate(removed.begin(), removed.end(), 0.0);

@@ -8,6 +8,7 @@
 
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/link/session.h"
 #include "cosim/link/transport.h"
 #include "cosim/models/parcels.h"
@@ -34,7 +35,7 @@ link::ParticleData sampleData() {
 TEST(Protocol, ParticleDataRoundTripKeepsIdsOrderAndValues) {
   const auto d = sampleData();
   wire::Envelope env;
-  d.toWire(*env.mutable_advance()->mutable_terms());
+  cosim::link::toWire(d, *env.mutable_advance()->mutable_terms());
   env.mutable_header()->set_protocol_version(wire::PROTOCOL_VERSION);
   env.mutable_header()->set_step(5);
   env.mutable_header()->set_time(0.25);
@@ -42,7 +43,7 @@ TEST(Protocol, ParticleDataRoundTripKeepsIdsOrderAndValues) {
   const auto back = link::parse(bytes.data(), bytes.size());
   EXPECT_EQ(back.header().step(), 5u);
   EXPECT_DOUBLE_EQ(back.header().time(), 0.25);
-  const auto d2 = link::ParticleData::fromWire(back.advance().terms());
+  const auto d2 = cosim::link::fromWire(back.advance().terms());
   EXPECT_EQ(d2.ids, d.ids);
   EXPECT_EQ(d2.get(field::position), d.get(field::position));
   EXPECT_EQ(d2.get(field::radius), d.get(field::radius));
@@ -55,7 +56,7 @@ TEST(Protocol, PackedArraysNotOneMessagePerParticle) {
   for (std::size_t i = 0; i < d.ids.size(); ++i) d.ids[i] = static_cast<std::int64_t>(i);
   d.field(field::velocity).assign(30000, 1.5);
   wire::Envelope env;
-  d.toWire(*env.mutable_advanced()->mutable_state());
+  cosim::link::toWire(d, *env.mutable_advanced()->mutable_state());
   const auto bytes = link::serialize(env);
   EXPECT_LT(bytes.size(), 30000 * 8 + 10000 * 3 + 200);
 }
@@ -69,7 +70,7 @@ TEST(Protocol, FieldWithWrongLengthIsRefusedNamingTheField) {
   f->set_components(3);
   f->add_values(1.0);  // 1 value for 2 particles x 3 components
   try {
-    link::ParticleData::fromWire(fs);
+    cosim::link::fromWire(fs);
     FAIL() << "accepted a short field";
   } catch (const link::ProtocolError& e) {
     EXPECT_NE(std::string(e.what()).find("velocity"), std::string::npos) << e.what();
@@ -84,7 +85,7 @@ TEST(Protocol, UnknownFieldIsRefused) {
   f->set_name("temperature_of_the_moon");
   f->set_components(1);
   f->add_values(1.0);
-  EXPECT_THROW(link::ParticleData::fromWire(fs), link::ProtocolError);
+  EXPECT_THROW(cosim::link::fromWire(fs), link::ProtocolError);
 }
 
 TEST(Protocol, RandomBytesAreRefusedWithoutCrash) {

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "cosim.pb.h"
-#include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
 
 namespace cosim::link {
@@ -60,53 +58,6 @@ std::map<std::int64_t, std::size_t> ParticleData::index() const {
   std::map<std::int64_t, std::size_t> m;
   for (std::size_t i = 0; i < ids.size(); ++i) m.emplace(ids[i], i);
   return m;
-}
-
-void ParticleData::toWire(wire::FieldSet& out) const {
-  out.Clear();
-  out.mutable_ids()->Assign(ids.begin(), ids.end());
-  for (const auto& [name, v] : fields_) {
-    auto* f = out.add_fields();
-    f->set_name(name);
-    f->set_components(componentsOrOne(name));
-    f->mutable_values()->Assign(v.begin(), v.end());
-  }
-}
-
-void ParticleData::toWire(wire::FieldSet& out, const std::vector<std::string>& names) const {
-  out.Clear();
-  out.mutable_ids()->Assign(ids.begin(), ids.end());
-  for (const auto& [name, v] : fields_) {  // in the map's order, as select() then toWire()
-    if (std::find(names.begin(), names.end(), name) == names.end()) continue;
-    auto* f = out.add_fields();
-    f->set_name(name);
-    f->set_components(componentsOrOne(name));
-    f->mutable_values()->Assign(v.begin(), v.end());
-  }
-}
-
-ParticleData ParticleData::fromWire(const wire::FieldSet& in) {
-  ParticleData d;
-  d.ids.assign(in.ids().begin(), in.ids().end());
-  for (const auto& f : in.fields()) {
-    const unsigned known = field::components(f.name());
-    if (known == 0) {
-      throw ProtocolError("unknown particle field '" + f.name() + "'");
-    }
-    if (f.components() != known) {
-      throw ProtocolError("particle field '" + f.name() + "' has " +
-                          std::to_string(f.components()) + " components, expected " +
-                          std::to_string(known));
-    }
-    if (static_cast<std::size_t>(f.values_size()) != d.ids.size() * known) {
-      throw ProtocolError("particle field '" + f.name() + "' has " +
-                          std::to_string(f.values_size()) + " values for " +
-                          std::to_string(d.ids.size()) + " particles (expected " +
-                          std::to_string(d.ids.size() * known) + ")");
-    }
-    d.fields_[f.name()].assign(f.values().begin(), f.values().end());
-  }
-  return d;
 }
 
 }  // namespace cosim::link

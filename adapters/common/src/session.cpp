@@ -16,6 +16,7 @@
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/file_transfer.h"
+#include "cosim/link/particle_wire.h"
 
 namespace cosim::link {
 
@@ -409,7 +410,7 @@ void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& s) {
   samples.ids = in.ids;
   std::vector<std::int64_t> lost;
   solver.sample(in, samples, lost);
-  samples.toWire(*s.mutable_at_particles());
+  cosim::link::toWire(samples, *s.mutable_at_particles());
   s.mutable_lost_ids()->Assign(lost.begin(), lost.end());
   s.set_wall_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
@@ -437,20 +438,20 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
       const auto t0 = std::chrono::steady_clock::now();
       switch (cmd.body_case()) {
         case wire::Envelope::kSample: {
-          sampleInto(solver, ParticleData::fromWire(cmd.sample().particles()),
+          sampleInto(solver, cosim::link::fromWire(cmd.sample().particles()),
                      *out.mutable_samples());
           break;
         }
         case wire::Envelope::kAdvance: {
-          const ParticleData terms = ParticleData::fromWire(cmd.advance().terms());
+          const ParticleData terms = cosim::link::fromWire(cmd.advance().terms());
           ParticleData state;
           auto* adv = out.mutable_advanced();
           solver.advance(cmd.advance(), terms, *adv, state);
-          state.toWire(*adv->mutable_state());
+          cosim::link::toWire(state, *adv->mutable_state());
           if (cmd.advance().has_sample_ahead() && cmd.advance().dt() > 0) {
             // Scheme `overlapped`: the next interval's Sample, where the particles will be
             sampleInto(solver,
-                       predictedAt(ParticleData::fromWire(cmd.advance().sample_ahead()),
+                       predictedAt(cosim::link::fromWire(cmd.advance().sample_ahead()),
                                    cmd.advance().dt()),
                        *adv->mutable_ahead());
           }

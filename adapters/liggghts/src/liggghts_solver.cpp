@@ -14,6 +14,7 @@
 #include "cosim/liggghts/liggghts_error.h"
 #include "cosim/liggghts/scene_check.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
 
 namespace cosim::liggghts {
 
@@ -277,7 +278,7 @@ void LiggghtsSolver::checkTimestep() {
 
 void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
   if (!engine_) throw std::runtime_error("Advance before configure");
-  ParticleData terms = ParticleData::fromWire(cmd.terms());
+  ParticleData terms = cosim::link::fromWire(cmd.terms());
   Terms t;
   t.ids = std::move(terms.ids);  // moved out of the packet, not copied
   t.drag_coefficient = terms.take(field::drag_coefficient);

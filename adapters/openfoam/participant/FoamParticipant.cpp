@@ -14,6 +14,7 @@
 
 #include "SceneCheck.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
 #include "cosim/util/child_process.h"
 #include "cosim/util/text_file.h"
 
@@ -284,8 +285,7 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
   // that is, is known now: on a single processor the parcels are located there on a helper
   // thread during the gas step (the particles' core idles once their DEM steps are done).
   if (cmd.has_sample_ahead() && bridge_.size() == 1) {
-    const auto ahead =
-        cosim::link::predictedAt(cosim::link::ParticleData::fromWire(cmd.sample_ahead()), dt);
+    const auto ahead = cosim::link::predictedAt(cosim::link::fromWire(cmd.sample_ahead()), dt);
     if (ahead.has(field::position) && ahead.has(field::radius)) {
       ParticleSet set;
       set.ids = ahead.ids;

@@ -1,5 +1,7 @@
-// ParticleData: per-particle arrays keyed by particle id, the in-memory twin of wire::FieldSet.
-// Contiguous arrays (x,y,z interleaved for vectors) so models and solvers can loop over them.
+// ParticleData: per-particle arrays keyed by particle id, the in-memory twin of wire::FieldSet
+// (particle_wire.h converts). Contiguous arrays (x,y,z interleaved for vectors) so models and
+// solvers can loop over them. Part of the contract library (cosim_contract): no ZeroMQ, no
+// protobuf.
 #pragma once
 
 #include <cstdint>
@@ -7,10 +9,6 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-namespace cosim::wire {
-class FieldSet;
-}
 
 namespace cosim::link {
 
@@ -40,11 +38,10 @@ class ParticleData {
   // Map id -> index (built on demand).
   std::map<std::int64_t, std::size_t> index() const;
 
-  void toWire(wire::FieldSet& out) const;
-  // Only the named fields (those it holds), as select(names).toWire(out) but without the copy.
-  void toWire(wire::FieldSet& out, const std::vector<std::string>& names) const;
-  // Validates lengths and component counts; throws ProtocolError with the field name.
-  static ParticleData fromWire(const wire::FieldSet& in);
+  // Sets a field to `values` (moved in, not checked: the caller knows its length).
+  void put(const std::string& name, std::vector<double> values) {
+    fields_[name] = std::move(values);
+  }
 
  private:
   std::map<std::string, std::vector<double>> fields_;
