@@ -88,6 +88,7 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
   for (const auto& name : order) {
     RunOptions ro;
     ro.quiet = true;
+    ro.stop = opt.stop;
     ro.overwrite = true;
     ro.output = folder / name;
     ro.scheme = schemeOf(name);

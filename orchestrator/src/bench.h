@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "cosim/util/stop_request.h"
+
 namespace cosim::orchestrator {
 
 struct BenchOptions {
@@ -26,6 +28,7 @@ struct BenchOptions {
   std::uint64_t warmup = 5;      // untimed steps before them
   std::filesystem::path output;  // default runs/<scenario>-bench; one run folder per stage
   std::vector<std::string> stages{"coupled", "dem", "cfd"};
+  const util::StopRequest* stop = nullptr;  // Ctrl-C: the stage under way stops
 };
 
 // Seconds per step of one stage: its phases (fluid_sample, models, advance, bookkeeping) and the

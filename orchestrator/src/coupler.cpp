@@ -45,15 +45,20 @@ void Coupler::Phases::lap(const char* phase) {
   tick = now;
 }
 
+namespace {
+const util::StopRequest kNeverStopped;  // for a caller that gives no stop request
+}  // namespace
+
 Coupler::Coupler(Scenario scenario, RunOptions options)
     : sc_(std::move(scenario)),
       opt_(std::move(options)),
+      stop_(opt_.stop != nullptr ? *opt_.stop : kNeverStopped),
       log_(opt_.quiet),
       models_(makeModels(sc_)),
       plan_(makePlan(sc_, models_)),
       run_id_(newRunId()),
       record_(sc_, plan_, log_),
-      participants_(sc_, plan_, run_id_, log_),
+      participants_(sc_, plan_, run_id_, log_, stop_),
       scheme_(makeCouplingScheme(
           sc_, plan_, opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme, opt_.replay_terms)),
       monitor_(sc_) {}
@@ -105,18 +110,20 @@ RunResult Coupler::run() {
       creditAndRecord(replies, k + 1 == nsteps_);                    // coating, rows, snapshots
       progress->update(time_, k + 1, state_.size());
       result.steps = k + 1;
-      interrupted = g_stop_signal != 0 && k + 1 < nsteps_;
+      interrupted = stop_.requested() && k + 1 < nsteps_;
       if (interrupted || checkpointDue(k + 1 == nsteps_)) {
         writeCheckpoint();
         // Ctrl-C while that checkpoint was written: it holds this state, stop with it
-        interrupted = g_stop_signal != 0 && k + 1 < nsteps_;
+        interrupted = stop_.requested() && k + 1 < nsteps_;
       }
     }
     if (interrupted) {
       status = "interrupted";
       result.exit_code = 130;
-      result.message = "cosim: interrupted by signal " + std::to_string(g_stop_signal.load()) +
-                       " at t = " + analysis::formatShortest(time_) + " s (step " +
+      const std::string by = stop_.signal() != 0
+                                 ? "interrupted by signal " + std::to_string(stop_.signal())
+                                 : std::string("stopped on request");
+      result.message = "cosim: " + by + " at t = " + analysis::formatShortest(time_) + " s (step " +
                        std::to_string(step_) +
                        "); a checkpoint holds this state. Continue with:\n  cosim resume " +
                        record_.folder().string();
@@ -127,9 +134,9 @@ RunResult Coupler::run() {
     }
     participants_.shutdown(true);
   } catch (const RunFailure& f) {
-    status = g_stop_signal ? "interrupted" : "failed";
+    status = stop_.requested() ? "interrupted" : "failed";
     result.message = describe(f);
-    result.exit_code = g_stop_signal ? 130 : 2;
+    result.exit_code = stop_.requested() ? 130 : 2;
     if (progress) progress->abort();
     participants_.shutdown(false);
   } catch (const std::exception& e) {

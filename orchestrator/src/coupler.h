@@ -49,6 +49,9 @@ struct RunOptions {
   // timed phases); the solver-alone stages replay `replay_terms` (FrozenScheme).
   std::shared_ptr<TermsRecording> record_terms;
   std::shared_ptr<const TermsRecording> replay_terms;
+  // Ctrl-C/SIGTERM (commands/common.cpp's processStop()) or a caller's own request: the run
+  // stops after its step with a checkpoint, a second request at once. nullptr: never asked.
+  const util::StopRequest* stop = nullptr;
 };
 
 struct RunResult {
@@ -124,6 +127,7 @@ class Coupler {
 
   Scenario sc_;
   RunOptions opt_;
+  const util::StopRequest& stop_;  // opt_.stop, or one never requested
   RunLog log_;
   SceneModels models_;
   Plan plan_;

@@ -26,9 +26,6 @@ namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
 
-std::atomic<int> g_stop_signal{0};
-std::atomic<int> g_stop_count{0};
-
 using Clock = std::chrono::steady_clock;
 
 struct Participants::Peer {
@@ -104,8 +101,14 @@ long commandTimeout(const std::map<std::string, ParticipantSpec>& participants) 
 
 }  // namespace
 
-Participants::Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log)
-    : sc_(sc), plan_(plan), run_id_(std::move(run_id)), log_(log), token_(newRunToken()) {}
+Participants::Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log,
+                           const util::StopRequest& stop)
+    : sc_(sc),
+      plan_(plan),
+      run_id_(std::move(run_id)),
+      log_(log),
+      stop_(stop),
+      token_(newRunToken()) {}
 
 Participants::~Participants() { shutdown(false); }
 
@@ -403,17 +406,16 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
   Replies got;
   const auto start = Clock::now();
   while (got.size() < expected.size()) {
-    if (g_stop_count >= 2)
-      throw RunFailure("", "interrupted (signal " + std::to_string(g_stop_signal.load()) + ")");
+    if (stop_.count() >= 2)
+      throw RunFailure("", "interrupted (signal " + std::to_string(stop_.signal()) + ")");
     // Before the first answer (a participant's own start-up: LIGGGHTS pouring and settling the
     // bed, OpenFOAM reading its case) there is no step to finish: stop now
-    if (g_stop_signal && !answered_once_)
-      throw RunFailure("", "interrupted during start-up (signal " +
-                               std::to_string(g_stop_signal.load()) +
+    if (stop_.requested() && !answered_once_)
+      throw RunFailure("", "interrupted during start-up (signal " + std::to_string(stop_.signal()) +
                                "), before the first step: no step was done in this run");
-    if (g_stop_signal && !stop_noted_) {
+    if (stop_.requested() && !stop_noted_) {
       stop_noted_ = true;
-      log_.show("signal " + std::to_string(g_stop_signal.load()) +
+      log_.show("signal " + std::to_string(stop_.signal()) +
                 ": stopping after this step with a checkpoint (send it again to stop at once)");
     }
     if (auto in = hub_->receive(link::Millis(100))) {
@@ -578,7 +580,7 @@ void Participants::handshake() {
   for (const auto& [n, p] : peers_) waiting.insert(n);
   const auto start = Clock::now();
   while (!waiting.empty()) {
-    if (g_stop_signal) throw RunFailure("", "interrupted during start-up");
+    if (stop_.requested()) throw RunFailure("", "interrupted during start-up");
     if (auto in = hub_->receive(link::Millis(100))) {
       if (const auto who = admit(*in)) {
         const auto& env = *in->envelope;

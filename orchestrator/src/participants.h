@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cosim/link/transport.h"
+#include "cosim/util/stop_request.h"
 #include "plan.h"
 #include "run_log.h"
 #include "scenario.h"
@@ -31,12 +32,6 @@ class RunFailure : public std::runtime_error {
   std::string participant;  // empty: the orchestrator itself
 };
 
-// Set by the SIGINT/SIGTERM handlers: the signal and how many arrived. After the first, the
-// run finishes its step, writes a checkpoint and stops; after the second, every wait stops at
-// its next wake-up.
-extern std::atomic<int> g_stop_signal;
-extern std::atomic<int> g_stop_count;
-
 // Replies by participant name.
 using Replies = std::map<std::string, wire::Envelope>;
 
@@ -48,7 +43,9 @@ wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const Participant
 
 class Participants {
  public:
-  Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log);
+  // stop: Ctrl-C/SIGTERM (or a caller's request) that the waits for the participants answer
+  Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log,
+               const util::StopRequest& stop);
   ~Participants();
   Participants(const Participants&) = delete;
   Participants& operator=(const Participants&) = delete;
@@ -133,6 +130,9 @@ class Participants {
   const Plan& plan_;
   std::string run_id_;
   RunLog& log_;
+  // After the first request a step under way finishes (the coupler then writes a checkpoint and
+  // stops), one not begun (start-up) stops at once; after the second, every wait stops.
+  const util::StopRequest& stop_;
   std::unique_ptr<link::Hub> hub_;
   std::map<std::string, std::unique_ptr<Peer>> peers_;
   std::map<std::string, double> compute_;

@@ -178,6 +178,7 @@ void runVariant(const StudyOptions& opt, Variant& v) {
   }
   RunOptions ro;
   ro.quiet = true;
+  ro.stop = opt.stop;
   if (const auto from = !opt.rerun ? resumableCheckpoint(v.folder, sc) : std::nullopt) {
     // Stopped before (Ctrl-C, a kill, a job's time limit) with this scene: continue it
     ro.resume = v.folder;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cosim/analysis/study.h"
+#include "cosim/util/stop_request.h"
 
 namespace cosim::orchestrator {
 
@@ -27,6 +28,7 @@ struct StudyOptions {
   // false: a variant whose folder holds a completed run of exactly the same resolved scene is
   // read back, not run again (resume an interrupted study, or re-analyse with another --finest)
   bool rerun = false;
+  const util::StopRequest* stop = nullptr;  // Ctrl-C: the running variant stops, and the study
 };
 
 // "key=v1,v2,v3" -> (key, [v1, v2, v3]); throws std::runtime_error with the expected form.

@@ -18,7 +18,10 @@
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/time_series.h"
+#include "cosim/util/stop_request.h"
+#include "coupler.h"
 #include "processes.h"
+#include "scenario.h"
 
 using namespace cosim;
 using namespace cosim::orchestrator;
@@ -223,6 +226,42 @@ TEST(Restart, CtrlCStopsWithACheckpointAndSaysHowToResume) {
 
   auto resumed = start(w, {"resume", "cut", "--quiet"}, "resume.out");
   ASSERT_EQ(finish(resumed), 0) << text(w.dir / "resume.out");
+  expectSameRun(w.dir / "full", w.dir / "cut");
+}
+
+// The stop request is handed to the run (RunOptions::stop), not read from a global: a program
+// that embeds the coupler (here the test) stops a run from another thread as Ctrl-C does, with a
+// checkpoint from which the run resumes to the uninterrupted one's records.
+TEST(Restart, AStopRequestedByTheCallerEndsTheRunWithACheckpoint) {
+  Workspace w;
+  const std::vector<std::string> sets = {"checkpoint.interval=0"};
+  RunOptions fo;
+  fo.quiet = true;
+  fo.output = w.dir / "full";
+  ASSERT_EQ(Coupler(loadScenario(w.dir / "scene.yaml", sets), fo).run().exit_code, 0);
+
+  util::StopRequest stop;
+  std::thread asker([&] {  // once the run has recorded some steps
+    for (int i = 0; i < 30000 && lineCount(w.dir / "cut/timeseries.csv") < 10; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    stop.request();
+  });
+  RunOptions co;
+  co.quiet = true;
+  co.output = w.dir / "cut";
+  co.stop = &stop;
+  const RunResult cut = Coupler(loadScenario(w.dir / "scene.yaml", sets), co).run();
+  asker.join();
+  EXPECT_EQ(cut.exit_code, 130) << cut.message;
+  EXPECT_LT(cut.steps, 120u) << "the run ended before the request";
+  EXPECT_NE(cut.message.find("stopped on request"), std::string::npos) << cut.message;
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "cut/summary.json").at("status"), "interrupted");
+  ASSERT_TRUE(fs::exists(w.dir / "cut/checkpoints")) << "the checkpoint at the stop";
+
+  RunOptions ro;
+  ro.quiet = true;
+  ro.resume = w.dir / "cut";
+  ASSERT_EQ(Coupler(loadRunScene(w.dir / "cut"), ro).run().exit_code, 0);
   expectSameRun(w.dir / "full", w.dir / "cut");
 }
 

@@ -26,6 +26,7 @@ void addBenchCommand(CLI::App& app, Commands& commands) {
                     "folder of the stages' run folders (default runs/<scene>-bench)");
   commands.push_back({bench, [o] {
                         catchStopSignals();
+                        o->stop = &processStop();
                         return runBench(*o, std::cout);
                       }});
 }

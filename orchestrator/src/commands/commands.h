@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "cosim/util/stop_request.h"
+
 namespace cosim::orchestrator {
 
 struct Command {
@@ -19,9 +21,11 @@ using Commands = std::vector<Command>;
 extern const char* const kSetHelp;
 extern const char* const kUnsetHelp;
 
-// Ctrl-C and SIGTERM stop a run after its step with a checkpoint (a second one at once);
-// `pipe`: a closed pipe is an error to handle, not a signal that ends the process.
+// Ctrl-C and SIGTERM request processStop(): a run handed it (RunOptions::stop) stops after its
+// step with a checkpoint (a second one at once); `pipe`: a closed pipe is an error to handle,
+// not a signal that ends the process.
 void catchStopSignals(bool ignore_pipe = true);
+util::StopRequest& processStop();
 // Ctrl-C and SIGTERM end a command at once, whatever its parent left them set to (a script's
 // background job inherits Ctrl-C ignored): every command but those that catch them as above.
 // Each file it writes is whole or as it was (analysis::writeFileAtomically holds them back

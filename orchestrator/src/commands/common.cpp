@@ -6,10 +6,7 @@
 namespace cosim::orchestrator {
 
 namespace {
-void onSignal(int sig) {
-  g_stop_signal = sig;
-  ++g_stop_count;
-}
+void onSignal(int sig) { processStop().request(sig); }
 }  // namespace
 
 const char* const kSetHelp =
@@ -19,6 +16,11 @@ const char* const kSetHelp =
 const char* const kUnsetHelp =
     "remove a node (and everything below it) before the --set overrides, e.g. "
     "models.coating_zone";
+
+util::StopRequest& processStop() {
+  static util::StopRequest stop;
+  return stop;
+}
 
 std::string joinNames(const std::vector<std::string>& names) {
   std::string s;

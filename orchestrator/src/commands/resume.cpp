@@ -35,6 +35,7 @@ void addResumeCommand(CLI::App& app, Commands& commands) {
   commands.push_back({resume, [o, from] {
                         Scenario sc = loadRunScene(o->folder, o->sets);
                         catchStopSignals(false);
+                        o->run.stop = &processStop();
                         o->run.resume = std::filesystem::absolute(o->folder);
                         if (from->count() > 0) o->run.resume_from = o->from;
                         RunResult r = Coupler(std::move(sc), o->run).run();

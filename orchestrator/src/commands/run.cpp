@@ -29,6 +29,7 @@ void addRunCommand(CLI::App& app, Commands& commands) {
                         Scenario sc = loadScenario(o->scenario, o->sets, o->unsets);
                         if (!o->output.empty()) o->run.output = o->output;
                         catchStopSignals();
+                        o->run.stop = &processStop();
                         RunResult r = Coupler(std::move(sc), o->run).run();
                         if (r.exit_code != 0) {
                           std::cerr << "\ncosim: run stopped\n" << r.message << "\n";

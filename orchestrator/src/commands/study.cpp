@@ -41,6 +41,7 @@ void addStudyCommand(CLI::App& app, Commands& commands) {
                         // Ctrl-C or SIGTERM: the running variant checkpoints and stops, and so
                         // does the study
                         catchStopSignals();
+                        o->study.stop = &processStop();
                         return runStudy(o->study);
                       }});
 }
