@@ -209,72 +209,29 @@ void writeZonePassTables(const RunAnalysis& a, const std::filesystem::path& dir)
   writeFileAtomically(dir / "zone_passes_per_parcel.csv", csv);
 }
 
-std::string zonePassesHtml(const RunAnalysis& a) {
-  std::ostringstream h;
-  h << "<h2>Passes through the coating zone</h2>\n";
-  if (!a.zone_passes) {
-    h << "<p>No pass statistics: " << htmlEscape(a.zone_passes_problem) << ".</p>\n";
-    return h.str();
+namespace {
+// Where the parcels that never reached the zone sit, against the others
+void neverEnteredPlacesHtml(std::ostringstream& h, const ParcelPlaces& pl) {
+  h << "<p><b>Where the parcels that never reached the zone sit</b> (height z; distance from "
+       "the vertical axis through the bed's centre at the start; averaged over "
+    << pl.snapshots << " snapshots):</p>\n<table><tr><th class=l>parcels</th><th>number</th>"
+    << "<th>mean height [mm]</th><th>mean distance from the axis [mm]</th><th>height at the "
+       "start [mm]</th><th>distance at the start [mm]</th></tr>";
+  for (const auto& [name, g] :
+       {std::pair<const char*, const PlaceOfGroup&>{"never reached the zone", pl.group},
+        std::pair<const char*, const PlaceOfGroup&>{"reached it", pl.others}}) {
+    h << "<tr><td class=l>" << name << "</td><td>" << g.parcels << "</td><td>" << mm(g.mean_height)
+      << "</td><td>" << mm(g.mean_radius) << "</td><td>" << mm(g.start_height) << "</td><td>"
+      << mm(g.start_radius) << "</td></tr>";
   }
+  h << "</table>\n";
+}
+
+// What Mann's cycle-time analysis predicts from the passes, beside the simulated coating (a
+// labelled hypothetical where the run is poorly mixed or its cycles miss part of the bed)
+void cyclePredictionHtml(std::ostringstream& h, const RunAnalysis& a) {
   const auto& r = *a.zone_passes;
   const auto& s = r.stats;
-  const double duration = s.end - s.start;
-  const auto mass = [&](double kg, int digits = 3) {
-    return htmlQuantity(kg, a.mass_unit, digits);
-  };
-  h << "<p>The coating happens only while a parcel is in the coating zone. Every coupling step "
-       "the simulation decides which parcels are in it; "
-    << kZonePassesFile << " holds each parcel's passes (" << s.passes << " passes of " << s.parcels
-    << " parcels over " << span(duration) << " of coating).";
-  if (!a.verdict.well_mixed) h << " They explain why the run is poorly mixed:";
-  h << "</p>\n<ul>\n";
-  h << "<li><b>Never reached the zone:</b> " << s.never_entered << " of " << s.parcels
-    << " parcels (" << pct(s.never_entered_share) << ").</li>\n";
-  if (s.cycle_time.n > 0) {
-    h << "<li><b>A cycle</b> (from one entry into the zone to the next) takes "
-      << span(s.cycle_time.mean) << " on average (standard deviation " << span(s.cycle_time.sd)
-      << ", median " << span(s.cycle_time.p50) << ", 10&ndash;90&nbsp;%: " << span(s.cycle_time.p10)
-      << " to " << span(s.cycle_time.p90) << "), from " << s.cycle_time.n
-      << " cycles. Counting every parcel, also those that entered once or "
-      << "never, a parcel enters every " << span(s.cycle_time_from_rate) << ".</li>\n";
-  } else {
-    h << "<li><b>No cycle</b>: no parcel entered the zone twice. Counting every parcel, one "
-         "enters every "
-      << span(s.cycle_time_from_rate) << ".</li>\n";
-  }
-  if (s.pass_duration.n > 0) {
-    h << "<li><b>A pass</b> lasts " << span(s.pass_duration.mean) << " on average (median "
-      << span(s.pass_duration.p50) << ", 10&ndash;90&nbsp;%: " << span(s.pass_duration.p10)
-      << " to " << span(s.pass_duration.p90) << "); the parcels spend " << pct(s.time_in_zone_share)
-      << " of their time in the zone.</li>\n";
-  }
-  h << "<li><b>Passes per parcel:</b> " << num(s.passes_per_parcel.mean) << " on average (from "
-    << num(s.passes_per_parcel.min, "{:.0f}") << " to " << num(s.passes_per_parcel.max, "{:.0f}")
-    << "), coefficient of variation " << num(s.passes_cv) << ". Coating per pass: " << mass(s.w0)
-    << " on average (all coating in passes divided by the passes).</li>\n";
-  h << "<li><b>Coating only in the zone:</b> the passes hold " << mass(s.coating_in_passes, 6)
-    << ", the parcels received " << mass(r.coating_on_parcels, 6) << ".</li>\n";
-  if (!r.ledger_problem.empty())
-    h << "<li><b>The records disagree:</b> " << htmlEscape(r.ledger_problem) << ".</li>\n";
-  h << "</ul>\n";
-
-  if (r.never_entered_places.valid && r.never_entered_places.group.parcels > 0) {
-    const auto& pl = r.never_entered_places;
-    h << "<p><b>Where the parcels that never reached the zone sit</b> (height z; distance from "
-         "the vertical axis through the bed's centre at the start; averaged over "
-      << pl.snapshots << " snapshots):</p>\n<table><tr><th class=l>parcels</th><th>number</th>"
-      << "<th>mean height [mm]</th><th>mean distance from the axis [mm]</th><th>height at the "
-         "start [mm]</th><th>distance at the start [mm]</th></tr>";
-    for (const auto& [name, g] :
-         {std::pair<const char*, const PlaceOfGroup&>{"never reached the zone", pl.group},
-          std::pair<const char*, const PlaceOfGroup&>{"reached it", pl.others}}) {
-      h << "<tr><td class=l>" << name << "</td><td>" << g.parcels << "</td><td>"
-        << mm(g.mean_height) << "</td><td>" << mm(g.mean_radius) << "</td><td>"
-        << mm(g.start_height) << "</td><td>" << mm(g.start_radius) << "</td></tr>";
-    }
-    h << "</table>\n";
-  }
-
   h << "<p><b>What the cycles predict</b> (Mann's cycle-time analysis: a parcel entering every "
        "&mu;<sub>T</sub> &plusmn; &sigma;<sub>T</sub> and taking W<sub>0</sub> per pass has after "
        "a coating time t the mean W<sub>0</sub> t / &mu;<sub>T</sub> and the CV "
@@ -328,6 +285,62 @@ std::string zonePassesHtml(const RunAnalysis& a) {
       << " for it.</p>\n";
   }
   if (hypothetical) h << "</div>\n";
+}
+
+}  // namespace
+
+std::string zonePassesHtml(const RunAnalysis& a) {
+  std::ostringstream h;
+  h << "<h2>Passes through the coating zone</h2>\n";
+  if (!a.zone_passes) {
+    h << "<p>No pass statistics: " << htmlEscape(a.zone_passes_problem) << ".</p>\n";
+    return h.str();
+  }
+  const auto& r = *a.zone_passes;
+  const auto& s = r.stats;
+  const double duration = s.end - s.start;
+  const auto mass = [&](double kg, int digits = 3) {
+    return htmlQuantity(kg, a.mass_unit, digits);
+  };
+  h << "<p>The coating happens only while a parcel is in the coating zone. Every coupling step "
+       "the simulation decides which parcels are in it; "
+    << kZonePassesFile << " holds each parcel's passes (" << s.passes << " passes of " << s.parcels
+    << " parcels over " << span(duration) << " of coating).";
+  if (!a.verdict.well_mixed) h << " They explain why the run is poorly mixed:";
+  h << "</p>\n<ul>\n";
+  h << "<li><b>Never reached the zone:</b> " << s.never_entered << " of " << s.parcels
+    << " parcels (" << pct(s.never_entered_share) << ").</li>\n";
+  if (s.cycle_time.n > 0) {
+    h << "<li><b>A cycle</b> (from one entry into the zone to the next) takes "
+      << span(s.cycle_time.mean) << " on average (standard deviation " << span(s.cycle_time.sd)
+      << ", median " << span(s.cycle_time.p50) << ", 10&ndash;90&nbsp;%: " << span(s.cycle_time.p10)
+      << " to " << span(s.cycle_time.p90) << "), from " << s.cycle_time.n
+      << " cycles. Counting every parcel, also those that entered once or "
+      << "never, a parcel enters every " << span(s.cycle_time_from_rate) << ".</li>\n";
+  } else {
+    h << "<li><b>No cycle</b>: no parcel entered the zone twice. Counting every parcel, one "
+         "enters every "
+      << span(s.cycle_time_from_rate) << ".</li>\n";
+  }
+  if (s.pass_duration.n > 0) {
+    h << "<li><b>A pass</b> lasts " << span(s.pass_duration.mean) << " on average (median "
+      << span(s.pass_duration.p50) << ", 10&ndash;90&nbsp;%: " << span(s.pass_duration.p10)
+      << " to " << span(s.pass_duration.p90) << "); the parcels spend " << pct(s.time_in_zone_share)
+      << " of their time in the zone.</li>\n";
+  }
+  h << "<li><b>Passes per parcel:</b> " << num(s.passes_per_parcel.mean) << " on average (from "
+    << num(s.passes_per_parcel.min, "{:.0f}") << " to " << num(s.passes_per_parcel.max, "{:.0f}")
+    << "), coefficient of variation " << num(s.passes_cv) << ". Coating per pass: " << mass(s.w0)
+    << " on average (all coating in passes divided by the passes).</li>\n";
+  h << "<li><b>Coating only in the zone:</b> the passes hold " << mass(s.coating_in_passes, 6)
+    << ", the parcels received " << mass(r.coating_on_parcels, 6) << ".</li>\n";
+  if (!r.ledger_problem.empty())
+    h << "<li><b>The records disagree:</b> " << htmlEscape(r.ledger_problem) << ".</li>\n";
+  h << "</ul>\n";
+
+  if (r.never_entered_places.valid && r.never_entered_places.group.parcels > 0)
+    neverEnteredPlacesHtml(h, r.never_entered_places);
+  cyclePredictionHtml(h, a);
   h << "<p>Per parcel: zone_passes_per_parcel.csv; every number: report.json "
        "(<code>zone_passes</code>).</p>\n";
   return h.str();
