@@ -321,6 +321,42 @@ void massBalanceSection(std::ostringstream& h, const RunAnalysis& a) {
   }
 }
 
+// Error against run time: what each length of the fit window predicts, and at what cost
+void windowStudyHtml(std::ostringstream& h, const RunAnalysis& a) {
+  const auto& mu = a.mass_unit;
+  if (!a.window_study.points.empty()) {
+    const auto& w = a.window_study;
+    const bool extrapolate = a.verdict.well_mixed;
+    h << "<h3>Error against run time</h3>\n<p>The fit repeated on growing windows: how well each "
+         "shorter window "
+         "predicts the simulated CV at the end of the run (t = "
+      << g(w.run_end) << "&nbsp;s, CV = " << g(w.simulated_cv_run_end, 3) << ")";
+    if (extrapolate)
+      h << " and how the CV extrapolated to " << htmlDuration(w.horizon) << " settles";
+    h << ". Wall time is what the simulation needed to reach the end of the window.";
+    if (!extrapolate)
+      h << " The run is poorly mixed: no extrapolated CV; these numbers only show how the fit "
+           "drifts.";
+    h << "</p>\n<table><tr><th>window end [s]</th><th>wall time [s]</th><th>a1 [" << mu.name
+      << "/s] &plusmn; HC3</th><th>a2 [" << mu.name << "/s<sup>0.5</sup>] &plusmn; HC3</th>";
+    if (extrapolate) h << "<th>CV at " << htmlDuration(w.horizon) << "</th>";
+    h << "<th>error of the predicted CV at the run end</th></tr>";
+    for (const auto& p : w.points) {
+      h << "<tr><td>" << g(p.t_end) << "</td><td>" << g(p.wall_seconds) << "</td>";
+      if (p.ok) {
+        h << "<td>" << mass(a, p.a1) << "&nbsp;&plusmn;&nbsp;" << mass(a, p.a1_se, 2) << "</td><td>"
+          << mass(a, p.a2) << "&nbsp;&plusmn;&nbsp;" << mass(a, p.a2_se, 2) << "</td>";
+        if (extrapolate) h << "<td>" << g(p.cv_horizon, 3) << "</td>";
+        h << "<td>" << pct(p.cv_run_end_error) << "</td>";
+      } else {
+        h << "<td colspan=" << (extrapolate ? 4 : 3) << " class=l>no fit (too few snapshots)</td>";
+      }
+      h << "</tr>";
+    }
+    h << "</table>\n";
+  }
+}
+
 void statisticalDetail(std::ostringstream& h, const RunAnalysis& a) {
   const auto& mu = a.mass_unit;
   h << "<details><summary>Statistical detail: standard errors of the fit (particle bootstrap, "
@@ -397,37 +433,7 @@ void statisticalDetail(std::ostringstream& h, const RunAnalysis& a) {
   }
   h << "</table>\n";
 
-  if (!a.window_study.points.empty()) {
-    const auto& w = a.window_study;
-    const bool extrapolate = v.well_mixed;
-    h << "<h3>Error against run time</h3>\n<p>The fit repeated on growing windows: how well each "
-         "shorter window "
-         "predicts the simulated CV at the end of the run (t = "
-      << g(w.run_end) << "&nbsp;s, CV = " << g(w.simulated_cv_run_end, 3) << ")";
-    if (extrapolate)
-      h << " and how the CV extrapolated to " << htmlDuration(w.horizon) << " settles";
-    h << ". Wall time is what the simulation needed to reach the end of the window.";
-    if (!extrapolate)
-      h << " The run is poorly mixed: no extrapolated CV; these numbers only show how the fit "
-           "drifts.";
-    h << "</p>\n<table><tr><th>window end [s]</th><th>wall time [s]</th><th>a1 [" << mu.name
-      << "/s] &plusmn; HC3</th><th>a2 [" << mu.name << "/s<sup>0.5</sup>] &plusmn; HC3</th>";
-    if (extrapolate) h << "<th>CV at " << htmlDuration(w.horizon) << "</th>";
-    h << "<th>error of the predicted CV at the run end</th></tr>";
-    for (const auto& p : w.points) {
-      h << "<tr><td>" << g(p.t_end) << "</td><td>" << g(p.wall_seconds) << "</td>";
-      if (p.ok) {
-        h << "<td>" << mass(a, p.a1) << "&nbsp;&plusmn;&nbsp;" << mass(a, p.a1_se, 2) << "</td><td>"
-          << mass(a, p.a2) << "&nbsp;&plusmn;&nbsp;" << mass(a, p.a2_se, 2) << "</td>";
-        if (extrapolate) h << "<td>" << g(p.cv_horizon, 3) << "</td>";
-        h << "<td>" << pct(p.cv_run_end_error) << "</td>";
-      } else {
-        h << "<td colspan=" << (extrapolate ? 4 : 3) << " class=l>no fit (too few snapshots)</td>";
-      }
-      h << "</tr>";
-    }
-    h << "</table>\n";
-  }
+  windowStudyHtml(h, a);
 
   h << "<h3>Statistics over time</h3>\n<table><tr><th>t [s]</th><th>parcels</th><th>mean per "
        "parcel "
