@@ -75,6 +75,23 @@ std::size_t rowAt(const cosim::analysis::TimeSeries& ts, double time) {
   return 0;
 }
 
+// Waits (at most `seconds`) until the run in `run` writes a checkpoint while an earlier one is
+// complete: the moment to aim a kill or a Ctrl-C at. False if the run ended first.
+bool awaitCheckpointBeingWritten(const fs::path& run, cosim::util::ChildProcess& p,
+                                 double seconds) {
+  const auto t0 = std::chrono::steady_clock::now();
+  while (p.running() &&
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < seconds) {
+    bool complete = false, partial = false;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(run / "checkpoints", ec))
+      (e.path().filename().string().rfind(".partial", 0) == 0 ? partial : complete) = true;
+    if (complete && partial) return true;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  return false;
+}
+
 // The first step after a resume, at `time`, against the uninterrupted run's: the pressure drop and
 // the precursor columns to 1e-11 (relative).
 void expectFirstStepAgrees(const fs::path& full, const fs::path& resumed, double time) {
@@ -667,16 +684,7 @@ TEST(PlasmaCoatingCi, KilledFiveTimesAndResumedTheRecordsAgree) {
     };
     bool aimed = false;
     if (piece == 0) {  // while a checkpoint is being written, one complete already there
-      while (p.running() && waited() < 120 && !aimed) {
-        bool complete = false, partial = false;
-        std::error_code ec;
-        for (const auto& e : fs::directory_iterator(run / "checkpoints", ec)) {
-          const std::string name = e.path().filename().string();
-          (name.rfind(".partial", 0) == 0 ? partial : complete) = true;
-        }
-        aimed = complete && partial;
-        if (!aimed) std::this_thread::sleep_for(std::chrono::microseconds(200));
-      }
+      aimed = awaitCheckpointBeingWritten(run, p, 120);
     } else if (piece == 1) {  // right after a snapshot appeared
       const std::size_t before = snapshots();
       while (p.running() && waited() < 120 && !aimed) {
@@ -784,15 +792,7 @@ TEST(PlasmaCoatingCi, CtrlCDuringACheckpointOrAReportStopsCleanly) {
     };
     while (p.running() && since(t0) < 180 && rows() < 250)
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    bool aimed = false;
-    while (p.running() && since(t0) < 180 && !aimed) {
-      bool complete = false, partial = false;
-      std::error_code ec;
-      for (const auto& e : fs::directory_iterator(run / "checkpoints", ec))
-        (e.path().filename().string().rfind(".partial", 0) == 0 ? partial : complete) = true;
-      aimed = complete && partial;
-      if (!aimed) std::this_thread::sleep_for(std::chrono::microseconds(200));
-    }
+    const bool aimed = awaitCheckpointBeingWritten(run, p, 180);
     ASSERT_TRUE(aimed && p.running()) << "no checkpoint write to aim at: " << p.exitDescription();
     const auto t1 = std::chrono::steady_clock::now();
     ::kill(p.pid(), SIGINT);

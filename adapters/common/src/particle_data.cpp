@@ -6,12 +6,7 @@
 
 namespace cosim::link {
 
-namespace {
-unsigned componentsOrOne(const std::string& name) {
-  unsigned c = field::components(name);
-  return c == 0 ? 1U : c;
-}
-}  // namespace
+using field::componentsOrOne;
 
 std::vector<double>& ParticleData::field(const std::string& name) {
   auto& v = fields_[name];

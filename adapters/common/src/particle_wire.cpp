@@ -8,12 +8,7 @@
 
 namespace cosim::link {
 
-namespace {
-unsigned componentsOrOne(const std::string& name) {
-  unsigned c = field::components(name);
-  return c == 0 ? 1U : c;
-}
-}  // namespace
+using field::componentsOrOne;
 
 void toWire(const ParticleData& d, wire::FieldSet& out) {
   out.Clear();

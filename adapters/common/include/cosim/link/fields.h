@@ -42,6 +42,11 @@ inline constexpr const char* precursor_removed = "precursor_removed";  // [kg] o
 
 // Number of components of a field (1 for scalars); 0 for an unknown name.
 unsigned components(const std::string& name);
+// The same, 1 for an unknown name (a field a plugin model adds: stored as a scalar).
+inline unsigned componentsOrOne(const std::string& name) {
+  const unsigned c = components(name);
+  return c == 0 ? 1U : c;
+}
 // SI unit of a field as written in particles.h5 ("m", "m/s", "kg", "-" ...); "" if unknown.
 const char* units(const std::string& name);
 // What a field means, one line (recorded with it in particles.h5); "" for an unknown name.
