@@ -1,9 +1,9 @@
 #include "cosim/analysis/files.h"
 
 #include <fmt/format.h>
+#include <signal.h>
 
 #include <cerrno>
-#include <signal.h>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
