@@ -172,6 +172,7 @@ Json zonePassesJson(const RunAnalysis& a) {
             {"passes_cv", s.passes_cv},
             {"time_in_zone_per_parcel_s", s.time_in_zone_per_parcel},
             {"time_in_zone_share", s.time_in_zone_share},
+            {"uptake_rate_in_zone_kg_per_s", s.uptake_rate_in_zone},
             {"pass_duration_s", s.pass_duration},
             {"cycle_time_s", s.cycle_time},
             {"cycle_time_from_rate_s", s.cycle_time_from_rate},
@@ -326,7 +327,10 @@ std::string zonePassesHtml(const RunAnalysis& a) {
     h << "<li><b>A pass</b> lasts " << span(s.pass_duration.mean) << " on average (median "
       << span(s.pass_duration.p50) << ", 10&ndash;90&nbsp;%: " << span(s.pass_duration.p10)
       << " to " << span(s.pass_duration.p90) << "); the parcels spend " << pct(s.time_in_zone_share)
-      << " of their time in the zone.</li>\n";
+      << " of their time in the zone and take up " << mass(s.uptake_rate_in_zone)
+      << " a second while in it (the coating rate of the bed is the parcels times that share "
+         "times that rate: the share says how much of the bed the zone holds, the rate how "
+         "much precursor reaches a parcel in it).</li>\n";
   }
   h << "<li><b>Passes per parcel:</b> " << num(s.passes_per_parcel.mean) << " on average (from "
     << num(s.passes_per_parcel.min, "{:.0f}") << " to " << num(s.passes_per_parcel.max, "{:.0f}")

@@ -110,6 +110,7 @@ ZonePassStatistics zonePassStatistics(const std::vector<ZonePass>& passes,
     if (duration > 0)
       s.time_in_zone_share = time_in_zone / (static_cast<double>(s.parcels) * duration);
   }
+  if (time_in_zone > 0) s.uptake_rate_in_zone = s.coating_in_passes / time_in_zone;
   s.pass_duration = spreadOf(durations, true);
   s.cycle_time = spreadOf(cycles, true);
   s.coating_per_pass = spreadOf(coatings, true);

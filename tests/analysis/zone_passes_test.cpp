@@ -150,6 +150,8 @@ TEST(ZonePassStatistics, HandMadeParcelsGiveTheHandCountedNumbers) {
   EXPECT_NEAR(s.cycle_time_from_rate, 40.0 / 6.0, 1e-14);
   EXPECT_DOUBLE_EQ(s.coating_in_passes, 11.5);
   EXPECT_DOUBLE_EQ(s.w0, 11.5 / 7.0);
+  // 11.5 kg taken up over 7.6 parcel-seconds in the zone.
+  EXPECT_NEAR(s.uptake_rate_in_zone, 11.5 / 7.6, 1e-15);
   EXPECT_EQ(s.parcel_coating, (std::vector<double>{6.0, 1.5, 0.0, 4.0}));
   EXPECT_TRUE(s.prediction_ok) << s.prediction_problem;
 }

@@ -63,6 +63,9 @@ struct ZonePassStatistics {
   double passes_cv = std::numeric_limits<double>::quiet_NaN();  // sd / mean of passes per parcel
   Spread time_in_zone_per_parcel;                               // [s]
   double time_in_zone_share = std::numeric_limits<double>::quiet_NaN();  // of parcel-seconds
+  // [kg/s] what a parcel takes up per second while in the zone (coating in passes / time in the
+  // zone): the zone's driving force. Coating per second = parcels x time_in_zone_share x this.
+  double uptake_rate_in_zone = std::numeric_limits<double>::quiet_NaN();
   Spread pass_duration;                                                  // [s] complete passes
   Spread cycle_time;        // [s] entry to next entry of the same parcel, both observed
   Spread coating_per_pass;  // [kg] complete passes
