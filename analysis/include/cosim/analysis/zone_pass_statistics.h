@@ -66,7 +66,7 @@ struct ZonePassStatistics {
   // [kg/s] what a parcel takes up per second while in the zone (coating in passes / time in the
   // zone): the zone's driving force. Coating per second = parcels x time_in_zone_share x this.
   double uptake_rate_in_zone = std::numeric_limits<double>::quiet_NaN();
-  Spread pass_duration;                                                  // [s] complete passes
+  Spread pass_duration;     // [s] complete passes
   Spread cycle_time;        // [s] entry to next entry of the same parcel, both observed
   Spread coating_per_pass;  // [kg] complete passes
   // Mean time between entries from the entry rate, (parcels x coating time) / entries: counts the
