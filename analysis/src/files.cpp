@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::analysis {
 
 std::string formatShortest(double v) { return fmt::format("{}", v); }
@@ -74,7 +76,7 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
     const int err = errno;
     std::error_code ec;
     std::filesystem::remove(tmp, ec);  // never leave half a file behind
-    throw std::runtime_error(writeFailure(tmp, err));
+    throw Error(kindOfErrno(err), writeFailure(tmp, err));
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
@@ -87,7 +89,7 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
 }
 
 void overwriteFile(const std::filesystem::path& path, const std::string& text) {
-  if (!writeWhole(path, text)) throw std::runtime_error(writeFailure(path, errno));
+  if (!writeWhole(path, text)) throw Error(kindOfErrno(errno), writeFailure(path, errno));
 }
 
 std::string jsonText(const Json& json, int indent) {

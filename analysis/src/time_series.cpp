@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 
@@ -65,7 +66,8 @@ TimeSeriesRecorder::TimeSeriesRecorder(const std::filesystem::path& path,
     }
   }
   if (file_ == nullptr) {
-    throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+    const int err = errno;
+    throw Error(kindOfErrno(err), "cannot write " + path.string() + ": " + std::strerror(err));
   }
 }
 
@@ -86,7 +88,8 @@ void TimeSeriesRecorder::write(double time, const std::vector<double>& values) {
   }
   row += '\n';
   if (std::fputs(row.c_str(), file_) < 0 || std::fflush(file_) != 0) {
-    throw std::runtime_error("writing " + path_.string() + " failed: " + std::strerror(errno));
+    const int err = errno;
+    throw Error(kindOfErrno(err), "writing " + path_.string() + " failed: " + std::strerror(err));
   }
 }
 

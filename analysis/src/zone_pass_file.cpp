@@ -11,6 +11,7 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/time_series.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 
@@ -70,7 +71,8 @@ ZonePassWriter::ZonePassWriter(const std::filesystem::path& path, Mode mode) : p
     }
   }
   if (file_ == nullptr) {
-    throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+    const int err = errno;
+    throw Error(kindOfErrno(err), "cannot write " + path.string() + ": " + std::strerror(err));
   }
 }
 
@@ -87,7 +89,8 @@ void ZonePassWriter::write(const std::vector<ZonePass>& passes) {
                         p.at_start ? "at_start" : "entered", exitName(p.exit));
   }
   if (std::fputs(text.c_str(), file_) < 0 || std::fflush(file_) != 0) {
-    throw std::runtime_error("writing " + path_.string() + " failed: " + std::strerror(errno));
+    const int err = errno;
+    throw Error(kindOfErrno(err), "writing " + path_.string() + " failed: " + std::strerror(err));
   }
   rows_ += passes.size();
 }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::orchestrator {
 
@@ -26,8 +27,8 @@ int copyCaseFiles(const fs::path& from, const fs::path& to, const Variables& var
     std::ifstream in(entry.path(), std::ios::binary);
     std::stringstream ss;
     if (!in || (!(ss << in.rdbuf()) && fs::file_size(entry.path()) > 0))
-      throw std::runtime_error("cannot read the case file " + entry.path().string() + ": " +
-                               std::strerror(errno));
+      throw Error(kindOfErrno(errno), "cannot read the case file " + entry.path().string() + ": " +
+                                          std::strerror(errno));
     std::string text = ss.str();
     const bool binary = text.find('\0') != std::string::npos;
     if (!binary && text.find("${") != std::string::npos) {
@@ -52,8 +53,8 @@ int copyCaseFiles(const fs::path& from, const fs::path& to, const Variables& var
     } catch (const std::exception& e) {
       std::error_code ec;
       fs::remove(dest, ec);  // no truncated copy for the solver to trip over
-      throw std::runtime_error(std::string(e.what()) + " (copying the case file " +
-                               entry.path().string() + ")");
+      throw Error(kindOf(e, ErrorKind::resource),
+                  std::string(e.what()) + " (copying the case file " + entry.path().string() + ")");
     }
     fs::permissions(dest, fs::status(entry.path()).permissions());
   }

@@ -119,7 +119,7 @@ RunResult Coupler::run() {
     }
     if (interrupted) {
       status = "interrupted";
-      result.exit_code = 130;
+      result.exit_code = exit_code::interrupted;
       const std::string by = stop_.signal() != 0
                                  ? "interrupted by signal " + std::to_string(stop_.signal())
                                  : std::string("stopped on request");
@@ -136,13 +136,13 @@ RunResult Coupler::run() {
   } catch (const RunFailure& f) {
     status = stop_.requested() ? "interrupted" : "failed";
     result.message = describe(f);
-    result.exit_code = stop_.requested() ? 130 : 2;
+    result.exit_code = stop_.requested() ? exit_code::interrupted : exitCodeOf(f.kind());
     if (progress) progress->abort();
     participants_.shutdown(false);
   } catch (const std::exception& e) {
     status = "failed";
     result.message = std::string("cosim: ") + e.what();
-    result.exit_code = 2;
+    result.exit_code = exitCodeOf(kindOf(e, ErrorKind::solver));
     if (progress) progress->abort();
     participants_.shutdown(false);
   }
@@ -161,7 +161,7 @@ RunResult Coupler::run() {
     try {
       result.observables = record_.observables(state_, totals_);
     } catch (const std::exception& e) {
-      result.exit_code = 2;
+      result.exit_code = exitCodeOf(kindOf(e, ErrorKind::solver));
       result.message = std::string("cosim: ") + e.what();
       status = "failed";
     }
@@ -216,16 +216,20 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   const auto checkpoint =
       opt_.resume_from ? checkpoints_->at(*opt_.resume_from) : checkpoints_->newest();
   if (!checkpoint && opt_.resume_from) {
-    throw RunFailure("", "cosim resume --from " + analysis::formatShortest(*opt_.resume_from) +
-                             ": " + record_.folder().string() +
-                             " holds no complete checkpoint at that time; it holds: " +
-                             checkpoints_->listTimes());
+    throw RunFailure(
+        "",
+        "cosim resume --from " + analysis::formatShortest(*opt_.resume_from) + ": " +
+            record_.folder().string() +
+            " holds no complete checkpoint at that time; it holds: " + checkpoints_->listTimes(),
+        ErrorKind::input);
   }
   if (!checkpoint) {
-    throw RunFailure("", "nothing to resume in " + record_.folder().string() +
-                             ": it holds no complete checkpoint (checkpoints/<time>/ with "
-                             "orchestrator.json); runs write them when checkpoint.interval is "
-                             "set, and when they are interrupted");
+    throw RunFailure("",
+                     "nothing to resume in " + record_.folder().string() +
+                         ": it holds no complete checkpoint (checkpoints/<time>/ with "
+                         "orchestrator.json); runs write them when checkpoint.interval is "
+                         "set, and when they are interrupted",
+                     ErrorKind::input);
   }
   resumed_from_ = *checkpoint;
   CoupledState saved;
@@ -233,7 +237,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
     saved = readCoupledState(*checkpoint);
   } catch (const std::exception& e) {
     unreadable_checkpoint_ = true;
-    throw RunFailure("", e.what());
+    throw RunFailure("", e.what(), ErrorKind::input);
   }
   const auto differences = sceneDifferences(YAML::Load(saved.scene), sc_.resolved);
   if (!differences.empty()) {
@@ -246,19 +250,23 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
         "transport, checks, observables, timeouts and solver_log_every may change; start a new "
         "run for anything "
         "else)";
-    throw RunFailure("", msg);
+    throw RunFailure("", msg, ErrorKind::input);
   }
   if (models_.wake && !saved.wake) {
-    throw RunFailure("", "cannot resume from " + checkpoint->string() +
-                             ": it holds no wake history, which models.drag.undisturbed_velocity "
-                             "'self_disturbance_transient' needs (each parcel's force history); "
-                             "start a new run");
+    throw RunFailure("",
+                     "cannot resume from " + checkpoint->string() +
+                         ": it holds no wake history, which models.drag.undisturbed_velocity "
+                         "'self_disturbance_transient' needs (each parcel's force history); "
+                         "start a new run",
+                     ErrorKind::input);
   }
   if (saved.step >= nsteps_) {
-    throw RunFailure("", "the run in " + record_.folder().string() +
-                             " already reached t = " + analysis::formatShortest(saved.time) +
-                             " s, the scene's coupling.end_time; make it longer with --set "
-                             "coupling.end_time=...");
+    throw RunFailure("",
+                     "the run in " + record_.folder().string() +
+                         " already reached t = " + analysis::formatShortest(saved.time) +
+                         " s, the scene's coupling.end_time; make it longer with --set "
+                         "coupling.end_time=...",
+                     ErrorKind::input);
   }
   resume_accepted_ = true;  // from here on the run folder changes
   resumed_step_ = saved.step;
@@ -426,7 +434,8 @@ link::ParticleData Coupler::sampleFluid(std::vector<char>& lost) {
 link::ParticleData Coupler::samplesOf(const wire::Samples& sm, std::vector<char>& lost) {
   link::ParticleData samples = cosim::link::fromWire(sm.at_particles());
   if (samples.ids != state_.ids) {
-    throw RunFailure("fluid", "returned samples for other particles than it was sent (ids differ)");
+    throw RunFailure("fluid", "returned samples for other particles than it was sent (ids differ)",
+                     ErrorKind::peer);
   }
   if (sm.lost_ids_size() > 0) {
     const auto idx = state_.index();
@@ -629,7 +638,7 @@ void Coupler::refuseOrWarn(const StabilityReport& rep) {
     std::string msg = "unstable settings refused:";
     for (const auto& r : rep.refusals) msg += "\n  - " + r;
     msg += "\n  (set checks.stability: warn to run anyway)";
-    throw RunFailure("", msg);
+    throw RunFailure("", msg, ErrorKind::input);
   }
 }
 

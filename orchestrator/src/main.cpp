@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands/commands.h"
+#include "cosim/util/errors.h"
 #include "cosim/util/long_quotes.h"
 #include "scenario.h"
 
@@ -35,10 +36,12 @@ int main(int argc, char** argv) {
       if (*c.app) return c.run();
   } catch (const ScenarioError& e) {
     std::cerr << "cosim: invalid scenario\n  " << cosim::util::cutLongQuotes(e.what()) << "\n";
-    return 1;
+    return cosim::exit_code::input;
   } catch (const std::exception& e) {
+    // The exit code of each kind of error (cosim/util/errors.h); what a command was given is
+    // wrong unless the error says otherwise.
     std::cerr << "cosim: " << cosim::util::cutLongQuotes(e.what()) << "\n";
-    return 1;
+    return cosim::exitCodeOf(cosim::kindOf(e, cosim::ErrorKind::input));
   }
-  return 0;
+  return cosim::exit_code::ok;
 }

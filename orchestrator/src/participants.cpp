@@ -70,9 +70,10 @@ std::vector<std::string> commandLine(const std::string& name, const ParticipantS
                                      long command_timeout_s) {
   auto exe = findExecutable(spec.command);
   if (!exe) {
-    throw RunFailure(name, "cannot find the executable '" + spec.command + "' of adapter '" +
-                               spec.adapter +
-                               "' (looked next to cosim and in PATH; was it built?)");
+    throw RunFailure(name,
+                     "cannot find the executable '" + spec.command + "' of adapter '" +
+                         spec.adapter + "' (looked next to cosim and in PATH; was it built?)",
+                     ErrorKind::resource);
   }
   std::vector<std::string> argv = launcherPrefix(name, spec);
   argv.push_back(exe->string());
@@ -166,7 +167,7 @@ void Participants::start(const fs::path& run_folder) {
   } catch (const RunFailure&) {
     throw;
   } catch (const std::exception& e) {
-    throw RunFailure("", e.what());
+    throw RunFailure("", e.what(), kindOf(e, ErrorKind::input));  // transport.bind, the keys
   }
 
   // Every participant's keys for this run, before the hub exists: it accepts these and no other.
@@ -198,8 +199,10 @@ void Participants::start(const fs::path& run_folder) {
   try {
     hub_ = std::make_unique<link::Hub>(endpoint, security);
   } catch (const std::exception& e) {
-    throw RunFailure("", "cannot bind the orchestrator's socket " + endpoint + ": " + e.what() +
-                             " (transport.bind)");
+    throw RunFailure(
+        "",
+        "cannot bind the orchestrator's socket " + endpoint + ": " + e.what() + " (transport.bind)",
+        ErrorKind::resource);
   }
   const std::string connect = connectEndpoint();
   const std::map<std::string, std::vector<int>> cpus = cpuLayout();
@@ -208,7 +211,8 @@ void Participants::start(const fs::path& run_folder) {
     const ParticipantSpec& spec = peer->spec;
     const bool resuming = !restart_from_.empty();
     if (resuming && !fs::is_directory(peer->workdir))
-      throw RunFailure(name, "cannot resume: its folder " + peer->workdir.string() + " is gone");
+      throw RunFailure(name, "cannot resume: its folder " + peer->workdir.string() + " is gone",
+                       ErrorKind::input);
     fs::create_directories(peer->workdir);
     if (!resuming && !spec.files.empty()) copyCaseFiles(spec.files, peer->workdir, sc_.parameters);
     const link::CurveClientKeys keys{orchestrator_public_, peer->keys};
@@ -227,7 +231,7 @@ void Participants::start(const fs::path& run_folder) {
         peer->process.emplace(argv, peer->workdir, peer->log, env,
                               bound == cpus.end() ? std::vector<int>{} : bound->second);
       } catch (const std::exception& e) {
-        throw RunFailure(name, e.what());
+        throw RunFailure(name, e.what(), ErrorKind::resource);  // fork, exec, the log file
       }
       log_.file("started " + name + " (" + describeLaunch(spec) + "): " + join(argv));
     } else {
@@ -239,7 +243,7 @@ void Participants::start(const fs::path& run_folder) {
           key_files_[name] = file;
         }
       } catch (const std::exception& e) {
-        throw RunFailure(name, e.what());
+        throw RunFailure(name, e.what(), kindOf(e, ErrorKind::resource));
       }
       log_.show("waiting for " + name + " (launch: external): start it with " +
                 externalStart(name));
@@ -322,11 +326,13 @@ void Participants::send(const std::string& name, wire::Envelope& env, bool own_c
       for (int i = 0; i < 40 && proc.running(); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
       if (!proc.running()) {
-        throw RunFailure(name, "the " + name + " process (" + it->second->spec.adapter + ") " +
-                                   proc.exitDescription() + " at step " + std::to_string(step_));
+        throw RunFailure(name,
+                         "the " + name + " process (" + it->second->spec.adapter + ") " +
+                             proc.exitDescription() + " at step " + std::to_string(step_),
+                         kindOfExitCode(proc.exitCode()));
       }
     }
-    throw RunFailure(name, e.what());
+    throw RunFailure(name, e.what(), ErrorKind::peer);
   }
 }
 
@@ -381,7 +387,8 @@ void Participants::checkpoint(const fs::path& folder) {
     try {
       link::unpackFiles(reply.checkpoint_written().contents(), folder / name);
     } catch (const std::exception& e) {
-      throw RunFailure(name, std::string("its checkpoint: ") + e.what());
+      throw RunFailure(name, std::string("its checkpoint: ") + e.what(),
+                       kindOf(e, ErrorKind::resource));
     }
   }
 }
@@ -461,9 +468,10 @@ void Participants::take(const std::string& who, wire::Envelope& env,
                         Replies& got) {
   if (env.has_heartbeat()) return;
   if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
-    throw RunFailure(who, "speaks protocol version " +
-                              std::to_string(env.header().protocol_version()) +
-                              ", the orchestrator " + std::to_string(wire::PROTOCOL_VERSION));
+    throw RunFailure(who,
+                     "speaks protocol version " + std::to_string(env.header().protocol_version()) +
+                         ", the orchestrator " + std::to_string(wire::PROTOCOL_VERSION),
+                     ErrorKind::peer);
   }
   if (env.has_error()) {
     throw RunFailure(who,
@@ -473,22 +481,27 @@ void Participants::take(const std::string& who, wire::Envelope& env,
   if (env.has_hello()) return;  // a copy sent before its Welcome arrived
   auto eit = expected.find(who);
   if (eit == expected.end() || got.count(who)) {
-    throw RunFailure(who, "sent an unexpected message at step " + std::to_string(step_));
+    throw RunFailure(who, "sent an unexpected message at step " + std::to_string(step_),
+                     ErrorKind::peer);
   }
   if (env.body_case() != eit->second) {
-    throw RunFailure(who, "sent the wrong message type (body " + std::to_string(env.body_case()) +
-                              ", expected " + std::to_string(eit->second) + ") at step " +
-                              std::to_string(step_));
+    throw RunFailure(who,
+                     "sent the wrong message type (body " + std::to_string(env.body_case()) +
+                         ", expected " + std::to_string(eit->second) + ") at step " +
+                         std::to_string(step_),
+                     ErrorKind::peer);
   }
   if (env.header().run_id() != run_id_) {
     throw RunFailure(
-        who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'");
+        who, "answered for run '" + env.header().run_id() + "', this run is '" + run_id_ + "'",
+        ErrorKind::peer);
   }
   const std::uint64_t at = peers_.at(who)->step;
   if (env.header().step() != at) {
-    throw RunFailure(who, "answered for step " + std::to_string(env.header().step()) +
-                              " while the run is at step " + std::to_string(at) +
-                              " (out-of-order step)");
+    throw RunFailure(who,
+                     "answered for step " + std::to_string(env.header().step()) +
+                         " while the run is at step " + std::to_string(at) + " (out-of-order step)",
+                     ErrorKind::peer);
   }
   got[who] = std::move(env);
   arrived_[who] = Clock::now();
@@ -552,24 +565,28 @@ void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCa
       if (got.count(name)) continue;
       Peer& p = *peers_.at(name);
       if (p.process && !p.process->running()) {
-        throw RunFailure(name, "the " + name + " process (" + p.spec.adapter + ") " +
-                                   p.process->exitDescription() + " at step " +
-                                   std::to_string(step_));
+        throw RunFailure(name,
+                         "the " + name + " process (" + p.spec.adapter + ") " +
+                             p.process->exitDescription() + " at step " + std::to_string(step_),
+                         kindOfExitCode(p.process->exitCode()));
       }
       const double silent = std::chrono::duration<double>(now - p.last_seen).count();
       if (p.connected && silent > sc_.transport.heartbeat_timeout) {
-        throw RunFailure(name, "silent for " + std::to_string(static_cast<int>(silent)) +
-                                   " s at step " + std::to_string(step_) +
-                                   ": not even a heartbeat (transport.heartbeat_timeout " +
-                                   analysis::formatShortest(sc_.transport.heartbeat_timeout) +
-                                   " s); its process hung, its host went down, or the network "
-                                   "between it and the orchestrator is cut");
+        throw RunFailure(name,
+                         "silent for " + std::to_string(static_cast<int>(silent)) + " s at step " +
+                             std::to_string(step_) +
+                             ": not even a heartbeat (transport.heartbeat_timeout " +
+                             analysis::formatShortest(sc_.transport.heartbeat_timeout) +
+                             " s); its process hung, its host went down, or the network "
+                             "between it and the orchestrator is cut",
+                         ErrorKind::peer);
       }
       if (std::chrono::duration<double>(now - start).count() > timeout) {
-        throw RunFailure(name, "did not answer within " +
-                                   std::to_string(static_cast<int>(timeout)) + " s at step " +
-                                   std::to_string(step_) + " (participants." + name +
-                                   ".timeout; raise it if a step is legitimately slow)");
+        throw RunFailure(name,
+                         "did not answer within " + std::to_string(static_cast<int>(timeout)) +
+                             " s at step " + std::to_string(step_) + " (participants." + name +
+                             ".timeout; raise it if a step is legitimately slow)",
+                         ErrorKind::peer);
       }
     }
   }
@@ -602,9 +619,10 @@ void Participants::handshake() {
     for (const auto& n : waiting) {
       Peer& p = *peers_.at(n);
       if (p.process && !p.process->running()) {
-        throw RunFailure(n, "the " + n + " process (" + p.spec.adapter + ") " +
-                                p.process->exitDescription() + " before connecting" +
-                                ignoredNote(n));
+        throw RunFailure(n,
+                         "the " + n + " process (" + p.spec.adapter + ") " +
+                             p.process->exitDescription() + " before connecting" + ignoredNote(n),
+                         kindOfExitCode(p.process->exitCode()));
       }
     }
     if (std::chrono::duration<double>(Clock::now() - start).count() >
@@ -622,7 +640,8 @@ void Participants::handshake() {
                                            "' in cosim.log): a participant started with the key "
                                            "file of another run, or without keys?") +
               (peers_.at(who)->spec.launch == "external" ? "; start it with " + externalStart(who)
-                                                         : ""));
+                                                         : ""),
+          ErrorKind::peer);
     }
   }
 }
@@ -656,7 +675,7 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env,
     wire::Envelope r;
     r.mutable_refused()->set_reason(reason);
     send(who, r);
-    throw RunFailure(who, "refused at handshake: " + reason);
+    throw RunFailure(who, "refused at handshake: " + reason, ErrorKind::peer);
   };
   if (env.header().protocol_version() != wire::PROTOCOL_VERSION) {
     refuse("protocol version " + std::to_string(env.header().protocol_version()) +

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cosim/link/transport.h"
+#include "cosim/util/errors.h"
 #include "cosim/util/stop_request.h"
 #include "plan.h"
 #include "run_log.h"
@@ -24,11 +25,11 @@
 
 namespace cosim::orchestrator {
 
-// Why a run stopped early: who, what, and the tail of its log.
-class RunFailure : public std::runtime_error {
+// Why a run stopped early: who, what, and of which kind (cosim/util/errors.h: the exit code).
+class RunFailure : public cosim::Error {
  public:
-  RunFailure(std::string who, const std::string& what)
-      : std::runtime_error(what), participant(std::move(who)) {}
+  RunFailure(std::string who, const std::string& what, ErrorKind kind = ErrorKind::solver)
+      : cosim::Error(kind, what), participant(std::move(who)) {}
   std::string participant;  // empty: the orchestrator itself
 };
 

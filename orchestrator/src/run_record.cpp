@@ -19,6 +19,7 @@
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/analysis/time_series.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::orchestrator {
 
@@ -140,8 +141,9 @@ bool RunRecord::claim(const fs::path& folder) {
   for (int attempt = 0; attempt < 100; ++attempt) {
     const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd < 0) {
-      throw std::runtime_error("cannot claim the run folder " + folder.string() + ": " +
-                               std::strerror(errno));
+      const int err = errno;
+      throw Error(kindOfErrno(err),
+                  "cannot claim the run folder " + folder.string() + ": " + std::strerror(err));
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;

@@ -328,12 +328,12 @@ int runStudy(const StudyOptions& opt) {
     if (!opt.quiet)
       std::cout << "study: [" << i + 1 << "/" << variants.size() << "] " << v.label << std::endl;
     runVariant(opt, v);
-    if (v.exit_code == 130) {
+    if (v.exit_code == exit_code::interrupted) {
       // Ctrl-C or SIGTERM: the variant wrote a checkpoint; the same command continues the study
       std::cerr << "study: interrupted in " << v.folder.string()
                 << "; run the same cosim study command again to continue: completed variants are "
                    "read back, this one resumes from its checkpoint\n";
-      return 130;
+      return exit_code::interrupted;
     }
   }
 
@@ -344,10 +344,12 @@ int runStudy(const StudyOptions& opt) {
               << analysis::studyMarkdown(record);
   }
   if (opt.plots) drawPlot(folder, opt.quiet);
+  // The study's table is written; a failed variant's exit code says of which kind its failure
+  // was (the first failed variant's, cosim/util/errors.h).
   for (const auto& v : variants) {
-    if (v.exit_code != 0) return 3;
+    if (v.exit_code != 0) return v.exit_code;
   }
-  return 0;
+  return exit_code::ok;
 }
 
 }  // namespace cosim::orchestrator

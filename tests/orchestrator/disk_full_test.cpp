@@ -128,7 +128,7 @@ TEST_F(FullDisk, CaseFileThatDoesNotFitNamesTheFileAndSaysTheDiskIsFull) {
   o.output = dir_ / "run";
   Coupler c(loadScenario(scene), o);
   const RunResult r = c.run();
-  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.exit_code, 4);  // a resource error (cosim/util/errors.h)
   expectFragments(r.message,
                   {(o.output / "particles" / "in.held").string(), "No space left on device",
                    "the disk is full", (scene / "dem" / "in.held").string()});
@@ -146,7 +146,7 @@ TEST_F(FullDisk, RecordingRunOutOfSpaceStillWritesTheSummaryAndLeavesNoTmpFiles)
   // A snapshot every step of a long run: the 200 KB fill within a few dozen steps.
   Coupler c(loadScenario(kSphere, {"coupling.end_time=1", "output.interval=1e-4"}), o);
   const RunResult r = c.run();
-  ASSERT_EQ(r.exit_code, 2) << r.message;
+  ASSERT_EQ(r.exit_code, 4) << r.message;
   expectFragments(r.message, {"No space left on device", "the disk is full"});
   EXPECT_TRUE(tmpFilesIn(o.output).empty()) << tmpFilesIn(o.output).front();
   const analysis::Summary s = analysis::readSummary(o.output / analysis::kSummaryFile);
@@ -175,7 +175,7 @@ TEST_F(FullDisk, ADiskFillingBeforeTheRunsEndIsSaidWhileThereIsStillRoom) {
                                    "checkpoint.interval=5e-4", "checkpoint.keep=1"}),
             o);
   const RunResult r = c.run();
-  ASSERT_EQ(r.exit_code, 2) << r.message;
+  ASSERT_EQ(r.exit_code, 4) << r.message;
   const std::string log = readFile(o.output / "cosim.log");
   expectFragments(log, {"warning: the run folder's disk has been filling by",
                         "per simulated second since t = 0 s", "before the run's end at 1 s",

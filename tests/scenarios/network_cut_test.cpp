@@ -209,7 +209,7 @@ TEST(NetworkCut, ALastingCutStopsBothSidesEachWithinItsTimeoutAndTheRunResumes) 
   // The orchestrator: no reply, no heartbeat from the particles for transport.heartbeat_timeout
   // (10 s; their last heartbeat came at most 0.5 s before the cut), then the run fails naming
   // them, with the checkpoint at 0.002 s to resume from.
-  EXPECT_EQ(r.exit_code, 2) << r.message;
+  EXPECT_EQ(r.exit_code, 3) << r.message;  // a peer error
   EXPECT_EQ(r.steps, static_cast<std::size_t>(kCutStep));
   EXPECT_GE(orchestrator_s, 9.4);
   EXPECT_LE(orchestrator_s, 12.0);
@@ -384,7 +384,7 @@ TEST(NetworkCut, ACutLongerThanZeroMQsHeartbeatStopsTheRunOnceTheLinkIsBack) {
   const double after_cut = seconds(c.cut_at, c.ended_at);
   std::printf("cut for %.2f s after step %d: the run failed %.2f s after the cut\n",
               seconds(c.cut_at, c.restored_at), kCutStep, after_cut);
-  EXPECT_EQ(r.exit_code, 2) << r.message;
+  EXPECT_EQ(r.exit_code, 3) << r.message;  // a peer error
   EXPECT_EQ(r.steps, static_cast<std::size_t>(kCutStep));
   EXPECT_GE(after_cut, 7.0);
   EXPECT_LE(after_cut, 12.0);

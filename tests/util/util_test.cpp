@@ -6,9 +6,12 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "cosim/util/child_process.h"
 #include "cosim/util/cpu_binding.h"
+#include "cosim/util/errors.h"
 #include "cosim/util/format.h"
 #include "cosim/util/long_quotes.h"
 #include "cosim/util/rayleigh_time.h"
@@ -139,4 +142,35 @@ TEST(NumberFormats, ExactReadsBackAndTheOthersAreAsPrintfWritesThem) {
   EXPECT_EQ(cosim::util::clockDuration(185.0), "3 min 05 s");
   EXPECT_EQ(cosim::util::clockDuration(7625.0), "2 h 07 min");
   EXPECT_EQ(cosim::util::clockDuration(-1.0), "?");
+}
+
+// One exit code per kind of error, the same in every process (cosim/util/errors.h), and back.
+TEST(Errors, EachKindHasItsOwnExitCodeAndAProcessesExitCodeGivesItsKindBack) {
+  using cosim::ErrorKind;
+  const std::vector<std::pair<ErrorKind, int>> table = {{ErrorKind::input, 1},
+                                                        {ErrorKind::solver, 2},
+                                                        {ErrorKind::peer, 3},
+                                                        {ErrorKind::resource, 4}};
+  for (const auto& [kind, code] : table) {
+    EXPECT_EQ(cosim::exitCodeOf(kind), code) << cosim::nameOf(kind);
+    EXPECT_EQ(cosim::kindOfExitCode(code), kind) << code;
+  }
+  EXPECT_EQ(cosim::kindOfExitCode(128 + 9), ErrorKind::resource);  // SIGKILL: out of memory
+  EXPECT_EQ(cosim::kindOfExitCode(128 + 11), ErrorKind::solver);   // SIGSEGV: a crash
+  EXPECT_EQ(cosim::kindOfExitCode(7), ErrorKind::solver);
+}
+
+TEST(Errors, AnExceptionsKindIsItsOwnOrWhatTheCallerWasDoing) {
+  using cosim::ErrorKind;
+  EXPECT_EQ(cosim::kindOf(cosim::PeerError("gone"), ErrorKind::input), ErrorKind::peer);
+  EXPECT_EQ(cosim::kindOf(cosim::ResourceError("full"), ErrorKind::input), ErrorKind::resource);
+  EXPECT_EQ(cosim::kindOf(std::bad_alloc(), ErrorKind::input), ErrorKind::resource);
+  EXPECT_EQ(cosim::kindOf(std::runtime_error("?"), ErrorKind::input), ErrorKind::input);
+  EXPECT_EQ(cosim::kindOf(std::runtime_error("?"), ErrorKind::solver), ErrorKind::solver);
+  // A file that cannot be written: the disk is the machine's, the path the user's
+  EXPECT_EQ(cosim::kindOfErrno(ENOSPC), ErrorKind::resource);
+  EXPECT_EQ(cosim::kindOfErrno(EDQUOT), ErrorKind::resource);
+  EXPECT_EQ(cosim::kindOfErrno(EIO), ErrorKind::resource);
+  EXPECT_EQ(cosim::kindOfErrno(EACCES), ErrorKind::input);
+  EXPECT_EQ(cosim::kindOfErrno(ENOENT), ErrorKind::input);
 }

@@ -8,6 +8,7 @@
 
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
+#include "cosim/util/errors.h"
 #include "yaml_options.h"
 
 namespace cosim::analytic {
@@ -178,6 +179,6 @@ int main(int argc, char** argv) {
     return cosim::link::runParticipant(fluid, *opts);
   } catch (const std::exception& e) {
     std::cerr << "cosim-analytic-fluid: " << e.what() << "\n";
-    return 2;
+    return cosim::exitCodeOf(cosim::kindOf(e, cosim::ErrorKind::input));
   }
 }

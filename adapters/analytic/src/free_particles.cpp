@@ -12,6 +12,7 @@
 
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
+#include "cosim/util/errors.h"
 #include "yaml_options.h"
 
 namespace cosim::analytic {
@@ -248,6 +249,6 @@ int main(int argc, char** argv) {
     return cosim::link::runParticipant(particles, *opts);
   } catch (const std::exception& e) {
     std::cerr << "cosim-free-particles: " << e.what() << "\n";
-    return 2;
+    return cosim::exitCodeOf(cosim::kindOf(e, cosim::ErrorKind::input));
   }
 }

@@ -389,13 +389,13 @@ int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check
     std::cerr << "--check-options " << options.check_options << ": "
               << (in.is_open() ? "not a Welcome message" : std::strerror(errno))
               << "; the file is written by `cosim validate`\n";
-    return 2;
+    return cosim::exit_code::input;
   }
   try {
     check(welcome, options.check_ranks);
   } catch (const std::exception& e) {
     std::cerr << e.what() << "\n";
-    return 2;
+    return cosim::exitCodeOf(cosim::kindOf(e, cosim::ErrorKind::input));
   }
   std::cout << "options accepted\n";
   return 0;
@@ -486,14 +486,15 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
       session.reply(out);
     }
   } catch (const PeerError& e) {
+    // The orchestrator is gone or refused us: nobody to tell
     std::cerr << "[" << options.name << "] " << e.what() << std::endl;
-    return 3;
+    return cosim::exit_code::peer;
   } catch (const std::exception& e) {
     std::cerr << "[" << options.name << "] error: " << e.what() << std::endl;
     session.sendError(e.what());
     // Give ZeroMQ a moment to flush the error before the process ends.
     std::this_thread::sleep_for(Millis(200));
-    return 1;
+    return cosim::exitCodeOf(cosim::kindOf(e, cosim::ErrorKind::solver));
   }
 }
 

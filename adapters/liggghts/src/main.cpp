@@ -10,6 +10,7 @@
 #include "cosim/liggghts/liggghts_solver.h"
 #include "cosim/liggghts/scene_check.h"
 #include "cosim/link/session.h"
+#include "cosim/util/errors.h"
 
 int main(int argc, char** argv) {
   if (cosim::link::checkOptionsRequested(argc, argv)) {
@@ -22,7 +23,7 @@ int main(int argc, char** argv) {
           *options, [](const cosim::wire::Welcome& w, int) { cosim::liggghts::checkScene(w); });
     } catch (const std::exception& e) {
       std::fprintf(stderr, "cosim-liggghts: %s\n", e.what());
-      return 2;
+      return cosim::exit_code::input;
     }
   }
   MPI_Init(&argc, &argv);

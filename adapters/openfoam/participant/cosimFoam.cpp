@@ -13,6 +13,7 @@
 #include "RankBridge.h"
 #include "SceneCheck.h"
 #include "cosim/link/session.h"
+#include "cosim/util/errors.h"
 
 namespace {
 
@@ -52,7 +53,7 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::cerr << "cosimFoam: " << e.what() << "\n"
               << "  OpenFOAM options (-parallel, -case DIR) may follow.\n";
-    return 2;
+    return cosim::exit_code::input;
   }
 
   bool parallel = false;
@@ -82,7 +83,7 @@ int main(int argc, char** argv) {
     if (parallel && bridge.size() < 2) {
       std::cerr << "cosimFoam: -parallel needs mpirun -np 2 or more\n";
       MPI_Finalize();
-      return 2;
+      return cosim::exit_code::input;
     }
     if (bridge.root()) {
       cosim::foam::FoamParticipant solver(bridge, foamArgs);

@@ -12,11 +12,14 @@
 #include <utility>
 #include <vector>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::orchestrator {
 
-class ScenarioError : public std::runtime_error {
+// A scenario (its file, an --set or --unset) is wrong: an input error (exit code 1).
+class ScenarioError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // One key of a section, declared next to the code that reads it: its name, its default

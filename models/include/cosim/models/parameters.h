@@ -9,6 +9,10 @@
 
 namespace cosim::models {
 
+// Not a cosim::Error: the plugin interface (models/include) stands alone, so that a plugin builds
+// with -I models/include only. Where cosim meets it, it takes the kind of what it was doing:
+// an input error while the scenario's models are built, a solver error during a run (the
+// fields a law was given came from a solver).
 class ModelError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;

@@ -12,6 +12,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::liggghts {
 
 // Thrown from inside LIGGGHTS (through our MPI_Finalize / MPI_Abort) while a LiggghtsCall is
@@ -30,10 +32,10 @@ class LiggghtsCall {
 };
 
 // The error a user sees: LIGGGHTS' own message plus where to look.
-class LiggghtsError : public std::runtime_error {
+class LiggghtsError : public cosim::SolverError {
  public:
   LiggghtsError(const std::string& message, bool collective_broken)
-      : std::runtime_error(message), collective_broken_(collective_broken) {}
+      : cosim::SolverError(message), collective_broken_(collective_broken) {}
   // true when the other MPI ranks may be blocked (error->one): the process must MPI_Abort.
   bool collectiveBroken() const { return collective_broken_; }
 
