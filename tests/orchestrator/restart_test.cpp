@@ -270,7 +270,7 @@ TEST(Restart, AFinishedRunIsMadeLongerAndEqualsTheLongerRun) {
   runLongAndShort(w);
   if (::testing::Test::HasFatalFailure()) return;
   auto again = start(w, {"resume", "ext", "--quiet"}, "again.out");
-  EXPECT_EQ(finish(again), 2);
+  EXPECT_EQ(finish(again), 1);  // an input error: nothing left to run
   EXPECT_NE(text(w.dir / "again.out").find("coupling.end_time=..."), std::string::npos)
       << text(w.dir / "again.out");
   auto extend =
@@ -320,7 +320,7 @@ TEST(Restart, ADamagedNewestCheckpointIsNamedAndAnOlderOneContinuesTheRun) {
       << out;
 
   auto none = start(w, {"resume", "ext", "--quiet", "--from", "0.05"}, "none.out");
-  EXPECT_EQ(finish(none), 2);
+  EXPECT_EQ(finish(none), 1);  // an input error: no checkpoint at that time
   EXPECT_NE(text(w.dir / "none.out")
                 .find("no complete checkpoint at that time; it holds: 0.1 s, "
                       "0.12 s"),
@@ -345,7 +345,7 @@ TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
             {"resume", "r", "--quiet", "--set", "coupling.end_time=0.08", "--set",
              "models.drag.law=stokes", "--set", "coupling.dt=2e-3", "--set", "coupling.cpus=auto"},
             "changed.out");
-  EXPECT_EQ(finish(changed), 2);
+  EXPECT_EQ(finish(changed), 1);  // an input error: the scene changed
   const std::string out = text(w.dir / "changed.out");
   EXPECT_NE(out.find("models.drag.law: schiller_naumann -> stokes"), std::string::npos) << out;
   EXPECT_NE(out.find("coupling.dt: "), std::string::npos) << out;
