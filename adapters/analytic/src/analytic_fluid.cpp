@@ -6,9 +6,9 @@
 #include <cmath>
 #include <iostream>
 
+#include "analytic_main.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
-#include "cosim/util/errors.h"
 #include "yaml_options.h"
 
 namespace cosim::analytic {
@@ -162,23 +162,7 @@ class AnalyticFluid final : public link::Solver {
 }  // namespace cosim::analytic
 
 int main(int argc, char** argv) {
-  try {
-    const auto opts = cosim::link::ParticipantOptions::parse(
-        argc, argv,
-        "cosim-analytic-fluid: a prescribed gas flow (a cosim fluid participant, normally started "
-        "by `cosim run`)");
-    if (!opts) return 0;  // --help
-    if (!opts->check_options.empty()) {
-      // Its options are all it reads: configuring is the whole check
-      return cosim::link::checkSceneOptions(*opts, [](const cosim::wire::Welcome& w, int) {
-        cosim::analytic::AnalyticFluid fluid;
-        fluid.configure(w);
-      });
-    }
-    cosim::analytic::AnalyticFluid fluid;
-    return cosim::link::runParticipant(fluid, *opts);
-  } catch (const std::exception& e) {
-    std::cerr << "cosim-analytic-fluid: " << e.what() << "\n";
-    return cosim::exitCodeOf(cosim::kindOf(e, cosim::ErrorKind::input));
-  }
+  return cosim::analytic::analyticMain<cosim::analytic::AnalyticFluid>(
+      argc, argv, "cosim-analytic-fluid",
+      "a prescribed gas flow (a cosim fluid participant, normally started by `cosim run`)");
 }

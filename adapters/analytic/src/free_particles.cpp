@@ -10,9 +10,9 @@
 #include <map>
 #include <numbers>
 
+#include "analytic_main.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
-#include "cosim/util/errors.h"
 #include "yaml_options.h"
 
 namespace cosim::analytic {
@@ -232,23 +232,8 @@ class FreeParticles final : public link::Solver {
 }  // namespace cosim::analytic
 
 int main(int argc, char** argv) {
-  try {
-    const auto opts = cosim::link::ParticipantOptions::parse(
-        argc, argv,
-        "cosim-free-particles: non-colliding particles under gravity and the coupling forces (a "
-        "cosim particle participant, normally started by `cosim run`)");
-    if (!opts) return 0;  // --help
-    if (!opts->check_options.empty()) {
-      // Its options are all it reads: configuring is the whole check
-      return cosim::link::checkSceneOptions(*opts, [](const cosim::wire::Welcome& w, int) {
-        cosim::analytic::FreeParticles particles;
-        particles.configure(w);
-      });
-    }
-    cosim::analytic::FreeParticles particles;
-    return cosim::link::runParticipant(particles, *opts);
-  } catch (const std::exception& e) {
-    std::cerr << "cosim-free-particles: " << e.what() << "\n";
-    return cosim::exitCodeOf(cosim::kindOf(e, cosim::ErrorKind::input));
-  }
+  return cosim::analytic::analyticMain<cosim::analytic::FreeParticles>(
+      argc, argv, "cosim-free-particles",
+      "non-colliding particles under gravity and the coupling forces (a cosim particle "
+      "participant, normally started by `cosim run`)");
 }

@@ -1,0 +1,33 @@
+// The one `main` of the analytic adapters: options, `--check-options` (configuring is the whole
+// check: their options are all they read), the participant loop, and the exit code of any error
+// (cosim/util/errors.h). `Solver` is default-constructible and has configure(Welcome).
+#pragma once
+
+#include <iostream>
+#include <string>
+
+#include "cosim/link/session.h"
+#include "cosim/util/errors.h"
+
+namespace cosim::analytic {
+
+template <class Solver>
+int analyticMain(int argc, char** argv, const std::string& program, const std::string& what) {
+  try {
+    const auto opts = link::ParticipantOptions::parse(argc, argv, program + ": " + what);
+    if (!opts) return exit_code::ok;  // --help
+    if (!opts->check_options.empty()) {
+      return link::checkSceneOptions(*opts, [](const wire::Welcome& w, int) {
+        Solver solver;
+        solver.configure(w);
+      });
+    }
+    Solver solver;
+    return link::runParticipant(solver, *opts);
+  } catch (const std::exception& e) {
+    std::cerr << program << ": " << e.what() << "\n";
+    return exitCodeOf(kindOf(e, ErrorKind::input));
+  }
+}
+
+}  // namespace cosim::analytic
