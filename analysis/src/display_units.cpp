@@ -117,4 +117,37 @@ std::string htmlDuration(double s) {
   return htmlNumber(s, 3) + "&nbsp;s";
 }
 
+std::string htmlFixed(double v, int decimals) {
+  if (!std::isfinite(v)) return "&ndash;";
+  const std::string s = fmt::format("{:.{}f}", std::abs(v), std::max(0, decimals));
+  const bool zero = s.find_first_not_of("0.") == std::string::npos;  // no "-0.0"
+  return (v < 0 && !zero ? "&minus;" : "") + s;
+}
+
+std::string htmlPercent(double share, int decimals) {
+  if (!std::isfinite(share)) return "&ndash;";
+  return htmlFixed(100.0 * share, decimals) + "&nbsp;%";
+}
+
+namespace {
+constexpr const char* kTextNbsp = "\u00a0";
+}  // namespace
+
+std::string textPercent(double share, int digits) {
+  if (!std::isfinite(share)) return "\u2013";
+  return textNumber(100.0 * share, digits) + kTextNbsp + "%";
+}
+
+std::string textDuration(double s) {
+  if (!std::isfinite(s)) return "\u2013";
+  if (std::abs(s) < 1.0) return textNumber(1e3 * s, 3) + kTextNbsp + "ms";
+  if (std::abs(s) > 120.0) return textNumber(s / 60.0, 3) + kTextNbsp + "min";
+  return textNumber(s, 3) + kTextNbsp + "s";
+}
+
+std::string textQuantity(double value_si, const DisplayUnit& unit, int digits) {
+  if (!std::isfinite(value_si)) return "\u2013";
+  return textNumber(unit.of(value_si), digits) + kTextNbsp + unit.name;
+}
+
 }  // namespace cosim::analysis

@@ -39,14 +39,6 @@ std::string htmlEscape(const std::string& s) {
 }
 
 namespace {
-// A number for a table cell (4 significant digits unless told).
-std::string g(double v, int digits = 4) { return htmlNumber(v, digits); }
-std::string pct(double share, int decimals = 2) {
-  if (!std::isfinite(share)) return "&ndash;";
-  const std::string s = fmt::format("{:.{}f}", 100.0 * std::abs(share), decimals);
-  const bool zero = s.find_first_not_of("0.") == std::string::npos;  // no "-0.00 %"
-  return (share < 0 && !zero ? "&minus;" : "") + s + "&nbsp;%";
-}
 std::string mass(const RunAnalysis& a, double kg, int digits = 4) {
   return htmlNumber(a.mass_unit.of(kg), digits);
 }
@@ -143,27 +135,29 @@ void conditionsTable(std::ostringstream& h, const RunAnalysis& a) {
   h << "<h2>Operating conditions</h2>\n<table><tr><th class=l>condition</th><th>value</th>"
        "<th class=l>from</th></tr>";
   if (std::isfinite(c.flow_lpm)) {
-    row(h, "fluidization gas flow", g(c.flow_lpm) + "&nbsp;L/min", "scene parameter flow_lpm");
+    row(h, "fluidization gas flow", htmlNumber(c.flow_lpm) + "&nbsp;L/min",
+        "scene parameter flow_lpm");
   }
   if (std::isfinite(c.superficial_velocity)) {
-    row(h, "superficial gas velocity u", g(c.superficial_velocity, 3) + "&nbsp;m/s",
+    row(h, "superficial gas velocity u", htmlNumber(c.superficial_velocity, 3) + "&nbsp;m/s",
         "scene parameter " + c.superficial_velocity_parameter);
   }
   if (std::isfinite(c.u_mf)) {
-    row(h, "minimum fluidization velocity u<sub>mf</sub>", g(c.u_mf, 3) + "&nbsp;m/s",
+    row(h, "minimum fluidization velocity u<sub>mf</sub>", htmlNumber(c.u_mf, 3) + "&nbsp;m/s",
         c.u_mf_source);
-    if (std::isfinite(c.superficial_velocity)) row(h, "u / u<sub>mf</sub>", g(c.uOverUmf(), 3), "");
+    if (std::isfinite(c.superficial_velocity))
+      row(h, "u / u<sub>mf</sub>", htmlNumber(c.uOverUmf(), 3), "");
   }
   if (std::isfinite(c.nozzle_velocity)) {
-    row(h, "nozzle gas velocity", g(c.nozzle_velocity, 3) + "&nbsp;m/s",
+    row(h, "nozzle gas velocity", htmlNumber(c.nozzle_velocity, 3) + "&nbsp;m/s",
         "scene parameter u_nozzle");
   }
   if (std::isfinite(c.precursor_fraction)) {
-    row(h, "precursor mass fraction in the nozzle gas", g(c.precursor_fraction, 3),
+    row(h, "precursor mass fraction in the nozzle gas", htmlNumber(c.precursor_fraction, 3),
         "scene parameter Y_nozzle");
   }
   row(h, "parcels", std::to_string(c.parcels), "particles.h5, last snapshot");
-  row(h, "coarse-graining factor cg", g(c.grain.cg, 3),
+  row(h, "coarse-graining factor cg", htmlNumber(c.grain.cg, 3),
       c.cg_source + "; a parcel stands for cg^3 = " + fmt::format("{:g}", std::pow(c.grain.cg, 3)) +
           " real grains");
   if (std::isfinite(c.parcel_diameter)) {
@@ -176,7 +170,7 @@ void conditionsTable(std::ostringstream& h, const RunAnalysis& a) {
       "t = " + fmt::format("{:g}", a.snapshots.front().time) + " to " +
           fmt::format("{:g}", a.snapshots.back().time) + " s recorded");
   row(h, "coating density (for the layer thickness)",
-      g(c.grain.coating_density) + "&nbsp;kg/m<sup>3</sup>", c.coating_density_source);
+      htmlNumber(c.grain.coating_density) + "&nbsp;kg/m<sup>3</sup>", c.coating_density_source);
   h << "</table>\n";
 }
 
@@ -196,7 +190,7 @@ void endOfRun(std::ostringstream& h, const RunAnalysis& a, const ReportOptions& 
   const auto& l = a.snapshots.back();
   const auto& mu = a.mass_unit;
   const bool thick = std::isfinite(a.conditions.grain.thickness(1.0));
-  h << "<h2>Coating at the end of the run (t = " << g(l.time)
+  h << "<h2>Coating at the end of the run (t = " << htmlNumber(l.time)
     << "&nbsp;s)</h2>\n<table><tr><th class=l></th>"
     << "<th>per parcel " << unit(mu) << "</th><th>per real grain " << unit(mu) << "</th>";
   if (thick) h << "<th>as a layer on a grain " << unit(a.thickness_unit) << "</th>";
@@ -212,13 +206,14 @@ void endOfRun(std::ostringstream& h, const RunAnalysis& a, const ReportOptions& 
   line("least coated", l.min);
   line("most coated", l.max);
   h << "</table>\n<table><tr><th class=l>quantity</th><th>value</th></tr>"
-    << "<tr><td class=l>CV (standard deviation / mean)</td><td>" << g(l.cv, 3) << "</td></tr>"
-    << "<tr><td class=l>never coated (&le; " << g(o.uncoated_relative, 2)
-    << " &times; mean)</td><td>" << pct(l.uncoated_share, 1) << "</td></tr>"
+    << "<tr><td class=l>CV (standard deviation / mean)</td><td>" << htmlNumber(l.cv, 3)
+    << "</td></tr>"
+    << "<tr><td class=l>never coated (&le; " << htmlNumber(o.uncoated_relative, 2)
+    << " &times; mean)</td><td>" << htmlPercent(l.uncoated_share, 1) << "</td></tr>"
     << "<tr><td class=l>coating on all " << l.count << " parcels</td><td>"
     << htmlQuantity(l.total, mu) << "</td></tr></table>\n";
-  h << "<p>A parcel's coating is shared by the " << g(std::pow(a.conditions.grain.cg, 3), 4)
-    << " real grains it stands for";
+  h << "<p>A parcel's coating is shared by the "
+    << htmlNumber(std::pow(a.conditions.grain.cg, 3), 4) << " real grains it stands for";
   if (thick) h << "; the layer is that coating spread evenly over a real grain's surface";
   h << ". CV and shares are the same per parcel and per real grain.</p>\n";
   const auto& v = a.verdict;
@@ -227,7 +222,8 @@ void endOfRun(std::ostringstream& h, const RunAnalysis& a, const ReportOptions& 
     for (const auto& r : v.reasons) h << "<li>" << htmlEscape(r) << "</li>";
     h << "</ul>\n";
   } else {
-    h << "<p>Every mixing criterion passes: at most " << pct(o.criteria.max_uncoated_share, 0)
+    h << "<p>Every mixing criterion passes: at most "
+      << htmlPercent(o.criteria.max_uncoated_share, 0)
       << " never coated, mean and variance growing linearly with time (Eqs. 9-10), and a coating "
          "distribution "
          "close to normal (docs/analysis.md section 4).</p>\n";
@@ -270,18 +266,18 @@ void extrapolation(std::ostringstream& h, const RunAnalysis& a, const ReportOpti
     h << "<tr><td>" << htmlDuration(t) << "</td><td>" << mass(a, d.mean) << "</td><td>"
       << perGrain(a, d.mean) << "</td>";
     if (thick) h << "<td>" << layer(a, d.mean) << "</td>";
-    h << "<td>" << mass(a, d.sigma) << "</td><td>" << g(d.cv, 3) << "</td><td>"
-      << g((1 - o.band) * d.cv, 3) << "&nbsp;&ndash;&nbsp;" << g((1 + o.band) * d.cv, 3)
-      << "</td></tr>";
+    h << "<td>" << mass(a, d.sigma) << "</td><td>" << htmlNumber(d.cv, 3) << "</td><td>"
+      << htmlNumber((1 - o.band) * d.cv, 3) << "&nbsp;&ndash;&nbsp;"
+      << htmlNumber((1 + o.band) * d.cv, 3) << "</td></tr>";
   }
   h << "</table>\n";
   if (!a.prediction_check.points.empty()) {
     const auto& pc = a.prediction_check;
     h << "<p>Prediction checked against the " << pc.points.size()
       << " simulated snapshots after the fit window "
-      << "(to t = " << g(pc.points.back().time) << "&nbsp;s): largest error of the mean "
-      << pct(pc.max_abs_mean_error) << ", of the standard deviation " << pct(pc.max_abs_std_error)
-      << ", of the CV " << pct(pc.max_abs_cv_error)
+      << "(to t = " << htmlNumber(pc.points.back().time) << "&nbsp;s): largest error of the mean "
+      << htmlPercent(pc.max_abs_mean_error) << ", of the standard deviation "
+      << htmlPercent(pc.max_abs_std_error) << ", of the CV " << htmlPercent(pc.max_abs_cv_error)
       << " (all points in prediction_check.csv).</p>\n";
   } else {
     h << "<p>The run ends with the fit window: no later simulated time to check the prediction "
@@ -308,7 +304,8 @@ void massBalanceSection(std::ostringstream& h, const RunAnalysis& a) {
   if (b.has_removed) line("removed from the gas by the coating sink", b.removed);
   line("coating on particles", b.obtained_coating);
   line("error (expected &minus; obtained)", b.error, 3);
-  h << "<tr><td class=l>error %</td><td>" << g(b.error_percent, 3) << "</td></tr></table>\n"
+  h << "<tr><td class=l>error %</td><td>" << htmlNumber(b.error_percent, 3)
+    << "</td></tr></table>\n"
     << "<p>Initial state: " << htmlEscape(b.initial_state)
     << ". Coating on particles: " << htmlEscape(b.obtained_source) << ".</p>\n";
   if (b.has_removed && std::abs(b.pending) > 1e-9 * std::abs(b.removed)) {
@@ -330,7 +327,7 @@ void windowStudyHtml(std::ostringstream& h, const RunAnalysis& a) {
     h << "<h3>Error against run time</h3>\n<p>The fit repeated on growing windows: how well each "
          "shorter window "
          "predicts the simulated CV at the end of the run (t = "
-      << g(w.run_end) << "&nbsp;s, CV = " << g(w.simulated_cv_run_end, 3) << ")";
+      << htmlNumber(w.run_end) << "&nbsp;s, CV = " << htmlNumber(w.simulated_cv_run_end, 3) << ")";
     if (extrapolate)
       h << " and how the CV extrapolated to " << htmlDuration(w.horizon) << " settles";
     h << ". Wall time is what the simulation needed to reach the end of the window.";
@@ -342,12 +339,13 @@ void windowStudyHtml(std::ostringstream& h, const RunAnalysis& a) {
     if (extrapolate) h << "<th>CV at " << htmlDuration(w.horizon) << "</th>";
     h << "<th>error of the predicted CV at the run end</th></tr>";
     for (const auto& p : w.points) {
-      h << "<tr><td>" << g(p.t_end) << "</td><td>" << g(p.wall_seconds) << "</td>";
+      h << "<tr><td>" << htmlNumber(p.t_end) << "</td><td>" << htmlNumber(p.wall_seconds)
+        << "</td>";
       if (p.ok) {
         h << "<td>" << mass(a, p.a1) << "&nbsp;&plusmn;&nbsp;" << mass(a, p.a1_se, 2) << "</td><td>"
           << mass(a, p.a2) << "&nbsp;&plusmn;&nbsp;" << mass(a, p.a2_se, 2) << "</td>";
-        if (extrapolate) h << "<td>" << g(p.cv_horizon, 3) << "</td>";
-        h << "<td>" << pct(p.cv_run_end_error) << "</td>";
+        if (extrapolate) h << "<td>" << htmlNumber(p.cv_horizon, 3) << "</td>";
+        h << "<td>" << htmlPercent(p.cv_run_end_error) << "</td>";
       } else {
         h << "<td colspan=" << (extrapolate ? 4 : 3) << " class=l>no fit (too few snapshots)</td>";
       }
@@ -363,7 +361,8 @@ void statisticalDetail(std::ostringstream& h, const RunAnalysis& a) {
        "HC3), "
        "normality (D'Agostino-Pearson), runs test, error against run time, every "
        "snapshot</summary>\n";
-  h << "<h3>Fit of Eqs. 9-10 on [" << g(a.fit.t0) << ", " << g(a.fit.t1) << "]&nbsp;s</h3>\n";
+  h << "<h3>Fit of Eqs. 9-10 on [" << htmlNumber(a.fit.t0) << ", " << htmlNumber(a.fit.t1)
+    << "]&nbsp;s</h3>\n";
   if (!a.fit.ok) {
     h << "<p class=bad>No fit: " << htmlEscape(a.fit.problem) << "</p>\n";
   } else {
@@ -389,27 +388,30 @@ void statisticalDetail(std::ostringstream& h, const RunAnalysis& a) {
     } else if (!a.bootstrap.problem.empty()) {
       h << "No bootstrap: " << htmlEscape(a.bootstrap.problem) << ". ";
     }
-    h << a.fit.tau.size() << " snapshots; RMS residual " << pct(a.fit.mean_relative_rms)
-      << " of the mean (mean fit), " << pct(a.fit.variance_relative_rms)
+    h << a.fit.tau.size() << " snapshots; RMS residual " << htmlPercent(a.fit.mean_relative_rms)
+      << " of the mean (mean fit), " << htmlPercent(a.fit.variance_relative_rms)
       << " of the mean variance (variance fit).</p>\n";
   }
   const auto& v = a.verdict;
   h << "<h3>Normality of the last snapshot in the window</h3>\n<p>";
   if (v.normality.valid) {
     h << "D'Agostino-Pearson on " << v.normality.n << " parcels: skewness "
-      << g(v.normality.skewness, 3) << ", excess kurtosis " << g(v.normality.kurtosis - 3.0, 3)
-      << ", K<sup>2</sup> = " << g(v.normality.k2) << ", p = " << g(v.normality.p_value, 3) << ".";
+      << htmlNumber(v.normality.skewness, 3) << ", excess kurtosis "
+      << htmlNumber(v.normality.kurtosis - 3.0, 3)
+      << ", K<sup>2</sup> = " << htmlNumber(v.normality.k2)
+      << ", p = " << htmlNumber(v.normality.p_value, 3) << ".";
     const auto& tr = v.trend;
     if (tr.measured) {
-      h << " Over the last three quarters of the coating time (" << g(tr.from, 3) << "&ndash;"
-        << g(tr.to, 3) << " s of coating, " << tr.snapshots
-        << " snapshots) |skewness| falls as t<sup>&minus;" << g(tr.skewness_decay, 3)
-        << "</sup> and |excess kurtosis| as t<sup>&minus;" << g(tr.kurtosis_decay, 3)
+      h << " Over the last three quarters of the coating time (" << htmlNumber(tr.from, 3)
+        << "&ndash;" << htmlNumber(tr.to, 3) << " s of coating, " << tr.snapshots
+        << " snapshots) |skewness| falls as t<sup>&minus;" << htmlNumber(tr.skewness_decay, 3)
+        << "</sup> and |excess kurtosis| as t<sup>&minus;" << htmlNumber(tr.kurtosis_decay, 3)
         << "</sup> (a well-mixed bed: t<sup>&minus;1/2</sup> and t<sup>&minus;1</sup>, every "
            "cumulant of the coating growing linearly in time)";
       if (std::isfinite(tr.at)) {
-        h << "; projected to " << g(tr.at, 3) << " s: skewness " << g(tr.projected_skewness, 3)
-          << ", excess kurtosis " << g(tr.projected_excess_kurtosis, 3);
+        h << "; projected to " << htmlNumber(tr.at, 3) << " s: skewness "
+          << htmlNumber(tr.projected_skewness, 3) << ", excess kurtosis "
+          << htmlNumber(tr.projected_excess_kurtosis, 3);
       }
       h << (v.fading_non_normal ? ": the departure fades, so it does not refuse the run." : ".");
     }
@@ -424,8 +426,8 @@ void statisticalDetail(std::ostringstream& h, const RunAnalysis& a) {
         std::pair<const char*, const RunsTest&>{"variance", v.variance_runs}}) {
     h << "<tr><td class=l>" << name << "</td>";
     if (r.valid) {
-      h << "<td>" << r.runs << "</td><td>" << g(r.expected_runs, 3) << "</td><td>"
-        << g(r.p_too_few, 3) << "</td>";
+      h << "<td>" << r.runs << "</td><td>" << htmlNumber(r.expected_runs, 3) << "</td><td>"
+        << htmlNumber(r.p_too_few, 3) << "</td>";
     } else {
       h << "<td colspan=3>&ndash;</td>";
     }
@@ -443,9 +445,9 @@ void statisticalDetail(std::ostringstream& h, const RunAnalysis& a) {
   const std::size_t stride = n > 25 ? (n + 24) / 25 : 1;
   for (std::size_t i = 0; i < n; i += stride) {
     const auto& s = a.snapshots[i];
-    h << "<tr><td>" << g(s.time) << "</td><td>" << s.count << "</td><td>" << mass(a, s.mean)
-      << "</td><td>" << mass(a, s.std_dev) << "</td><td>" << g(s.cv, 3) << "</td><td>"
-      << pct(s.uncoated_share) << "</td></tr>";
+    h << "<tr><td>" << htmlNumber(s.time) << "</td><td>" << s.count << "</td><td>"
+      << mass(a, s.mean) << "</td><td>" << mass(a, s.std_dev) << "</td><td>" << htmlNumber(s.cv, 3)
+      << "</td><td>" << htmlPercent(s.uncoated_share) << "</td></tr>";
   }
   h << "</table>\n<p>Every snapshot: statistics.csv (SI units).</p>\n</details>\n";
 }
@@ -458,8 +460,8 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
     << htmlEscape(a.label) << "</title>\n"
     << kStyle << "</head><body>\n<h1>Coating report: " << htmlEscape(a.label) << "</h1>\n"
     << "<p>Run folder: <code>" << htmlEscape(a.run.string()) << "</code>. " << a.snapshots.size()
-    << " snapshots from t = " << g(a.snapshots.front().time) << " s to "
-    << g(a.snapshots.back().time) << " s. Coating masses in " << a.mass_unit.name
+    << " snapshots from t = " << htmlNumber(a.snapshots.front().time) << " s to "
+    << htmlNumber(a.snapshots.back().time) << " s. Coating masses in " << a.mass_unit.name
     << " throughout this page (report.json and the CSV "
     << "tables in this folder keep SI units).</p>\n";
   if (!plot_message.empty())
@@ -467,7 +469,7 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
   if (!a.run_status.empty() && a.run_status != "completed") {
     h << "<p class=\"note\">The run did not complete (summary.json status: "
       << htmlEscape(a.run_status)
-      << "): this report covers what it recorded up to t = " << g(a.snapshots.back().time)
+      << "): this report covers what it recorded up to t = " << htmlNumber(a.snapshots.back().time)
       << " s.</p>\n";
   }
   conditionsTable(h, a);
@@ -478,8 +480,9 @@ void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::files
   h << batchHtml(a);
   massBalanceSection(h, a);
   if (std::isfinite(a.wall_seconds)) {
-    h << "<p>Run time: " << g(a.wall_seconds) << " s wall clock over " << a.steps
-      << " coupling steps (" << g(a.wall_seconds / static_cast<double>(a.steps > 0 ? a.steps : 1))
+    h << "<p>Run time: " << htmlNumber(a.wall_seconds) << " s wall clock over " << a.steps
+      << " coupling steps ("
+      << htmlNumber(a.wall_seconds / static_cast<double>(a.steps > 0 ? a.steps : 1))
       << " s per step).</p>\n";
   }
   h << "<h2>Figures</h2>\n";
@@ -548,10 +551,10 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs,
     const auto& a = runs[i];
     const auto& c = a.conditions;
     h << "<tr><td class=l>" << link(i) << "</td>";
-    for (const auto& n : varied) h << "<td>" << g(parameter(a, n), 6) << "</td>";
-    h << "<td>" << g(c.flow_lpm) << "</td><td>" << g(c.superficial_velocity, 3) << "</td><td>"
-      << g(c.uOverUmf(), 3) << "</td><td>" << htmlDuration(c.coating_time) << "</td><td>"
-      << c.parcels << "</td><td class=l>";
+    for (const auto& n : varied) h << "<td>" << htmlNumber(parameter(a, n), 6) << "</td>";
+    h << "<td>" << htmlNumber(c.flow_lpm) << "</td><td>" << htmlNumber(c.superficial_velocity, 3)
+      << "</td><td>" << htmlNumber(c.uOverUmf(), 3) << "</td><td>" << htmlDuration(c.coating_time)
+      << "</td><td>" << c.parcels << "</td><td class=l>";
     const auto t = verdictText(a, o);
     h << "<span class=" << (a.verdict.well_mixed ? "ok" : "bad") << ">" << htmlEscape(t.head)
       << ":</span> " << htmlEscape(t.body) << "</td></tr>\n";
@@ -575,13 +578,15 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs,
     h << "<tr><td class=l>" << link(i) << "</td><td>" << mass(a, l.mean) << "</td><td>"
       << perGrain(a, l.mean) << "</td>";
     if (thick) h << "<td>" << layer(a, l.mean) << "</td>";
-    h << "<td>" << g(l.cv, 3) << "</td><td>" << pct(l.uncoated_share, 1) << "</td><td>"
-      << (a.zone_passes ? pct(a.zone_passes->stats.never_entered_share, 1) : "&ndash;")
+    h << "<td>" << htmlNumber(l.cv, 3) << "</td><td>" << htmlPercent(l.uncoated_share, 1)
+      << "</td><td>"
+      << (a.zone_passes ? htmlPercent(a.zone_passes->stats.never_entered_share, 1) : "&ndash;")
       << "</td><td>"
       << (a.zone_passes ? htmlDuration(a.zone_passes->stats.cycle_time.mean) : "&ndash;")
       << "</td>";
     if (a.verdict.well_mixed && a.fit.ok) {
-      for (double x : t) h << "<td>" << g(predictDistribution(a.fit, x, o.band).cv, 3) << "</td>";
+      for (double x : t)
+        h << "<td>" << htmlNumber(predictDistribution(a.fit, x, o.band).cv, 3) << "</td>";
     } else {
       h << "<td colspan=" << t.size() << " class=l>"
         << (a.verdict.well_mixed ? "no fit" : "refused: poorly mixed") << "</td>";
@@ -602,15 +607,15 @@ void writeComparisonHtml(const std::vector<RunAnalysis>& runs,
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const auto& a = runs[i];
     const auto& l = a.snapshots.back();
-    h << "<tr><td class=l>" << link(i) << "</td><td>" << g(l.time) << "</td><td>"
+    h << "<tr><td class=l>" << link(i) << "</td><td>" << htmlNumber(l.time) << "</td><td>"
       << mass(a, l.total) << "</td><td>"
       << (a.fit.ok ? mass(a, a.fit.a1) + "&nbsp;&plusmn;&nbsp;" + mass(a, a.a1Error(), 2)
                    : "&ndash;")
       << "</td><td>"
       << (a.fit.ok ? mass(a, a.fit.a2) + "&nbsp;&plusmn;&nbsp;" + mass(a, a.a2Error(), 2)
                    : "&ndash;")
-      << "</td><td>" << (a.mass_balance ? g(a.mass_balance->error_percent, 3) : "&ndash;")
-      << "</td><td>" << g(a.wall_seconds) << "</td><td class=l>";
+      << "</td><td>" << (a.mass_balance ? htmlNumber(a.mass_balance->error_percent, 3) : "&ndash;")
+      << "</td><td>" << htmlNumber(a.wall_seconds) << "</td><td class=l>";
     if (a.verdict.reasons.empty()) h << "all pass";
     for (std::size_t k = 0; k < a.verdict.reasons.size(); ++k) {
       h << (k ? "<br>" : "") << htmlEscape(a.verdict.reasons[k]);

@@ -26,15 +26,6 @@ constexpr double kMinCyclesPerRun = 5.0;
 // Entry-rate cycle time this much above the observed mean: the run cuts off long cycles.
 constexpr double kRateOverMean = 1.2;
 
-std::string num(double v, fmt::format_string<double> spec = "{:.3g}") {
-  return std::isfinite(v) ? fmt::format(spec, double{v}) : "&ndash;";
-}
-std::string pct(double v) {
-  return std::isfinite(v) ? fmt::format("{:.1f}&nbsp;%", 100.0 * v) : "&ndash;";
-}
-std::string span(double s) { return htmlDuration(s); }
-std::string mm(double m) { return num(1e3 * m, "{:.1f}"); }
-
 // Each parcel's coating at the last snapshot, less its coating at the first, against the coating
 // of its passes: the first parcel (in id order) whose two ledgers differ by more than round-off,
 // or "" when every one agrees. Parcels deleted or inserted between the snapshots are left out
@@ -221,9 +212,10 @@ void neverEnteredPlacesHtml(std::ostringstream& h, const ParcelPlaces& pl) {
   for (const auto& [name, g] :
        {std::pair<const char*, const PlaceOfGroup&>{"never reached the zone", pl.group},
         std::pair<const char*, const PlaceOfGroup&>{"reached it", pl.others}}) {
-    h << "<tr><td class=l>" << name << "</td><td>" << g.parcels << "</td><td>" << mm(g.mean_height)
-      << "</td><td>" << mm(g.mean_radius) << "</td><td>" << mm(g.start_height) << "</td><td>"
-      << mm(g.start_radius) << "</td></tr>";
+    h << "<tr><td class=l>" << name << "</td><td>" << g.parcels << "</td><td>"
+      << htmlFixed(1e3 * g.mean_height, 1) << "</td><td>" << htmlFixed(1e3 * g.mean_radius, 1)
+      << "</td><td>" << htmlFixed(1e3 * g.start_height, 1) << "</td><td>"
+      << htmlFixed(1e3 * g.start_radius, 1) << "</td></tr>";
   }
   h << "</table>\n";
 }
@@ -270,20 +262,20 @@ void cyclePredictionHtml(std::ostringstream& h, const RunAnalysis& a) {
       << "]</th><th>simulated CV</th></tr>";
     for (std::size_t i = 0; i < r.predictions.size(); ++i) {
       const auto& p = r.predictions[i];
-      h << "<tr><td>" << (i == 0 ? "run&nbsp;end,&nbsp;" : "") << span(p.t) << "</td><td>"
-        << htmlNumber(a.mass_unit.of(p.mean), 3) << "</td><td>" << num(p.cv) << "</td><td>"
-        << num(p.cv_with_pass_spread) << "</td>";
+      h << "<tr><td>" << (i == 0 ? "run&nbsp;end,&nbsp;" : "") << htmlDuration(p.t) << "</td><td>"
+        << htmlNumber(a.mass_unit.of(p.mean), 3) << "</td><td>" << htmlNumber(p.cv, 3)
+        << "</td><td>" << htmlNumber(p.cv_with_pass_spread, 3) << "</td>";
       if (i == 0) {
         h << "<td>" << htmlNumber(a.mass_unit.of(r.simulated_mean), 3) << "</td><td>"
-          << num(r.simulated_cv) << "</td>";
+          << htmlNumber(r.simulated_cv, 3) << "</td>";
       } else {
         h << "<td>&ndash;</td><td>&ndash;</td>";
       }
       h << "</tr>";
     }
-    h << "</table>\n<p>The number of passes per parcel alone has a CV of " << num(s.passes_cv)
-      << " at the run end; the cycles predict " << num(r.predictions.front().cv)
-      << " for it.</p>\n";
+    h << "</table>\n<p>The number of passes per parcel alone has a CV of "
+      << htmlNumber(s.passes_cv, 3) << " at the run end; the cycles predict "
+      << htmlNumber(r.predictions.front().cv, 3) << " for it.</p>\n";
   }
   if (hypothetical) h << "</div>\n";
 }
@@ -306,35 +298,39 @@ std::string zonePassesHtml(const RunAnalysis& a) {
   h << "<p>The coating happens only while a parcel is in the coating zone. Every coupling step "
        "the simulation decides which parcels are in it; "
     << kZonePassesFile << " holds each parcel's passes (" << s.passes << " passes of " << s.parcels
-    << " parcels over " << span(duration) << " of coating).";
+    << " parcels over " << htmlDuration(duration) << " of coating).";
   if (!a.verdict.well_mixed) h << " They explain why the run is poorly mixed:";
   h << "</p>\n<ul>\n";
   h << "<li><b>Never reached the zone:</b> " << s.never_entered << " of " << s.parcels
-    << " parcels (" << pct(s.never_entered_share) << ").</li>\n";
+    << " parcels (" << htmlPercent(s.never_entered_share, 1) << ").</li>\n";
   if (s.cycle_time.n > 0) {
     h << "<li><b>A cycle</b> (from one entry into the zone to the next) takes "
-      << span(s.cycle_time.mean) << " on average (standard deviation " << span(s.cycle_time.sd)
-      << ", median " << span(s.cycle_time.p50) << ", 10&ndash;90&nbsp;%: " << span(s.cycle_time.p10)
-      << " to " << span(s.cycle_time.p90) << "), from " << s.cycle_time.n
+      << htmlDuration(s.cycle_time.mean) << " on average (standard deviation "
+      << htmlDuration(s.cycle_time.sd) << ", median " << htmlDuration(s.cycle_time.p50)
+      << ", 10&ndash;90&nbsp;%: " << htmlDuration(s.cycle_time.p10) << " to "
+      << htmlDuration(s.cycle_time.p90) << "), from " << s.cycle_time.n
       << " cycles. Counting every parcel, also those that entered once or "
-      << "never, a parcel enters every " << span(s.cycle_time_from_rate) << ".</li>\n";
+      << "never, a parcel enters every " << htmlDuration(s.cycle_time_from_rate) << ".</li>\n";
   } else {
     h << "<li><b>No cycle</b>: no parcel entered the zone twice. Counting every parcel, one "
          "enters every "
-      << span(s.cycle_time_from_rate) << ".</li>\n";
+      << htmlDuration(s.cycle_time_from_rate) << ".</li>\n";
   }
   if (s.pass_duration.n > 0) {
-    h << "<li><b>A pass</b> lasts " << span(s.pass_duration.mean) << " on average (median "
-      << span(s.pass_duration.p50) << ", 10&ndash;90&nbsp;%: " << span(s.pass_duration.p10)
-      << " to " << span(s.pass_duration.p90) << "); the parcels spend " << pct(s.time_in_zone_share)
-      << " of their time in the zone and take up " << mass(s.uptake_rate_in_zone)
+    h << "<li><b>A pass</b> lasts " << htmlDuration(s.pass_duration.mean) << " on average (median "
+      << htmlDuration(s.pass_duration.p50)
+      << ", 10&ndash;90&nbsp;%: " << htmlDuration(s.pass_duration.p10) << " to "
+      << htmlDuration(s.pass_duration.p90) << "); the parcels spend "
+      << htmlPercent(s.time_in_zone_share, 1) << " of their time in the zone and take up "
+      << mass(s.uptake_rate_in_zone)
       << " a second while in it (the coating rate of the bed is the parcels times that share "
          "times that rate: the share says how much of the bed the zone holds, the rate how "
          "much precursor reaches a parcel in it).</li>\n";
   }
-  h << "<li><b>Passes per parcel:</b> " << num(s.passes_per_parcel.mean) << " on average (from "
-    << num(s.passes_per_parcel.min, "{:.0f}") << " to " << num(s.passes_per_parcel.max, "{:.0f}")
-    << "), coefficient of variation " << num(s.passes_cv) << ". Coating per pass: " << mass(s.w0)
+  h << "<li><b>Passes per parcel:</b> " << htmlNumber(s.passes_per_parcel.mean, 3)
+    << " on average (from " << htmlFixed(s.passes_per_parcel.min, 0) << " to "
+    << htmlFixed(s.passes_per_parcel.max, 0) << "), coefficient of variation "
+    << htmlNumber(s.passes_cv, 3) << ". Coating per pass: " << mass(s.w0)
     << " on average (all coating in passes divided by the passes).</li>\n";
   h << "<li><b>Coating only in the zone:</b> the passes hold " << mass(s.coating_in_passes, 6)
     << ", the parcels received " << mass(r.coating_on_parcels, 6) << ".</li>\n";

@@ -15,19 +15,6 @@ namespace cosim::analysis {
 namespace {
 constexpr const char* kNbsp = "\u00a0";
 
-std::string number(double v, int digits = 3) {
-  return std::isfinite(v) ? textNumber(v, digits) : "?";
-}
-std::string duration(double s) {
-  if (!std::isfinite(s)) return "?";
-  if (std::abs(s) < 1.0) return number(1e3 * s) + kNbsp + "ms";
-  if (std::abs(s) > 120.0) return number(s / 60.0) + kNbsp + "min";
-  return number(s) + kNbsp + "s";
-}
-std::string percent(double share) { return number(100.0 * share) + kNbsp + "%"; }
-std::string quantity(double si, const DisplayUnit& u) {
-  return std::isfinite(si) ? number(u.of(si)) + kNbsp + u.name : "?";
-}
 }  // namespace
 
 std::vector<double> batchTimes(const ReportOptions& o) {
@@ -40,8 +27,9 @@ std::vector<double> batchTimes(const ReportOptions& o) {
 
 std::string batchRange(const ReportOptions& o) {
   const auto t = batchTimes(o);
-  if (t.size() == 1) return duration(t.front());
-  return number(t.front() / 60.0) + "\u2013" + number(t.back() / 60.0) + kNbsp + "min";
+  if (t.size() == 1) return textDuration(t.front());
+  return textNumber(t.front() / 60.0, 3) + "\u2013" + textNumber(t.back() / 60.0, 3) + kNbsp +
+         "min";
 }
 
 std::string shortVerdict(const MixingVerdict& v) {
@@ -62,10 +50,11 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
   std::string& s = t.body;
   if (!v.well_mixed) {
     t.head = "Poorly mixed";
-    s = "after " + duration(coated) + " of coating";
+    s = "after " + textDuration(coated) + " of coating";
     std::vector<std::string> what;
     if (v.too_many_uncoated)
-      what.push_back(percent(judged->uncoated_share) + " of the parcels have no coating at all");
+      what.push_back(textPercent(judged->uncoated_share) +
+                     " of the parcels have no coating at all");
     if (v.not_normal) what.push_back("the coating is far from normally distributed");
     if (v.mean_not_linear || v.variance_not_linear)
       what.push_back("the coating does not yet grow steadily with time");
@@ -73,12 +62,12 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
     for (std::size_t i = 0; i < what.size(); ++i) {
       s += (i == 0 ? " " : (i + 1 == what.size() ? " and " : ", ")) + what[i];
     }
-    s += "; the CV is " + number(judged->cv) + ". The coating cannot be extrapolated to a " +
+    s += "; the CV is " + textNumber(judged->cv, 3) + ". The coating cannot be extrapolated to a " +
          batchRange(o) + " batch.";
     if (a.zone_passes && std::isfinite(a.zone_passes->stats.cycle_time_from_rate)) {
       const auto& z = a.zone_passes->stats;
-      s += " A parcel enters the coating zone only every " + duration(z.cycle_time_from_rate) +
-           " on average (" + percent(z.never_entered_share) +
+      s += " A parcel enters the coating zone only every " + textDuration(z.cycle_time_from_rate) +
+           " on average (" + textPercent(z.never_entered_share) +
            " never did in this run): a run several times that long, or a flow that turns the bed "
            "over "
            "faster, is needed before the batch can be judged.";
@@ -93,29 +82,31 @@ VerdictText verdictText(const RunAnalysis& a, const ReportOptions& o) {
     t.head = "Well mixed";
     s = "after ";
   }
-  s += duration(coated) + " of coating " + percent(1.0 - judged->uncoated_share) +
+  s += textDuration(coated) + " of coating " + textPercent(1.0 - judged->uncoated_share) +
        " of the parcels are coated and the coating grows as in a well-mixed bed; the CV is " +
-       number(judged->cv) + ".";
+       textNumber(judged->cv, 3) + ".";
   if (v.fading_non_normal && std::isfinite(v.trend.at)) {
-    s += " The coating is not yet normally distributed (skewness " + number(judged->skewness) +
-         ", excess kurtosis " + number(judged->excess_kurtosis) +
-         ") but evens out as a well-mixed bed's does, to " + number(v.trend.projected_skewness) +
-         " and " + number(v.trend.projected_excess_kurtosis) + " at " + duration(v.trend.at) + ".";
+    s += " The coating is not yet normally distributed (skewness " +
+         textNumber(judged->skewness, 3) + ", excess kurtosis " +
+         textNumber(judged->excess_kurtosis, 3) +
+         ") but evens out as a well-mixed bed's does, to " +
+         textNumber(v.trend.projected_skewness, 3) + " and " +
+         textNumber(v.trend.projected_excess_kurtosis, 3) + " at " + textDuration(v.trend.at) + ".";
   }
   if (a.fit.ok) {
     const auto times = batchTimes(o);
     s += " Extrapolated to a " + batchRange(o) + " batch the CV would be ";
     for (std::size_t i = 0; i < times.size(); ++i) {
       const auto d = predictDistribution(a.fit, times[i], o.band);
-      s += (i ? " and " : "") + number(d.cv) + " at " + duration(times[i]);
+      s += (i ? " and " : "") + textNumber(d.cv, 3) + " at " + textDuration(times[i]);
     }
     const std::string band = fmt::format("{:.0f}", 100 * o.band) + kNbsp + "%";
     s += " (each \u00b1" + band + " for a " + band + " error in a2); at " +
-         duration(times.front()) + " a real grain would carry ";
+         textDuration(times.front()) + " a real grain would carry ";
     const auto d = predictDistribution(a.fit, times.front(), o.band);
-    s += quantity(c.grain.perGrain(d.mean), a.mass_unit);
+    s += textQuantity(c.grain.perGrain(d.mean), a.mass_unit);
     const double h = c.grain.thickness(d.mean);
-    if (std::isfinite(h)) s += ", a layer of " + quantity(h, a.thickness_unit);
+    if (std::isfinite(h)) s += ", a layer of " + textQuantity(h, a.thickness_unit);
     s += ".";
   }
   return t;

@@ -34,5 +34,15 @@ std::string htmlQuantity(double value_si, const DisplayUnit& unit, int digits = 
 // A duration in the unit a reader expects, 3 significant digits: ms below 1 s, min above
 // 2 min ("250&nbsp;ms", "1.5&nbsp;s", "20&nbsp;min").
 std::string htmlDuration(double seconds);
+// A number with a fixed count of decimals (a position in mm to 0.1, a count to 0), &minus; for
+// a negative one, "&ndash;" when not finite.
+std::string htmlFixed(double v, int decimals);
+// A share as a percentage with `decimals` decimals ("12.50&nbsp;%"), never "-0.00 %".
+std::string htmlPercent(double share, int decimals = 2);
+// For sentences in plain UTF-8 text (the verdict): `digits` significant digits and a no-break
+// space before the unit; "\u2013" when not finite.
+std::string textPercent(double share, int digits = 3);  // "12.3 %"
+std::string textDuration(double seconds);               // ms below 1 s, min above 2 min
+std::string textQuantity(double value_si, const DisplayUnit& unit, int digits = 3);
 
 }  // namespace cosim::analysis
