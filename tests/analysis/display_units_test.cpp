@@ -51,6 +51,16 @@ TEST(DisplayUnits, NumbersHaveTheirSignificantDigitsAndNothingToBreakAt) {
   EXPECT_EQ(htmlDuration(0.05), "50&nbsp;ms");
   EXPECT_EQ(htmlDuration(1.0), "1&nbsp;s");
   EXPECT_EQ(htmlDuration(1200.0), "20&nbsp;min");
+  EXPECT_EQ(htmlFixed(12.345, 1), "12.3");
+  EXPECT_EQ(htmlFixed(-0.04, 1), "0.0");  // no "-0.0"
+  EXPECT_EQ(htmlFixed(-2.5, 0), "&minus;2");
+  EXPECT_EQ(htmlPercent(0.125), "12.50&nbsp;%");
+  EXPECT_EQ(htmlPercent(0.011, 1), "1.1&nbsp;%");
+  EXPECT_EQ(htmlPercent(std::nan("")), "&ndash;");
+  EXPECT_EQ(textPercent(0.7654), "76.5\u00a0%");
+  EXPECT_EQ(textDuration(0.234), "234\u00a0ms");
+  EXPECT_EQ(textDuration(3600.0), "60\u00a0min");
+  EXPECT_EQ(textQuantity(2.49e-10, massUnitFor(2.49e-10)), "249\u00a0ng");
   for (double v : {1.0, 0.5, 123456.0, 1e-9, -0.02}) {
     EXPECT_EQ(htmlNumber(v).find(' '), std::string::npos) << v;
     EXPECT_EQ(htmlNumber(v).find('-'), std::string::npos) << v << ": a hyphen allows a line break";
