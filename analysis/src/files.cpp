@@ -89,7 +89,10 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
 }
 
 void overwriteFile(const std::filesystem::path& path, const std::string& text) {
-  if (!writeWhole(path, text)) throw Error(kindOfErrno(errno), writeFailure(path, errno));
+  if (!writeWhole(path, text)) {
+    const int err = errno;
+    throw Error(kindOfErrno(err), writeFailure(path, err));
+  }
 }
 
 std::string jsonText(const Json& json, int indent) {

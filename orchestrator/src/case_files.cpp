@@ -26,9 +26,11 @@ int copyCaseFiles(const fs::path& from, const fs::path& to, const Variables& var
     if (!entry.is_regular_file()) continue;
     std::ifstream in(entry.path(), std::ios::binary);
     std::stringstream ss;
-    if (!in || (!(ss << in.rdbuf()) && fs::file_size(entry.path()) > 0))
-      throw Error(kindOfErrno(errno), "cannot read the case file " + entry.path().string() + ": " +
-                                          std::strerror(errno));
+    if (!in || (!(ss << in.rdbuf()) && fs::file_size(entry.path()) > 0)) {
+      const int err = errno;
+      throw Error(kindOfErrno(err),
+                  "cannot read the case file " + entry.path().string() + ": " + std::strerror(err));
+    }
     std::string text = ss.str();
     const bool binary = text.find('\0') != std::string::npos;
     if (!binary && text.find("${") != std::string::npos) {

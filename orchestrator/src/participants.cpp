@@ -46,6 +46,15 @@ struct Participants::Peer {
 
 namespace {
 
+// A participant's process that ended on its own: how, and when ("at step 7", "before
+// connecting"); of the kind its exit code says (cosim/util/errors.h).
+RunFailure processEnded(const std::string& name, const std::string& adapter,
+                        const util::ChildProcess& p, const std::string& when) {
+  return RunFailure(
+      name, "the " + name + " process (" + adapter + ") " + p.exitDescription() + " " + when,
+      kindOfExitCode(p.exitCode()));
+}
+
 std::string join(const std::vector<std::string>& v) {
   std::string s;
   for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
@@ -326,10 +335,8 @@ void Participants::send(const std::string& name, wire::Envelope& env, bool own_c
       for (int i = 0; i < 40 && proc.running(); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
       if (!proc.running()) {
-        throw RunFailure(name,
-                         "the " + name + " process (" + it->second->spec.adapter + ") " +
-                             proc.exitDescription() + " at step " + std::to_string(step_),
-                         kindOfExitCode(proc.exitCode()));
+        throw processEnded(name, it->second->spec.adapter, proc,
+                           "at step " + std::to_string(step_));
       }
     }
     throw RunFailure(name, e.what(), ErrorKind::peer);
@@ -565,10 +572,7 @@ void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCa
       if (got.count(name)) continue;
       Peer& p = *peers_.at(name);
       if (p.process && !p.process->running()) {
-        throw RunFailure(name,
-                         "the " + name + " process (" + p.spec.adapter + ") " +
-                             p.process->exitDescription() + " at step " + std::to_string(step_),
-                         kindOfExitCode(p.process->exitCode()));
+        throw processEnded(name, p.spec.adapter, *p.process, "at step " + std::to_string(step_));
       }
       const double silent = std::chrono::duration<double>(now - p.last_seen).count();
       if (p.connected && silent > sc_.transport.heartbeat_timeout) {
@@ -619,10 +623,7 @@ void Participants::handshake() {
     for (const auto& n : waiting) {
       Peer& p = *peers_.at(n);
       if (p.process && !p.process->running()) {
-        throw RunFailure(n,
-                         "the " + n + " process (" + p.spec.adapter + ") " +
-                             p.process->exitDescription() + " before connecting" + ignoredNote(n),
-                         kindOfExitCode(p.process->exitCode()));
+        throw processEnded(n, p.spec.adapter, *p.process, "before connecting" + ignoredNote(n));
       }
     }
     if (std::chrono::duration<double>(Clock::now() - start).count() >
