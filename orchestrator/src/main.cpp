@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
   Commands commands;
   for (auto add :
        {addRunCommand, addResumeCommand, addPackCommand, addValidateCommand, addStudyCommand,
-        addBenchCommand, addModelsCommand, addKeysCommand, addFt4Commands, addBatchCommandLine,
-        addReportCommand, addPivCommand, addPivCompareCommand})
+        addBenchCommand, addModelsCommand, addReferenceCommand, addKeysCommand, addFt4Commands,
+        addBatchCommandLine, addReportCommand, addPivCommand, addPivCompareCommand})
     add(app, commands);
 
   CLI11_PARSE(app, argc, argv);

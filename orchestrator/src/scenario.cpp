@@ -16,6 +16,48 @@ namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
 
+const std::vector<KeySpec>& topLevelKeys() {
+  static const std::vector<KeySpec> k = {
+      {"extends", "none",
+       "a scenario file (relative to this one) that this scene is a variant of: it is read "
+       "first and this file's keys are merged into it, map by map (a value or a list replaces "
+       "the other file's whole node); one level only"},
+      {"name", "the folder's name",
+       "the scene's name, which names its run folder: letters, digits, . _ - +, at most 100 "
+       "characters, not starting with . or -"},
+      {"description", "none", "one line"},
+      {"parameters", "none",
+       "numbers the rest of the file uses as ${name} or in ${expressions}, each name: value or "
+       "name: { value, min, max, doc, show } (below); later ones may use earlier ones"},
+      {"participants", "required",
+       "particles (always) and fluid (started only if a model needs it), each as below"},
+      {"coupling", "required", "the coupled time loop: interval, DEM steps, end, scheme"},
+      {"constants", "the defaults below", "numbers every model sees, and the particle material"},
+      {"models", "none", "the coupling laws; a scene without them couples nothing"},
+      {"output", "the defaults below", "the run folder and the particle snapshots"},
+      {"checkpoint", "none", "periodic checkpoints for cosim resume"},
+      {"transport", "ipc in /tmp/cosim-UID/", "the link between cosim and its participants"},
+      {"checks", "the defaults below", "what stops a run, and what is refused before it starts"},
+      {"observables", "none", "named results with optional analytic references"},
+  };
+  return k;
+}
+
+const std::vector<KeySpec>& parameterKeys() {
+  static const std::vector<KeySpec> k = {
+      {"value", "required", "the number, or one ${expression} of earlier parameters"},
+      {"min", "none",
+       "the smallest value the scene holds for (inclusive; a number or ${expression}); a value "
+       "below it is refused before anything starts, with the range and the doc"},
+      {"max", "none", "the largest value the scene holds for, as min"},
+      {"doc", "none", "what the parameter is, shown with a refused value and by cosim validate"},
+      {"show", "false",
+       "true: cosim validate prints the value (a derived number such as a bed's "
+       "depth or the estimated cost)"},
+  };
+  return k;
+}
+
 namespace {
 
 // Applies ${expr} to every scalar of the tree.
@@ -42,10 +84,14 @@ void templateTree(YAML::Node node, const Variables& vars, const Context& ctx,
   }
 }
 
+// The top-level keys --set may name (extends is read before any override).
 const std::set<std::string>& sectionNames() {
-  static const std::set<std::string> sections = {
-      "name",   "description", "parameters", "participants", "coupling",    "constants",
-      "models", "output",      "transport",  "checks",       "observables", "checkpoint"};
+  static const std::set<std::string> sections = [] {
+    std::set<std::string> s;
+    for (const auto& k : topLevelKeys())
+      if (k.name != "extends") s.insert(k.name);
+    return s;
+  }();
   return sections;
 }
 
@@ -207,7 +253,7 @@ double parameterValue(const YAML::Node& v, const std::string& key, const Variabl
 // anything starts, with the range and what the parameter is.
 double rangedParameter(const YAML::Node& v, const std::string& key, const Variables& before,
                        const Context& ctx, std::vector<ShownParameter>& shown_values) {
-  ctx.allowOnly(v, key, {"value", "min", "max", "doc", "show"});
+  ctx.allowOnly(v, key, parameterKeys());
   if (!v["value"]) ctx.fail(v, key + ".value", "missing; a parameter with a range needs its value");
   const double val = parameterValue(v["value"], key + ".value", before, ctx);
   const std::string doc = v["doc"] ? " (" + ctx.text(v["doc"], key + ".doc") + ")" : "";
@@ -309,9 +355,7 @@ Scenario parseTree(YAML::Node root, const fs::path& origin, const std::vector<st
   if (!root.IsMap())
     ctx.failTop("(top level)", "expected a map with name, participants, coupling, models ...");
   root = applyExtends(root, origin, ctx);
-  ctx.allowOnly(root, "",
-                {"name", "description", "parameters", "participants", "coupling", "constants",
-                 "models", "output", "transport", "checks", "observables", "checkpoint"});
+  ctx.allowOnly(root, "", topLevelKeys());
   for (const auto& u : unsets) applyUnset(root, u, ctx);
   for (const auto& s : sets) applySet(root, s, ctx);
   sc.overrides = sets;

@@ -58,6 +58,11 @@ struct Scenario {
   std::vector<std::string> overrides;
 };
 
+// The keys of the file's top level, and of a parameter written as a map, declared as each
+// section declares its own (the reference, docs/scenario-reference.md, is made from them).
+const std::vector<KeySpec>& topLevelKeys();
+const std::vector<KeySpec>& parameterKeys();
+
 // Loads and validates. `sets` are "key.path=value" overrides (a bare name sets a parameter; a
 // YAML list or map as value replaces the whole node); `unsets` are "key.path" names of nodes to
 // remove, applied before the sets. Errors in overridden values name the override.

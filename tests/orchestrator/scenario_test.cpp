@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "cosim/models/registry.h"
 #include "expression.h"
 #include "plan.h"
+#include "scenario/reference.h"
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
@@ -366,26 +368,50 @@ TEST(Expression, DoubleDollarIsALiteral) {
 // ---- the keys each section declares are the documented ones
 // ----------------------------------------------------------
 
-TEST(ScenarioDocs, EveryDeclaredKeyIsInScenarioMd) {
-  std::ifstream in(std::string(COSIM_SOURCE_DIR) + "/docs/scenario.md");
+// The reference page is what `cosim reference` prints from the declarations: a key added,
+// removed or redocumented in the code without the page (or the page edited by hand) fails here.
+TEST(ScenarioDocs, ReferencePageIsMadeFromTheDeclarations) {
+  std::ifstream in(std::string(COSIM_SOURCE_DIR) + "/docs/scenario-reference.md");
   ASSERT_TRUE(in);
-  const std::string doc((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(page == scenarioReference())
+      << "docs/scenario-reference.md differs from the declarations: run "
+         "`build/bin/cosim reference > docs/scenario-reference.md`";
+}
+
+TEST(ScenarioDocs, EveryDeclaredKeyHasItsMeaningAndIsInTheReference) {
+  const std::string page = scenarioReference();
   const std::vector<std::pair<std::string, const std::vector<KeySpec>*>> sections = {
-      {"coupling", &CouplingSection::keys()},     {"constants", &ConstantsSection::keys()},
-      {"participants", &ParticipantSpec::keys()}, {"models", &ModelsSection::keys()},
-      {"output", &OutputSection::keys()},         {"transport", &TransportSection::keys()},
-      {"checks", &ChecksSection::keys()},         {"observables", &observableKeys()},
-      {"checkpoint", &CheckpointSection::keys()}};
-  for (const auto& [section, keys] : sections) {
-    EXPECT_FALSE(keys->empty()) << section;
+      {"", &topLevelKeys()},
+      {"parameters.NAME.", &parameterKeys()},
+      {"coupling.", &CouplingSection::keys()},
+      {"constants.", &ConstantsSection::keys()},
+      {"participants.NAME.", &ParticipantSpec::keys()},
+      {"participants.NAME.slurm.", &SlurmLaunch::keys()},
+      {"models.", &ModelsSection::keys()},
+      {"models.drag.", &ModelsSection::dragKeys()},
+      {"output.", &OutputSection::keys()},
+      {"transport.", &TransportSection::keys()},
+      {"checks.", &ChecksSection::keys()},
+      {"observables.NAME.", &observableKeys()},
+      {"checkpoint.", &CheckpointSection::keys()}};
+  for (const auto& [prefix, keys] : sections) {
+    EXPECT_FALSE(keys->empty()) << prefix;
     for (const auto& k : *keys) {
-      EXPECT_FALSE(k.doc.empty()) << section << "." << k.name;
-      // In the key table ("`coupling.dt`", "`youngs_modulus`") or in an example ("  mpi: 1").
-      const bool found = doc.find("`" + section + "." + k.name + "`") != std::string::npos ||
-                         doc.find("`" + k.name + "`") != std::string::npos ||
-                         doc.find(" " + k.name + ":") != std::string::npos;
-      EXPECT_TRUE(found) << section << "." << k.name << " is not in docs/scenario.md";
+      EXPECT_FALSE(k.doc.empty()) << prefix << k.name;
+      EXPECT_FALSE(k.default_value.empty()) << prefix << k.name;
+      EXPECT_NE(page.find("| `" + prefix + k.name + "` | "), std::string::npos)
+          << prefix << k.name << " is not a row of the reference";
     }
+  }
+  // A '|' in a meaning is escaped, so that every row has its three cells
+  std::istringstream rows(page);
+  for (std::string row; std::getline(rows, row);) {
+    if (row.rfind("| `", 0) != 0) continue;
+    int cells = 0;
+    for (std::size_t i = 0; i < row.size(); ++i)
+      if (row[i] == '|' && (i == 0 || row[i - 1] != '\\')) ++cells;
+    EXPECT_TRUE(cells == 4 || cells == 3) << row;  // key | default | meaning, or key | names
   }
 }
 

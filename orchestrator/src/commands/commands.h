@@ -43,6 +43,7 @@ void addStudyCommand(CLI::App& app, Commands& commands);
 void addBenchCommand(CLI::App& app, Commands& commands);
 void addModelsCommand(CLI::App& app, Commands& commands);
 void addKeysCommand(CLI::App& app, Commands& commands);
+void addReferenceCommand(CLI::App& app, Commands& commands);
 void addFt4Commands(CLI::App& app, Commands& commands);
 void addBatchCommandLine(CLI::App& app, Commands& commands);
 void addReportCommand(CLI::App& app, Commands& commands);

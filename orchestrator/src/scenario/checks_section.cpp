@@ -13,7 +13,8 @@ const std::vector<KeySpec>& ChecksSection::keys() {
       {"particle_count", "(not checked)",
        "particles the particle participant must hold when coupling starts (the scene's "
        "n_grains); another count (an insertion that could not place them all) stops the run "
-       "before its first step"},
+       "before its first step, saying what was placed, its mass against the mass asked for "
+       "(with constants.particle_density) and what to do"},
   };
   return k;
 }

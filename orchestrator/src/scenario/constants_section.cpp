@@ -5,11 +5,18 @@ namespace cosim::orchestrator {
 const std::vector<KeySpec>& ConstantsSection::keys() {
   static const std::vector<KeySpec> k = {
       {"cg", "1", "coarse-graining factor (parcel diameter / real diameter); >= 1"},
-      {"min_voidage", "0.35", "voidage clamp before any law sees it; in (0, 1)"},
+      {"min_voidage", "0.35",
+       "the voidage is clamped to [min_voidage, 1] before any law sees it; in (0, 1)"},
       {"gravity", "[0, 0, -9.81]", "gravity [m/s2], three numbers"},
-      {"schmidt", "1", "Schmidt number mu / (rho D); > 0"},
-      {"particle_density", "unknown", "particle density [kg/m3] for the stability checks; > 0"},
-      {"youngs_modulus", "unknown", "Young's modulus [Pa] for the Rayleigh-time check; > 0"},
+      {"schmidt", "1", "Schmidt number mu / (rho D) of the precursor; > 0"},
+      {"particle_density", "unknown (the checks that need it are skipped)",
+       "particle density [kg/m3], > 0: the stability checks and checks.particle_count's mass. A "
+       "particle participant that reports its own material (LIGGGHTS does, from its script) is "
+       "judged with that; this value is then only compared with it (a warning names a "
+       "difference of more than 1 %)"},
+      {"youngs_modulus", "unknown (the Rayleigh-time check is skipped)",
+       "Young's modulus [Pa] for the Rayleigh-time check, > 0; as particle_density, only "
+       "compared with the participant's own when it reports one"},
       {"poisson_ratio", "0.3", "Poisson ratio for the Rayleigh-time check; in (-1, 0.5)"},
   };
   return k;

@@ -10,18 +10,25 @@ namespace cosim::orchestrator {
 
 const std::vector<KeySpec>& CouplingSection::keys() {
   static const std::vector<KeySpec> k = {
-      {"dt", "required", "coupling interval = CFD time step [s]; > 0"},
+      {"dt", "required",
+       "coupling interval = CFD time step [s]; > 0, and (end_time - start_time) / dt at most 1e9 "
+       "steps"},
       {"dem_steps", "1", "DEM steps per coupling interval; a whole number in 1 .. 1e7"},
       {"end_time", "required", "simulated time at the end [s]; later than start_time"},
       {"start_time", "0", "simulated time at the start [s]"},
       {"scheme", "parallel",
        "parallel (sample the gas between the intervals, both solvers waiting) | overlapped (the "
        "fluid samples at the end of its step where the parcels will be, position + velocity dt, "
-       "while the particles advance; docs/performance.md)"},
+       "while the particles advance: faster where sampling is a large part of the step; the "
+       "placement "
+       "is off by the change of velocity over one interval, a dt^2/2; the mass balance is "
+       "unchanged; docs/performance.md)"},
       {"cpus", "off",
        "off (the processes run wherever the system puts them) | auto (with 2 or more CPUs and both "
-       "solvers started here as single processes: the particles and the orchestrator bound to the "
-       "first CPU, the fluid to the others; docs/performance.md, \"Bound to CPUs\")"},
+       "solvers started here as single processes (launch local, mpi 1): the particles and the "
+       "orchestrator bound to the first CPU the run may use, the fluid (every thread, set before "
+       "the adapter starts) to the others; otherwise the run log says why it was not applied; "
+       "docs/performance.md, \"Bound to CPUs\")"},
   };
   return k;
 }

@@ -11,11 +11,42 @@ namespace fs = std::filesystem;
 
 const std::vector<KeySpec>& ModelsSection::keys() {
   static const std::vector<KeySpec> k = {
-      {"drag", "none", "{ law: NAME, parameters... } (cosim models lists the laws)"},
-      {"forces", "[]", "list of { law: NAME, parameters... }"},
-      {"mass_transfer", "none", "{ law: NAME, parameters... }: coating from the precursor"},
-      {"coating_zone", "everywhere", "{ shape: NAME, parameters... }; needs mass_transfer"},
+      {"drag", "none",
+       "{ law: NAME, parameters... }: the drag on the parcels and its reaction on the gas; the "
+       "laws and their parameters: docs/models.md; every law also takes the keys of "
+       "models.drag below"},
+      {"forces", "[]", "list of { law: NAME, parameters... }, e.g. pressure_gradient"},
+      {"mass_transfer", "none",
+       "{ law: NAME, parameters... }: coating from the precursor; absent, no species is solved "
+       "and no precursor or coating field is sent anywhere"},
+      {"coating_zone", "everywhere",
+       "{ shape: NAME, parameters... }: where the precursor deposits; needs mass_transfer; the "
+       "fields of each shape: docs/models.md"},
       {"plugins", "[]", "shared libraries registering more laws, relative to the scenario file"},
+  };
+  return k;
+}
+
+const std::vector<KeySpec>& ModelsSection::dragKeys() {
+  static const std::vector<KeySpec> k = {
+      {"law", "required", "the drag law's name (cosim models lists them)"},
+      {"undisturbed_velocity", "none",
+       "none | self_disturbance | self_disturbance_transient: evaluate the drag with the gas "
+       "velocity the parcel would see without its own disturbance of its cell (any law, plugins "
+       "included). self_disturbance takes the steady disturbance; self_disturbance_transient the "
+       "part of it built up so far, from a force history per parcel id that the coupler keeps "
+       "(and writes in checkpoints). Adds the cell_size and voidage fields; refused with "
+       "analytic-fluid (a prescribed flow has no wake of its own); docs/models.md, \"Undisturbed "
+       "gas velocity\""},
+      {"self_disturbance_gain", "1 (the lattice)",
+       "gamma, the gas solver's answer per unit force against the lattice's, 0.5 .. 2: the "
+       "calibration of the undisturbed-velocity estimate for the scene's mesh, particle, solver "
+       "settings and time step, measured with a held parcel (docs/models.md, \"Calibrating for "
+       "the gas solver\"). Read with self_disturbance(_transient), kept unused with an "
+       "explicit none, refused without undisturbed_velocity"},
+      {"self_disturbance_offset", "0 (the lattice)",
+       "beta, the parcel's own cell running ahead of the undisturbed gas with no force, "
+       "-0.3 .. 0.3; calibrated and read as self_disturbance_gain"},
   };
   return k;
 }

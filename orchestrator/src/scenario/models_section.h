@@ -29,6 +29,9 @@ struct ModelsSection {
   bool needsFluid() const { return drag || !forces.empty() || mass_transfer; }
 
   static const std::vector<KeySpec>& keys();
+  // The keys every drag law takes beside its own parameters (read by the registry's drag
+  // wrapper, models/src/registry.cpp, for built-in laws and plugins alike).
+  static const std::vector<KeySpec>& dragKeys();
 };
 
 // Every law is built once here, so that unknown names and parameters are errors of the file.

@@ -10,8 +10,9 @@ const std::vector<KeySpec>& OutputSection::keys() {
   static const std::vector<KeySpec> k = {
       {"folder", "runs/NAME",
        "run folder, relative to where cosim runs, without '..'; an existing one is never "
-       "overwritten (a -2, -3 suffix is added; a folder given with cosim run -o is refused "
-       "instead)"},
+       "overwritten (a -2, -3 suffix is added). Any other folder: cosim run -o FOLDER, which is "
+       "that run's or none: an existing folder that is not empty is refused, saying what to do "
+       "(another -o, remove it, --overwrite, or cosim resume when it holds a checkpoint)"},
       {"interval", "0", "particle snapshot interval [s]; 0 = every coupling step"},
   };
   return k;

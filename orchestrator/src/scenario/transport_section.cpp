@@ -14,9 +14,12 @@ const std::vector<KeySpec>& TransportSection::keys() {
        "tcp://HOST:PORT (port 1 .. 65535 or *; HOST an address, host name or interface that "
        "participants reach, not * (every interface); tcp://:PORT binds the address of this "
        "host's name). tcp:// is encrypted with CurveZMQ unless insecure is true"},
-      {"connect", "bind", "the address participants connect to, if not the bind address"},
-      {"heartbeat_timeout", "10", "seconds without a sign of life from a participant; > 0"},
-      {"handshake_timeout", "60", "seconds for every participant to connect and say Hello; > 0"},
+      {"connect", "the bind address",
+       "the address participants connect to, if not the bind address; a tcp:// one needs a HOST"},
+      {"heartbeat_timeout", "10",
+       "seconds without a sign of life from a participant before it counts as gone; > 0, <= 1e6"},
+      {"handshake_timeout", "60",
+       "seconds for every participant to connect and say Hello; > 0, <= 1e6"},
       {"insecure", "false",
        "true: a tcp:// link without CurveZMQ, neither encrypted nor authenticated (anyone who "
        "reaches the port can read the particle data); every run then warns. Only for a network "
