@@ -32,18 +32,29 @@ TEST(AdapterOptions, DefaultsAndValues) {
 }
 
 TEST(AdapterOptions, ErrorsNameTheKey) {
-  EXPECT_NE(errorOf("").find("needs at least `script:"), std::string::npos);
-  EXPECT_NE(errorOf("impact_speed: 1").find("options.script: missing"), std::string::npos);
-  EXPECT_NE(
-      errorOf("{script: a, impact_speed: -1}").find("options.impact_speed: must be a positive"),
-      std::string::npos);
-  EXPECT_NE(
-      errorOf("{script: a, impact_speed: fast}").find("options.impact_speed: expected a number"),
-      std::string::npos);
-  EXPECT_NE(errorOf("{script: a, dt_check: maybe}").find("'maybe' is not one of refuse, warn, off"),
+  EXPECT_NE(errorOf("").find("options.script: missing; the liggghts adapter needs at least "
+                             "`script:"),
+            std::string::npos)
+      << errorOf("");
+  EXPECT_NE(errorOf("impact_speed: 1").find("participants.particles.options.script: missing"),
+            std::string::npos)
+      << errorOf("impact_speed: 1");
+  EXPECT_NE(errorOf("{script: a, impact_speed: -1}")
+                .find("options.impact_speed: expected a number > 0, got -1"),
             std::string::npos);
-  EXPECT_NE(errorOf("{script: a, scrpit: b}").find("options.scrpit: unknown option"),
+  EXPECT_NE(errorOf("{script: a, impact_speed: fast}")
+                .find("options.impact_speed: expected a number, got 'fast'"),
             std::string::npos);
-  EXPECT_NE(errorOf("[1, 2]").find("must be a mapping"), std::string::npos);
+  EXPECT_NE(errorOf("{script: a, dt_check: maybe}")
+                .find("options.dt_check: expected one of refuse, warn, off, got 'maybe'"),
+            std::string::npos);
+  EXPECT_NE(errorOf("{script: a, scrpit: b}")
+                .find("options.scrpit: unknown option of cosim-liggghts; it knows script, "
+                      "impact_speed, dt_check (docs/liggghts.md)"),
+            std::string::npos);
+  EXPECT_NE(errorOf("[1, 2]").find("expected a map of options"), std::string::npos);
   EXPECT_NE(errorOf("script: [a").find("not valid YAML"), std::string::npos);
+  EXPECT_NE(errorOf("script: [a, b]").find("options.script: expected a text, got '[a, b]'"),
+            std::string::npos)
+      << errorOf("script: [a, b]");
 }

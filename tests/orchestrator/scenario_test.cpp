@@ -5,8 +5,10 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "cosim/models/registry.h"
@@ -377,6 +379,45 @@ TEST(ScenarioDocs, ReferencePageIsMadeFromTheDeclarations) {
   EXPECT_TRUE(page == scenarioReference())
       << "docs/scenario-reference.md differs from the declarations: run "
          "`build/bin/cosim reference > docs/scenario-reference.md`";
+}
+
+// Each adapter's option table in its page is what the adapter prints from its declarations
+// (--options-reference), between the page's markers.
+TEST(ScenarioDocs, AdapterOptionTablesAreMadeFromTheAdapters) {
+  const std::vector<std::pair<std::string, std::string>> adapters = {
+      {"cosim-analytic-fluid", "docs/analytic-adapters.md"},
+      {"cosim-free-particles", "docs/analytic-adapters.md"},
+      {"cosim-liggghts", "docs/liggghts.md"},
+      {"cosimFoam", "docs/openfoam.md"}};
+  for (const auto& [exe, page_name] : adapters) {
+    const std::filesystem::path bin = std::filesystem::path(COSIM_BIN_DIR) / exe;
+    if (!std::filesystem::exists(bin)) {
+      std::cout << "[ note ] " << exe << " is not built here; its table is not compared\n";
+      continue;
+    }
+    std::string printed;
+    {
+      FILE* p = popen(("'" + bin.string() + "' --options-reference").c_str(), "r");
+      ASSERT_NE(p, nullptr) << exe;
+      char buf[4096];
+      for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) printed.append(buf, n);
+      EXPECT_EQ(pclose(p), 0) << exe;
+    }
+    EXPECT_EQ(printed.rfind("| option | default | meaning |\n", 0), 0u) << exe << ": " << printed;
+    std::ifstream in(std::string(COSIM_SOURCE_DIR) + "/" + page_name);
+    ASSERT_TRUE(in) << page_name;
+    const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string begin = "<!-- the options of " + exe + ":";
+    const std::string end = "<!-- end of the options of " + exe + " -->";
+    const auto b = page.find(begin);
+    ASSERT_NE(b, std::string::npos) << page_name << " has no table of " << exe;
+    const auto from = page.find('\n', b) + 1;
+    const auto to = page.find(end, from);
+    ASSERT_NE(to, std::string::npos) << page_name << ": the table of " << exe << " has no end";
+    EXPECT_EQ(page.substr(from, to - from), printed)
+        << page_name << ": the table of " << exe << " differs from `" << exe
+        << " --options-reference`; paste its output between the markers";
+  }
 }
 
 TEST(ScenarioDocs, EveryDeclaredKeyHasItsMeaningAndIsInTheReference) {

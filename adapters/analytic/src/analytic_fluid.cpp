@@ -9,7 +9,7 @@
 #include "analytic_main.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
-#include "yaml_options.h"
+#include "cosim/util/adapter_options.h"
 
 namespace cosim::analytic {
 
@@ -27,50 +27,62 @@ class AnalyticFluid final : public link::Solver {
     return c;
   }
 
+  static const std::vector<util::OptionSpec>& optionSpecs() {
+    static const std::vector<util::OptionSpec> s = {
+        {"velocity", "[0, 0, 0]", "[m/s] the gas velocity (uniform), or on the pipe's axis"},
+        {"profile", "uniform",
+         "uniform | parabolic (a pipe's laminar profile, zero at pipe_radius from the axis "
+         "through axis_origin along z)"},
+        {"pipe_radius", "required with parabolic", "[m] the pipe's radius; > 0"},
+        {"axis_origin", "[0, 0, 0]", "[m] a point of the pipe's axis (along z)"},
+        {"density", "1.2", "[kg/m3] the gas density; > 0"},
+        {"viscosity", "1.8e-5", "[Pa s] the gas viscosity; > 0"},
+        {"voidage", "1", "the voidage every parcel sees; in (0, 1]"},
+        {"precursor_fraction", "0",
+         "the precursor mass fraction every parcel sees, in [0, 1]; a reservoir that never "
+         "runs out (what the parcels take up is fed in again)"},
+        {"pressure_gradient", "hydrostatic",
+         "hydrostatic (density times gravity) | none | [x, y, z] in Pa/m"},
+        {"gravity", "[0, 0, -9.81]", "[m/s2] for the hydrostatic pressure gradient"},
+        {"cell_size", "0.004", "[m] the cell size the fluid reports (cell_size field); > 0"},
+        {"domain_min", "unbounded",
+         "[m] lower corner of the box the fluid fills; a parcel outside it is reported as lost "
+         "(it left the domain)"},
+        {"domain_max", "unbounded", "[m] upper corner of that box"},
+    };
+    return s;
+  }
+
   void configure(const wire::Welcome& w) override {
-    Options o(w.config_yaml(), "analytic-fluid options");
-    o.allowOnly({"velocity", "profile", "pipe_radius", "axis_origin", "density", "viscosity",
-                 "voidage", "precursor_fraction", "pressure_gradient", "gravity", "cell_size",
-                 "domain_min", "domain_max"});
+    const util::AdapterOptions o(w.config_yaml(), "fluid", "cosim-analytic-fluid", optionSpecs(),
+                                 "docs/analytic-adapters.md");
     send_ = {w.send().begin(), w.send().end()};
-    u_ = o.vec("velocity", {0, 0, 0});
-    profile_ = o.text("profile", "uniform");
-    if (profile_ != "uniform" && profile_ != "parabolic") {
-      throw std::runtime_error(
-          "analytic-fluid options: profile must be 'uniform' or 'parabolic', got '" + profile_ +
-          "'");
-    }
+    u_ = o.vec3("velocity", {0, 0, 0});
+    profile_ = o.choice("profile", "uniform", {"uniform", "parabolic"});
     if (profile_ == "parabolic") {
+      if (!o.has("pipe_radius"))
+        o.fail("pipe_radius", "missing; a parabolic profile needs the pipe's radius [m]");
       R_ = o.positive("pipe_radius", 0);
-      axis_ = o.vec("axis_origin", {0, 0, 0});
+      axis_ = o.vec3("axis_origin", {0, 0, 0});
     }
     rho_ = o.positive("density", 1.2);
     mu_ = o.positive("viscosity", 1.8e-5);
     eps_ = o.number("voidage", 1.0);
-    if (!(eps_ > 0 && eps_ <= 1))
-      throw std::runtime_error("analytic-fluid options: voidage must be in (0, 1]");
-    Y_ = o.number("precursor_fraction", 0.0);
-    if (Y_ < 0 || Y_ > 1)
-      throw std::runtime_error("analytic-fluid options: precursor_fraction must be in [0, 1]");
-    const auto g = o.vec("gravity", {0, 0, -9.81});
-    if (o.has("pressure_gradient") && o.root()["pressure_gradient"].IsSequence()) {
-      gradp_ = o.vec("pressure_gradient", {0, 0, 0});
+    if (!(eps_ > 0 && eps_ <= 1)) o.fail("voidage", "expected a value in (0, 1]");
+    Y_ = o.number("precursor_fraction", 0.0, 0.0, 1.0);
+    const auto g = o.vec3("gravity", {0, 0, -9.81});
+    if (o.isList("pressure_gradient")) {
+      gradp_ = o.vec3("pressure_gradient", {0, 0, 0});
     } else {
-      const std::string mode = o.text("pressure_gradient", "hydrostatic");
-      if (mode != "hydrostatic" && mode != "none") {
-        throw std::runtime_error(
-            "analytic-fluid options: pressure_gradient must be 'hydrostatic', 'none' or [x, y, z] "
-            "in Pa/m");
-      }
+      const std::string mode =
+          o.choice("pressure_gradient", "hydrostatic", {"hydrostatic", "none"});
       // Still or uniformly moving fluid in gravity: grad p = rho_f g.
-      for (int i = 0; i < 3; ++i)
-        gradp_[static_cast<std::size_t>(i)] =
-            mode == "hydrostatic" ? rho_ * g[static_cast<std::size_t>(i)] : 0.0;
+      for (std::size_t i = 0; i < 3; ++i) gradp_[i] = mode == "hydrostatic" ? rho_ * g[i] : 0.0;
     }
     cell_ = o.positive("cell_size", 0.004);
     if (o.has("domain_min") || o.has("domain_max")) {
-      dmin_ = o.vec("domain_min", {-1e300, -1e300, -1e300});
-      dmax_ = o.vec("domain_max", {1e300, 1e300, 1e300});
+      dmin_ = o.vec3("domain_min", {-1e300, -1e300, -1e300});
+      dmax_ = o.vec3("domain_max", {1e300, 1e300, 1e300});
       bounded_ = true;
     }
   }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "cosim/link/session.h"
+#include "cosim/util/adapter_options.h"
 #include "cosim/util/errors.h"
 
 namespace cosim::analytic {
@@ -16,6 +17,10 @@ int analyticMain(int argc, char** argv, const std::string& program, const std::s
   try {
     const auto opts = link::ParticipantOptions::parse(argc, argv, program + ": " + what);
     if (!opts) return exit_code::ok;  // --help
+    if (opts->options_reference) {
+      std::cout << util::optionsTable(Solver::optionSpecs());
+      return exit_code::ok;
+    }
     if (!opts->check_options.empty()) {
       return link::checkSceneOptions(*opts, [](const wire::Welcome& w, int) {
         Solver solver;

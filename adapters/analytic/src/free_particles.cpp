@@ -13,7 +13,7 @@
 #include "analytic_main.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
-#include "yaml_options.h"
+#include "cosim/util/adapter_options.h"
 
 namespace cosim::analytic {
 
@@ -38,47 +38,58 @@ class FreeParticles final : public link::Solver {
     return c;
   }
 
+  static const std::vector<util::OptionSpec>& optionSpecs() {
+    static const std::vector<util::OptionSpec> s = {
+        {"density", "2500", "[kg/m3] the particle density; > 0"},
+        {"gravity", "[0, 0, -9.81]", "[m/s2]"},
+        {"fixed", "false", "true: the particles do not move (a held particle, a fixed bed)"},
+        {"particles", "none",
+         "a list of { id, position: [x, y, z], velocity: [x, y, z], radius }: id defaults to "
+         "the previous one + 1 (from 1), velocity to [0, 0, 0]; radius [m] > 0"},
+        {"lattice", "none",
+         "{ count: [nx, ny, nz], origin: [x, y, z], spacing, radius }: particles on a regular "
+         "lattice, after those of particles:; spacing and radius [m] > 0"},
+        {"domain_min", "unbounded",
+         "[m] lower corner of the box the particles live in; one that leaves it is deleted and "
+         "reported"},
+        {"domain_max", "unbounded", "[m] upper corner of that box"},
+    };
+    return s;
+  }
+
   void configure(const wire::Welcome& w) override {
-    Options o(w.config_yaml(), "free-particles options");
-    o.allowOnly(
-        {"density", "gravity", "fixed", "particles", "lattice", "domain_min", "domain_max"});
+    const util::AdapterOptions o(w.config_yaml(), "particles", "cosim-free-particles",
+                                 optionSpecs(), "docs/analytic-adapters.md");
     send_ = {w.send().begin(), w.send().end()};
     rho_ = o.positive("density", 2500.0);
-    g_ = o.vec("gravity", {0, 0, -9.81});
+    g_ = o.vec3("gravity", {0, 0, -9.81});
     fixed_ = o.flag("fixed", false);
     if (o.has("particles")) {
-      const auto& list = o.root()["particles"];
-      if (!list.IsSequence())
-        throw std::runtime_error("free-particles options: particles must be a list");
+      const YAML::Node list = o.node("particles");
+      if (!list.IsSequence()) o.fail("particles", "expected a list of { position, radius, ... }");
       std::int64_t next = 1;
       for (std::size_t i = 0; i < list.size(); ++i) {
-        const auto& n = list[i];
+        const YAML::Node n = list[i];
         const std::string k = "particles[" + std::to_string(i) + "]";
+        if (!n.IsMap()) o.fail(k, "expected a map { id, position, velocity, radius }");
         Particle p{};
-        p.id = n["id"] ? n["id"].as<std::int64_t>() : next;
+        p.id = n["id"] ? static_cast<std::int64_t>(o.numberAt(n["id"], k + ".id")) : next;
         next = p.id + 1;
-        if (!n["position"])
-          throw std::runtime_error("free-particles options: " + k + ".position missing");
-        p.x = o.vec(n["position"], k + ".position");
-        p.v =
-            n["velocity"] ? o.vec(n["velocity"], k + ".velocity") : std::array<double, 3>{0, 0, 0};
-        if (!n["radius"])
-          throw std::runtime_error("free-particles options: " + k + ".radius missing");
-        p.r = o.number(n["radius"], k + ".radius");
-        if (!(p.r > 0))
-          throw std::runtime_error("free-particles options: " + k + ".radius must be > 0");
+        p.x = o.vec3At(n["position"], k + ".position");
+        p.v = n["velocity"] ? o.vec3At(n["velocity"], k + ".velocity")
+                            : std::array<double, 3>{0, 0, 0};
+        p.r = o.numberAt(n["radius"], k + ".radius");
+        if (!(p.r > 0)) o.fail(k + ".radius", "expected a radius > 0 [m]");
         add(p);
       }
     }
     if (o.has("lattice")) {
-      const auto& l = o.root()["lattice"];
-      const auto count = o.vec(l["count"], "lattice.count");
-      const auto origin = o.vec(l["origin"], "lattice.origin");
-      const double s = o.number(l["spacing"], "lattice.spacing");
-      const double r = o.number(l["radius"], "lattice.radius");
-      if (!(r > 0) || !(s > 0))
-        throw std::runtime_error(
-            "free-particles options: lattice.radius and lattice.spacing must be > 0");
+      const YAML::Node l = o.node("lattice");
+      const auto count = o.vec3At(l["count"], "lattice.count");
+      const auto origin = o.vec3At(l["origin"], "lattice.origin");
+      const double s = o.numberAt(l["spacing"], "lattice.spacing");
+      const double r = o.numberAt(l["radius"], "lattice.radius");
+      if (!(r > 0) || !(s > 0)) o.fail("lattice", "radius and spacing must be > 0 [m]");
       std::int64_t id = particles_.empty() ? 1 : particles_.rbegin()->first + 1;
       for (int k = 0; k < static_cast<int>(count[2]); ++k)
         for (int j = 0; j < static_cast<int>(count[1]); ++j)
@@ -91,13 +102,11 @@ class FreeParticles final : public link::Solver {
             add(p);
           }
     }
-    if (particles_.empty())
-      throw std::runtime_error(
-          "free-particles options: no particles (give 'particles:' or 'lattice:')");
+    if (particles_.empty()) o.fail("particles", "no particles: give particles: or lattice:");
     if (o.has("domain_min") || o.has("domain_max")) {
       bounded_ = true;
-      dmin_ = o.vec("domain_min", {-1e300, -1e300, -1e300});
-      dmax_ = o.vec("domain_max", {1e300, 1e300, 1e300});
+      dmin_ = o.vec3("domain_min", {-1e300, -1e300, -1e300});
+      dmax_ = o.vec3("domain_max", {1e300, 1e300, 1e300});
     }
   }
 

@@ -137,6 +137,9 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
                  "folder: case files and restarts come over the link, checkpoints go back");
   app.add_option("--ranks", o.check_ranks, "with --check-options: the MPI ranks of the run")
       ->check(CLI::Range(1, 4096));
+  app.add_flag("--options-reference", o.options_reference,
+               "print this adapter's options (the scenario's participants.NAME.options) with "
+               "their defaults and meaning as a Markdown table, and exit");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp&) {
@@ -147,7 +150,7 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   }
   o.command_timeout_ms = 1000 * command_timeout_s;
   if (rest != nullptr) *rest = app.remaining();
-  if (!o.check_options.empty()) return o;
+  if (!o.check_options.empty() || o.options_reference) return o;
   if (o.endpoint.empty() || o.name.empty()) throw std::runtime_error(usage);
   if (!token_file.empty()) {
     o.token = readTokenFile(token_file);
@@ -375,7 +378,8 @@ void Session::sendError(const std::string& message, const std::string& where) {
 bool checkOptionsRequested(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--check-options" || a.rfind("--check-options=", 0) == 0) return true;
+    if (a == "--check-options" || a.rfind("--check-options=", 0) == 0 || a == "--options-reference")
+      return true;
   }
   return false;
 }

@@ -7,6 +7,7 @@
 #include <exception>
 #include <vector>
 
+#include "cosim/liggghts/adapter_options.h"
 #include "cosim/liggghts/liggghts_solver.h"
 #include "cosim/liggghts/scene_check.h"
 #include "cosim/link/session.h"
@@ -14,11 +15,16 @@
 
 int main(int argc, char** argv) {
   if (cosim::link::checkOptionsRequested(argc, argv)) {
-    // `cosim validate`: no MPI, no LIGGGHTS; only what can be told from the files
+    // `cosim validate` (or the option table): no MPI, no LIGGGHTS; only what the files tell
     try {
       const auto options = cosim::link::ParticipantOptions::parse(
           argc, argv, "cosim-liggghts --check-options FILE: check a scene, start nothing");
       if (!options) return 0;
+      if (options->options_reference) {
+        std::fputs(cosim::util::optionsTable(cosim::liggghts::AdapterOptions::specs()).c_str(),
+                   stdout);
+        return 0;
+      }
       return cosim::link::checkSceneOptions(
           *options, [](const cosim::wire::Welcome& w, int) { cosim::liggghts::checkScene(w); });
     } catch (const std::exception& e) {

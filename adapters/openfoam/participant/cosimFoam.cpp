@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "AdapterSettings.h"
 #include "FoamParticipant.h"
 #include "RankBridge.h"
 #include "SceneCheck.h"
@@ -44,6 +45,10 @@ int main(int argc, char** argv) {
         &rest);
     if (!parsed) return 0;  // --help
     options = *parsed;
+    if (options.options_reference) {
+      std::cout << cosim::util::optionsTable(cosim::foam::adapterSettingSpecs());
+      return 0;
+    }
     if (!options.check_options.empty()) {
       // `cosim validate`: no MPI, no OpenFOAM; only what the files tell
       return cosim::link::checkSceneOptions(options, [](const cosim::wire::Welcome& w, int ranks) {

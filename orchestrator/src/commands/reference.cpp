@@ -1,8 +1,9 @@
 // cosim reference: every scenario key with its default and meaning (docs/scenario-reference.md)
+#include "scenario/reference.h"
+
 #include <iostream>
 
 #include "commands.h"
-#include "scenario/reference.h"
 
 namespace cosim::orchestrator {
 

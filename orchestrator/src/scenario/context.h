@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "cosim/util/adapter_options.h"
 #include "cosim/util/errors.h"
 
 namespace cosim::orchestrator {
@@ -23,12 +24,9 @@ class ScenarioError : public InputError {
 };
 
 // One key of a section, declared next to the code that reads it: its name, its default
-// ("required" if it has none) and what it means, with its unit and the values it allows.
-struct KeySpec {
-  std::string name;
-  std::string default_value;
-  std::string doc;
-};
+// ("required" if it has none) and what it means, with its unit and the values it allows. The
+// same declaration as an adapter's options.
+using KeySpec = util::OptionSpec;
 
 // Error helper: "<file>:<line>: <key>: <what>", or "command line --set ...: <key>: <what>" for
 // a value that came from the command line. <file> is the file that gave the key: the scenario,

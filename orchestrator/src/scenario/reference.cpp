@@ -6,30 +6,12 @@
 
 #include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
+#include "cosim/util/adapter_options.h"
 #include "scenario.h"
 
 namespace cosim::orchestrator {
 
 namespace {
-
-// A table cell: '|' would end the cell, a line break the row, '<' before a letter open an HTML
-// tag.
-std::string cell(const std::string& text) {
-  std::string out;
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (c == '<' && i + 1 < text.size() && std::isalpha(static_cast<unsigned char>(text[i + 1]))) {
-      out += "&lt;";
-    } else if (c == '|') {
-      out += "\\|";
-    } else if (c == '\n') {
-      out += ' ';
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
 
 std::string names(const std::vector<std::string>& list) {
   std::string out;
@@ -38,11 +20,7 @@ std::string names(const std::vector<std::string>& list) {
 }
 
 void table(std::ostream& os, const std::string& prefix, const std::vector<KeySpec>& keys) {
-  os << "| key | default | meaning |\n|---|---|---|\n";
-  for (const auto& k : keys)
-    os << "| `" << prefix << k.name << "` | " << cell(k.default_value) << " | " << cell(k.doc)
-       << " |\n";
-  os << "\n";
+  os << util::optionsTable(keys, "key", prefix) << "\n";
 }
 
 const KeySpec& topLevel(const std::string& name) {
@@ -70,12 +48,15 @@ std::string scenarioReference() {
   std::ostringstream os;
   os << "# Scenario key reference\n\n"
         "<!-- Made by `cosim reference > docs/scenario-reference.md` from the declarations in\n"
-        "orchestrator/src/scenario.cpp and orchestrator/src/scenario/*_section.cpp; edit those, not\n"
+        "orchestrator/src/scenario.cpp and orchestrator/src/scenario/*_section.cpp; edit those, "
+        "not\n"
         "this page (a test compares the two). -->\n\n"
-        "Every key a `scenario.yaml` may hold, with its default and what it means, as the code that\n"
+        "Every key a `scenario.yaml` may hold, with its default and what it means, as the code "
+        "that\n"
         "reads it declares it; `cosim reference` prints this page for the build you have. A key\n"
         "not listed is an error naming the file and line. How the file is read (`extends`,\n"
-        "`${expressions}`, `--set`, `--unset`) and worked examples: [scenario.md](scenario.md).\n\n";
+        "`${expressions}`, `--set`, `--unset`) and worked examples: "
+        "[scenario.md](scenario.md).\n\n";
 
   os << "## The top level\n\n";
   table(os, "", topLevelKeys());
@@ -90,8 +71,10 @@ std::string scenarioReference() {
   table(os, "participants.NAME.", ParticipantSpec::keys());
   os << "`participants.NAME.slurm` (with `launch: slurm`):\n\n";
   table(os, "participants.NAME.slurm.", SlurmLaunch::keys());
-  os << "`participants.NAME.options` is the adapter's own: [openfoam.md](openfoam.md) (`openfoam`),\n"
-        "[liggghts.md](liggghts.md) (`liggghts`), [models.md](models.md) (the analytic adapters).\n\n";
+  os << "`participants.NAME.options` is the adapter's own: [openfoam.md](openfoam.md) "
+        "(`openfoam`),\n"
+        "[liggghts.md](liggghts.md) (`liggghts`), [models.md](models.md) (the analytic "
+        "adapters).\n\n";
 
   section(os, "coupling", CouplingSection::keys());
   section(os, "constants", ConstantsSection::keys());

@@ -47,6 +47,9 @@ struct ParticipantOptions {
   // --endpoint and --name are then not needed (checkSceneOptions).
   std::string check_options;
   int check_ranks = 1;
+  // --options-reference: print the adapter's scenario options (participants.NAME.options) as a
+  // Markdown table and exit; --endpoint and --name are then not needed.
+  bool options_reference = false;
   // --workdir DIR: a folder of the participant's own on its node, for a participant that does
   // not see the run folder (no shared filesystem, docs/cluster.md). The case files and restart
   // come in the Welcome and are written here; checkpoints are written here and sent back.
@@ -112,8 +115,8 @@ using SceneCheck = std::function<void(const wire::Welcome& welcome, int ranks)>;
 // accepted" (exit 0) or the reason to stderr (exit 2). No MPI, no solver, no connection.
 int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check);
 
-// True when the command line asks for --check-options (for adapters that must decide before
-// MPI_Init whether to start MPI at all).
+// True when the command line asks for --check-options or --options-reference (for adapters that
+// must decide before MPI_Init whether to start MPI at all).
 bool checkOptionsRequested(int argc, char** argv);
 
 // Coupling scheme `overlapped`: the particles of Advance.sample_ahead where they will be after

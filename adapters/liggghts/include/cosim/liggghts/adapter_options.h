@@ -1,11 +1,12 @@
 // Options of the particles participant when its adapter is `liggghts` (the participant's
-// `options:` node of the scenario, received as Welcome.config_yaml):
-//   script: in.liggghts      LIGGGHTS input script, relative to the participant's folder (required)
-//   impact_speed: 2.0        [m/s] largest expected impact speed, for the Hertz contact time
-//   dt_check: refuse         refuse | warn | off: what to do with an unstable DEM time step
+// `options:` node of the scenario, received as Welcome.config_yaml), declared with their
+// defaults and meaning in AdapterOptions::specs() (docs/liggghts.md shows that table).
 #pragma once
 
 #include <string>
+#include <vector>
+
+#include "cosim/util/adapter_options.h"
 
 namespace cosim::liggghts {
 
@@ -16,8 +17,9 @@ struct AdapterOptions {
   double impact_speed = 2.0;
   DtCheckPolicy dt_check = DtCheckPolicy::refuse;
 
-  // Throws std::runtime_error naming the key, what was expected and what to do.
+  // Throws cosim::InputError naming the key, what was expected and what to do.
   static AdapterOptions parse(const std::string& yaml_text);
+  static const std::vector<util::OptionSpec>& specs();
 };
 
 }  // namespace cosim::liggghts
