@@ -28,8 +28,10 @@ std::vector<std::string> split(const std::string& s) {
   throw UndefinedQuantity("observable quantity '" + q + "' has no value: " + why);
 }
 
-double stat(const std::vector<double>& v, const std::string& s, const std::string& q) {
-  if (v.empty()) undefined(q, "no values (no particles left or no rows)");
+// `none`: why there are no values, for the message
+double stat(const std::vector<double>& v, const std::string& s, const std::string& q,
+            const std::string& none) {
+  if (v.empty()) undefined(q, none);
   double sum = 0, mn = v[0], mx = v[0];
   for (double x : v) {
     sum += x;
@@ -95,7 +97,7 @@ double evaluateQuantity(const std::string& q, const link::ParticleData& state,
     std::vector<double> vals;
     const std::size_t comp = p.size() == 4 ? static_cast<std::size_t>(p[2][0] - 'x') : 0;
     for (std::size_t i = 0; i < state.size(); ++i) vals.push_back(v[c * i + comp]);
-    return stat(vals, p.back(), q);
+    return stat(vals, p.back(), q, "no particle was left in the domain at the end of the run");
   }
   if (p[0] == "series") {
     auto it = series.find(p[1]);
@@ -105,7 +107,12 @@ double evaluateQuantity(const std::string& q, const link::ParticleData& state,
       // rows without a value (NaN: the pressure drop of the initial row) are skipped
       if (time[i] >= after && std::isfinite(it->second[i])) vals.push_back(it->second[i]);
     }
-    return stat(vals, p[2], q);
+    std::ostringstream none;
+    none << "no row of timeseries.csv at t >= " << after << " s has a value of " << p[1] << " ("
+         << time.size() << " rows";
+    if (!time.empty()) none << ", the last at t = " << time.back() << " s";
+    none << ")";
+    return stat(vals, p[2], q, none.str());
   }
   auto it = totals.find(p[1]);
   if (it == totals.end()) bad(q, "the run has no total '" + p[1] + "'");

@@ -56,6 +56,26 @@ TEST(Observables, QuantitiesAgainstHandValues) {
                std::runtime_error);
   EXPECT_THROW(evaluateQuantity("series.nothing.mean", s, t, series, totals, -1),
                std::runtime_error);
+  // No values: the reason says which of the two it was
+  const auto whyUndefined = [&](const std::string& q, const cosim::link::ParticleData& state,
+                                double after) -> std::string {
+    try {
+      evaluateQuantity(q, state, t, series, totals, after);
+    } catch (const UndefinedQuantity& e) {
+      return e.what();
+    }
+    return "(a value)";
+  };
+  cosim::link::ParticleData none;
+  none.field("coating_mass") = {};
+  EXPECT_NE(whyUndefined("particles.coating_mass.mean", none, -1)
+                .find("no particle was left in the domain at the end of the run"),
+            std::string::npos);
+  EXPECT_NE(whyUndefined("series.pressure_drop.mean", s, 0.5)
+                .find("no row of timeseries.csv at t >= 0.5 s has a value of pressure_drop (4 "
+                      "rows, the last at t = 0.4 s)"),
+            std::string::npos)
+      << whyUndefined("series.pressure_drop.mean", s, 0.5);
   EXPECT_NEAR(*relativeError(1.01, 1.0), 0.01, 1e-15);
   EXPECT_DOUBLE_EQ(*relativeError(0.5, 0.0), 0.5);
 }

@@ -12,8 +12,8 @@ using cosim::util::OptionSpec;
 namespace {
 
 const std::vector<OptionSpec> kSpecs = {
-    {"speed", "1", "[m/s]"},   {"count", "3", "whole"},      {"mode", "a", "a | b"},
-    {"on", "false", "switch"}, {"origin", "[0, 0, 0]", "[m]"}, {"patches", "[inlet]", "names"},
+    {"speed", "1", "[m/s]"},       {"count", "3", "whole"},        {"mode", "a", "a | b"},
+    {"on", "false", "switch"},     {"origin", "[0, 0, 0]", "[m]"}, {"patches", "[inlet]", "names"},
     {"name", "required", "a text"}};
 
 AdapterOptions read(const std::string& yaml) {
@@ -34,8 +34,9 @@ std::string errorOf(F f) {
 }  // namespace
 
 TEST(AdapterOptions, ValuesAndDefaults) {
-  const auto o = read("{speed: 2.5, count: 4, mode: b, on: true, origin: [1, 2, 3], "
-                      "patches: top, name: x}");
+  const auto o = read(
+      "{speed: 2.5, count: 4, mode: b, on: true, origin: [1, 2, 3], "
+      "patches: top, name: x}");
   EXPECT_EQ(o.number("speed", 1, 0, 10), 2.5);
   EXPECT_EQ(o.whole("count", 3, 1, 9), 4);
   EXPECT_EQ(o.choice("mode", "a", {"a", "b"}), "b");
@@ -54,8 +55,9 @@ TEST(AdapterOptions, ValuesAndDefaults) {
 TEST(AdapterOptions, ErrorsNameTheScenarioKeyTheExpectedAndTheGiven) {
   const std::string key = "scenario participants.fluid.options.";
   EXPECT_EQ(errorOf([] { read("{spede: 1}"); }),
-            key + "spede: unknown option of test-adapter; it knows speed, count, mode, on, "
-                  "origin, patches, name (docs/x.md)");
+            key +
+                "spede: unknown option of test-adapter; it knows speed, count, mode, on, "
+                "origin, patches, name (docs/x.md)");
   EXPECT_EQ(errorOf([] { read("speed: fast").number("speed", 1); }),
             key + "speed: expected a number, got 'fast'");
   EXPECT_EQ(errorOf([] { read("speed: .nan").number("speed", 1); }),
@@ -66,11 +68,15 @@ TEST(AdapterOptions, ErrorsNameTheScenarioKeyTheExpectedAndTheGiven) {
             key + "speed: expected a number > 0, got 0");
   EXPECT_EQ(errorOf([] { read("count: 2.5").whole("count", 3, 1, 9); }),
             key + "count: expected a whole number from 1 to 9, got 2.5");
-  EXPECT_EQ(errorOf([] { read("mode: c").choice("mode", "a", {"a", "b"}); }),
+  EXPECT_EQ(errorOf([] {
+              read("mode: c").choice("mode", "a", {"a", "b"});
+            }),
             key + "mode: expected one of a, b, got 'c'");
   EXPECT_EQ(errorOf([] { read("on: maybe").flag("on", false); }),
             key + "on: expected true or false, got 'maybe'");
-  EXPECT_EQ(errorOf([] { read("origin: [1, 2]").vec3("origin", {0, 0, 0}); }),
+  EXPECT_EQ(errorOf([] {
+              read("origin: [1, 2]").vec3("origin", {0, 0, 0});
+            }),
             key + "origin: expected three numbers [x, y, z], got '[1, 2]'");
   EXPECT_EQ(errorOf([] { read("patches: {a: 1}").names("patches", {}); }),
             key + "patches: expected a name or a list of names, got '{a: 1}'");

@@ -59,8 +59,7 @@ AdapterOptions::AdapterOptions(const std::string& yaml, const std::string& parti
   }
   if (!root_ || root_.IsNull()) root_ = YAML::Node(YAML::NodeType::Map);
   if (!root_.IsMap())
-    throw InputError(where_ + ": expected a map of options (key: value), got '" + got(root_) +
-                     "'");
+    throw InputError(where_ + ": expected a map of options (key: value), got '" + got(root_) + "'");
   std::vector<std::string> known;
   for (const auto& s : specs) known.push_back(s.name);
   for (const auto& kv : root_) {
@@ -68,8 +67,8 @@ AdapterOptions::AdapterOptions(const std::string& yaml, const std::string& parti
     bool ok = false;
     for (const auto& k : known) ok = ok || k == key;
     if (!ok)
-      fail(key, "unknown option of " + adapter_ + "; it knows " + joined(known) + " (" + page_ +
-                    ")");
+      fail(key,
+           "unknown option of " + adapter_ + "; it knows " + joined(known) + " (" + page_ + ")");
   }
 }
 
@@ -86,8 +85,7 @@ std::string AdapterOptions::got(const YAML::Node& n) const {
   return e.c_str();
 }
 
-double AdapterOptions::number(const std::string& key, double fallback, double lo,
-                              double hi) const {
+double AdapterOptions::number(const std::string& key, double fallback, double lo, double hi) const {
   if (!has(key)) return fallback;
   const double v = numberAt(root_[key], key);
   if (!(v >= lo && v <= hi))
@@ -105,8 +103,8 @@ int AdapterOptions::whole(const std::string& key, int fallback, int lo, int hi) 
   if (!has(key)) return fallback;
   const double v = number(key, fallback, lo, hi);
   if (v != std::floor(v))
-    fail(key, "expected a whole number from " + std::to_string(lo) + " to " +
-                  std::to_string(hi) + ", got " + exact(v));
+    fail(key, "expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                  ", got " + exact(v));
   return static_cast<int>(v);
 }
 
@@ -126,9 +124,9 @@ std::string AdapterOptions::text(const std::string& key, const std::string& fall
   return n.Scalar();
 }
 
-std::string AdapterOptions::requiredText(const std::string& key,
-                                         const std::string& example) const {
-  if (!has(key)) fail(key, "missing; " + adapter_ + " needs it, e.g. `" + key + ": " + example + "`");
+std::string AdapterOptions::requiredText(const std::string& key, const std::string& example) const {
+  if (!has(key))
+    fail(key, "missing; " + adapter_ + " needs it, e.g. `" + key + ": " + example + "`");
   const std::string v = text(key, "");
   if (v.empty()) fail(key, "is empty; give it, e.g. `" + key + ": " + example + "`");
   return v;

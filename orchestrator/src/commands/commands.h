@@ -32,6 +32,11 @@ util::StopRequest& processStop();
 // while it writes).
 void stopAtOnceOnSignals();
 
+struct RunResult;
+// The end of cosim run and cosim resume: a stopped run's reason on stderr, or each observable
+// and the run folder on stdout (with -q too: it is the answer, not progress); the exit code.
+int reportRunEnd(const RunResult& r);
+
 // "a, b, c", or "(none)"
 std::string joinNames(const std::vector<std::string>& names);
 

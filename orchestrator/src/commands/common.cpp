@@ -1,6 +1,8 @@
 #include <csignal>
+#include <iostream>
 
 #include "commands.h"
+#include "coupler.h"
 #include "participants.h"
 
 namespace cosim::orchestrator {
@@ -20,6 +22,26 @@ const char* const kUnsetHelp =
 util::StopRequest& processStop() {
   static util::StopRequest stop;
   return stop;
+}
+
+int reportRunEnd(const RunResult& r) {
+  if (r.exit_code != 0) {
+    std::cerr << "\ncosim: run stopped\n" << r.message << "\n";
+    return r.exit_code;
+  }
+  for (const auto& v : r.observables) {
+    if (!v.undefined.empty()) {
+      std::cout << "cosim: " << v.name << ": no value (" << v.undefined << ")\n";
+      continue;
+    }
+    std::cout << "cosim: " << v.name << " = " << v.value;
+    if (v.reference)
+      std::cout << " (reference " << *v.reference << ", relative error " << *v.relative_error
+                << ")";
+    std::cout << "\n";
+  }
+  std::cout << "cosim: results in " << r.folder.string() << "\n";
+  return 0;
 }
 
 std::string joinNames(const std::vector<std::string>& names) {

@@ -38,10 +38,7 @@ void addResumeCommand(CLI::App& app, Commands& commands) {
                         o->run.stop = &processStop();
                         o->run.resume = std::filesystem::absolute(o->folder);
                         if (from->count() > 0) o->run.resume_from = o->from;
-                        RunResult r = Coupler(std::move(sc), o->run).run();
-                        if (r.exit_code != 0)
-                          std::cerr << "\ncosim: run stopped\n" << r.message << "\n";
-                        return r.exit_code;
+                        return reportRunEnd(Coupler(std::move(sc), o->run).run());
                       }});
 }
 

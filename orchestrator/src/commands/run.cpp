@@ -30,25 +30,7 @@ void addRunCommand(CLI::App& app, Commands& commands) {
                         if (!o->output.empty()) o->run.output = o->output;
                         catchStopSignals();
                         o->run.stop = &processStop();
-                        RunResult r = Coupler(std::move(sc), o->run).run();
-                        if (r.exit_code != 0) {
-                          std::cerr << "\ncosim: run stopped\n" << r.message << "\n";
-                          return r.exit_code;
-                        }
-                        for (const auto& v : r.observables) {
-                          if (!v.undefined.empty()) {
-                            std::cout << "cosim: " << v.name << ": no value (" << v.undefined
-                                      << ")\n";
-                            continue;
-                          }
-                          std::cout << "cosim: " << v.name << " = " << v.value;
-                          if (v.reference)
-                            std::cout << " (reference " << *v.reference << ", relative error "
-                                      << *v.relative_error << ")";
-                          std::cout << "\n";
-                        }
-                        std::cout << "cosim: results in " << r.folder.string() << "\n";
-                        return 0;
+                        return reportRunEnd(Coupler(std::move(sc), o->run).run());
                       }});
 }
 

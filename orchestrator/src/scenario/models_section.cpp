@@ -22,7 +22,9 @@ const std::vector<KeySpec>& ModelsSection::keys() {
       {"coating_zone", "everywhere",
        "{ shape: NAME, parameters... }: where the precursor deposits; needs mass_transfer; the "
        "fields of each shape: docs/models.md"},
-      {"plugins", "[]", "shared libraries registering more laws, relative to the scenario file"},
+      {"plugins", "[]",
+       "shared libraries registering more laws; a relative path is relative to the scenario "
+       "file's folder, also when given with --set (an absolute path is taken as it is)"},
   };
   return k;
 }
@@ -131,7 +133,10 @@ ModelsSection parseModels(const YAML::Node& m, const Context& ctx, const fs::pat
     for (std::size_t i = 0; i < m["plugins"].size(); ++i) {
       fs::path pth = dir / ctx.text(m["plugins"][i], "models.plugins");
       if (!fs::exists(pth))
-        ctx.fail(m["plugins"][i], "models.plugins", "plugin '" + pth.string() + "' not found");
+        ctx.fail(m["plugins"][i], "models.plugins",
+                 "plugin '" + pth.string() +
+                     "' not found (a relative path is taken from the scenario's folder, " +
+                     dir.string() + ", also with --set; give an absolute path for another place)");
       try {
         registry.loadPlugin(pth.string());
       } catch (const std::exception& e) {

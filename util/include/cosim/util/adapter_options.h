@@ -22,8 +22,8 @@ struct OptionSpec {
 
 // The options as a Markdown table: | option | default | meaning |, each name in backquotes after
 // `prefix` ("coupling."); '|' escaped, '<' before a letter written &lt; (not an HTML tag).
-std::string optionsTable(const std::vector<OptionSpec>& specs, const std::string& heading = "option",
-                         const std::string& prefix = "");
+std::string optionsTable(const std::vector<OptionSpec>& specs,
+                         const std::string& heading = "option", const std::string& prefix = "");
 
 class AdapterOptions {
  public:
