@@ -193,7 +193,11 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   if (!file.hasField(cosim::field::coating_mass)) {
     throw std::runtime_error(file.path().string() +
                              " has no coating_mass field: this scene has no coating "
-                             "(no mass_transfer model), so there is nothing to report on coating");
+                             "(no mass_transfer model), and cosim report analyses coating. The "
+                             "run's own records describe its bed: timeseries.csv (pressure_drop, "
+                             "particle_count), summary.json (observables), particles.xmf in "
+                             "ParaView, and `cosim piv " +
+                             run.string() + "` for the particle velocity at the front wall");
   }
   const auto& snaps = file.snapshots();
   if (snaps.empty()) throw std::runtime_error(file.path().string() + " holds no snapshot yet");
