@@ -27,6 +27,7 @@ packages=(
   dpkg-dev
   clang libclang-rt-14-dev    # libFuzzer targets (scripts/fuzz.sh)
   clang-format                # scripts/format-check.sh, run by scripts/test.sh
+  clang-tidy                  # scripts/tidy.sh, run by scripts/test.sh
   slurmd slurmctld slurm-client munge   # launch: slurm, tested on a one-node cluster (scripts/local-slurm.sh)
   iproute2 util-linux mount   # tests/scenarios/own_folder_test.cpp: ip netns, unshare, mount
 )

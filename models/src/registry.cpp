@@ -21,6 +21,7 @@ namespace {
 template <class M>
 std::vector<std::string> namesOf(const M& m) {
   std::vector<std::string> v;
+  v.reserve(m.size());
   for (const auto& [k, f] : m) v.push_back(k);
   return v;
 }

@@ -63,7 +63,7 @@ std::vector<std::string> digestDifferences(const std::map<std::string, std::stri
 
 class CheckpointStore {
  public:
-  explicit CheckpointStore(std::filesystem::path run_folder);
+  explicit CheckpointStore(const std::filesystem::path& run_folder);
   // A fresh temporary folder for a checkpoint at `time`, with one empty folder per participant.
   std::filesystem::path begin(double time, const std::vector<std::string>& participants) const;
   // Writes the coupler's state, renames the temporary folder to its final name and removes all

@@ -351,6 +351,7 @@ Replies Participants::exchange(std::map<std::string, wire::Envelope> messages,
   // Advance: the participant that answered last in the previous interval is the step's
   // critical path, so its message leaves first (the others' are serialized while it computes)
   std::vector<std::string> order;
+  order.reserve(messages.size());
   for (const auto& [name, env] : messages) order.push_back(name);
   if (reply == wire::Envelope::kAdvanced) {
     auto waited = [this](const std::string& n) {

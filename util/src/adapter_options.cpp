@@ -61,6 +61,7 @@ AdapterOptions::AdapterOptions(const std::string& yaml, const std::string& parti
   if (!root_.IsMap())
     throw InputError(where_ + ": expected a map of options (key: value), got '" + got(root_) + "'");
   std::vector<std::string> known;
+  known.reserve(specs.size());
   for (const auto& s : specs) known.push_back(s.name);
   for (const auto& kv : root_) {
     const std::string key = kv.first.Scalar();

@@ -24,6 +24,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path&
   if (argv.empty()) throw std::runtime_error("empty command");
   // Everything the child needs is prepared before fork (no allocation after it).
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   cpu_set_t cpu_set;

@@ -75,6 +75,7 @@ Engine::Engine(MPI_Comm comm, const std::filesystem::path& workdir)
   // -screen none crashes LIGGGHTS 3.8 in region code: the screen always goes to a file.
   std::vector<std::string> args = {"liggghts", "-screen", screen, "-log", log, "-echo", "both"};
   std::vector<char*> argv;
+  argv.reserve(args.size());
   for (auto& a : args) argv.push_back(a.data());
   guarded("starting LIGGGHTS",
           [&] { lmp_ = new LAMMPS_NS::LAMMPS(static_cast<int>(argv.size()), argv.data(), comm_); });
@@ -519,7 +520,8 @@ State Engine::state() const {
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
     if (rank_ == 0) {
       std::exclusive_scan(counts.begin(), counts.end(), offsets.begin(), 0);
-      all.resize(static_cast<std::size_t>(offsets.back() + counts.back()));
+      all.resize(static_cast<std::size_t>(offsets.back()) +
+                 static_cast<std::size_t>(counts.back()));
     }
     MPI_Gatherv(local.data(), count, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
                 MPI_DOUBLE, 0, comm_);

@@ -125,7 +125,7 @@ bool Context::section(const YAML::Node& n, const std::string& key,
 double Context::number(const YAML::Node& n, const std::string& key) const {
   if (!n.IsDefined() || n.IsNull()) fail(n, key, "missing; expected a number");
   if (!n.IsScalar()) fail(n, key, "expected a number, got a list or map");
-  const std::string s = n.Scalar();
+  const std::string& s = n.Scalar();
   char* end = nullptr;
   double v = std::strtod(s.c_str(), &end);
   if (end == s.c_str() || *end != '\0') fail(n, key, "expected a number, got '" + s + "'");
