@@ -199,8 +199,7 @@ double timeOf(const fs::path& p) { return std::strtod(p.filename().c_str(), null
 
 }  // namespace
 
-CheckpointStore::CheckpointStore(const fs::path& run_folder)
-    : dir_(run_folder / "checkpoints") {}
+CheckpointStore::CheckpointStore(const fs::path& run_folder) : dir_(run_folder / "checkpoints") {}
 
 fs::path CheckpointStore::begin(double time, const std::vector<std::string>& participants) const {
   const fs::path partial = dir_ / (kPartialPrefix + analysis::formatShortest(time));
