@@ -73,7 +73,14 @@ class FreeParticles final : public link::Solver {
         const std::string k = "particles[" + std::to_string(i) + "]";
         if (!n.IsMap()) o.fail(k, "expected a map { id, position, velocity, radius }");
         Particle p{};
-        p.id = n["id"] ? static_cast<std::int64_t>(o.numberAt(n["id"], k + ".id")) : next;
+        if (n["id"]) {
+          const double id = o.numberAt(n["id"], k + ".id");
+          if (id != std::floor(id) || std::fabs(id) > 9.0e15)
+            o.fail(k + ".id", "expected a whole number, got " + n["id"].Scalar());
+          p.id = static_cast<std::int64_t>(id);
+        } else {
+          p.id = next;
+        }
         next = p.id + 1;
         p.x = o.vec3At(n["position"], k + ".position");
         p.v = n["velocity"] ? o.vec3At(n["velocity"], k + ".velocity")
