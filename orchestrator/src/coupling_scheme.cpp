@@ -54,10 +54,10 @@ link::ParticleData onIds(const link::ParticleData& from, const std::vector<std::
 AdvanceReplies ParallelScheme::advance(Participants& participants,
                                        const link::ParticleData& /*state*/,
                                        const CouplingTerms& terms) {
-  std::map<std::string, wire::Envelope> messages;
-  messages["particles"] = particleAdvance(sc_, plan_, terms);
-  if (plan_.fluid) messages["fluid"] = fluidAdvance(sc_, plan_, terms);
-  auto replies = participants.exchange(std::move(messages), wire::Envelope::kAdvanced);
+  std::map<std::string, Participants::MessageBuilder> build;
+  build["particles"] = [&] { return particleAdvance(sc_, plan_, terms); };
+  if (plan_.fluid) build["fluid"] = [&] { return fluidAdvance(sc_, plan_, terms); };
+  auto replies = participants.advance(build);
   AdvanceReplies r;
   r.particles = std::move(*replies.at("particles").mutable_advanced());
   if (plan_.fluid) r.fluid = std::move(*replies.at("fluid").mutable_advanced());
@@ -67,18 +67,21 @@ AdvanceReplies ParallelScheme::advance(Participants& participants,
 AdvanceReplies OverlappedScheme::advance(Participants& participants,
                                          const link::ParticleData& state,
                                          const CouplingTerms& terms) {
-  std::map<std::string, wire::Envelope> messages;
-  messages["particles"] = particleAdvance(sc_, plan_, terms);
+  std::map<std::string, Participants::MessageBuilder> build;
+  build["particles"] = [&] { return particleAdvance(sc_, plan_, terms); };
   if (plan_.fluid) {
-    auto fluid = fluidAdvance(sc_, plan_, terms);
-    cosim::link::toWire(state, *fluid.mutable_advance()->mutable_sample_ahead(),
-                        plan_.sample_state);
-    sent_.ids.assign(state.ids.begin(), state.ids.end());  // for a checkpoint (samplingAhead)
-    for (const auto& name : plan_.sample_state)
-      if (state.has(name)) sent_.field(name).assign(state.get(name).begin(), state.get(name).end());
-    messages["fluid"] = std::move(fluid);
+    build["fluid"] = [&] {
+      auto fluid = fluidAdvance(sc_, plan_, terms);
+      cosim::link::toWire(state, *fluid.mutable_advance()->mutable_sample_ahead(),
+                          plan_.sample_state);
+      sent_.ids.assign(state.ids.begin(), state.ids.end());  // for a checkpoint (samplingAhead)
+      for (const auto& name : plan_.sample_state)
+        if (state.has(name))
+          sent_.field(name).assign(state.get(name).begin(), state.get(name).end());
+      return fluid;
+    };
   }
-  auto replies = participants.exchange(std::move(messages), wire::Envelope::kAdvanced);
+  auto replies = participants.advance(build);
   AdvanceReplies r;
   r.particles = std::move(*replies.at("particles").mutable_advanced());
   ahead_.reset();

@@ -345,30 +345,43 @@ void Participants::send(const std::string& name, wire::Envelope& env, bool own_c
 
 Replies Participants::exchange(std::map<std::string, wire::Envelope> messages,
                                wire::Envelope::BodyCase reply) {
+  if (reply == wire::Envelope::kAdvanced) {
+    std::map<std::string, MessageBuilder> build;
+    for (auto& [name, env] : messages)
+      build[name] = [&message = env] { return std::move(message); };
+    return advance(build);
+  }
   std::map<std::string, wire::Envelope::BodyCase> expected;
   double timeout = 0.0;
-  const auto t0 = Clock::now();
-  // Advance: the participant that answered last in the previous interval is the step's
-  // critical path, so its message leaves first (the others' are serialized while it computes)
-  std::vector<std::string> order;
-  order.reserve(messages.size());
-  for (const auto& [name, env] : messages) order.push_back(name);
-  if (reply == wire::Envelope::kAdvanced) {
-    auto waited = [this](const std::string& n) {
-      const auto it = last_reply_.find(n);
-      return it == last_reply_.end() ? 0.0 : it->second;
-    };
-    std::stable_sort(order.begin(), order.end(),
-                     [&](const auto& a, const auto& b) { return waited(a) > waited(b); });
-  }
-  for (const auto& name : order) {
-    send(name, messages.at(name));
+  for (auto& [name, env] : messages) {
+    send(name, env);
     expected[name] = reply;
     timeout = std::max(timeout, peers_.at(name)->spec.timeout);
   }
-  if (reply != wire::Envelope::kAdvanced) return await(expected, timeout);
-  const auto sent = Clock::now();
+  return await(expected, timeout);
+}
+
+Replies Participants::advance(const std::map<std::string, MessageBuilder>& build) {
+  const auto t0 = Clock::now();
+  std::vector<std::string> order;
+  order.reserve(build.size());
+  for (const auto& [name, b] : build) order.push_back(name);
+  auto waited = [this](const std::string& n) {
+    const auto it = last_reply_.find(n);
+    return it == last_reply_.end() ? 0.0 : it->second;
+  };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](const auto& a, const auto& b) { return waited(a) > waited(b); });
+  std::map<std::string, wire::Envelope::BodyCase> expected;
+  double timeout = 0.0;
   arrived_.clear();
+  for (const auto& name : order) {
+    wire::Envelope message = build.at(name)();
+    send(name, message);
+    expected[name] = wire::Envelope::kAdvanced;
+    timeout = std::max(timeout, peers_.at(name)->spec.timeout);
+  }
+  const auto sent = Clock::now();
   Replies replies = await(expected, timeout);
   advance_wire_["send"] += std::chrono::duration<double>(sent - t0).count();
   for (const auto& [name, at] : arrived_) {

@@ -42,6 +42,20 @@ std::string serialize(const wire::Envelope& env) {
   return out;
 }
 
+namespace {
+// The message's bytes written straight into ZeroMQ's buffer: a step's arrays are copied once,
+// not once into a string and again into the frame.
+zmq::message_t frameOf(const wire::Envelope& env) {
+  const std::size_t size = env.ByteSizeLong();
+  if (size > static_cast<std::size_t>(INT32_MAX))
+    throw ProtocolError("cannot serialise a message of " + std::to_string(size) +
+                        " bytes (protobuf's limit is 2 GiB)");
+  zmq::message_t frame(size);
+  env.SerializeWithCachedSizesToArray(static_cast<std::uint8_t*>(frame.data()));
+  return frame;
+}
+}  // namespace
+
 wire::Envelope parse(const void* data, std::size_t size) {
   silenceProtobufLog();
   wire::Envelope env;
@@ -167,22 +181,34 @@ bool readable(zmq::socket_t& socket, Millis timeout) {
 
 Channel::~Channel() = default;
 
-void Channel::send(const wire::Envelope& env) { sendRaw(serialize(env)); }
-
-void Channel::sendRaw(const std::string& bytes) {
-  // Waits while the message cannot be queued (no connection yet, or a full queue), as a blocking
-  // send would, but not for a connection the orchestrator refused at its security handshake:
-  // ZeroMQ then drops the connection and a blocking send would wait for ever.
+namespace {
+// Waits while the message cannot be queued (no connection yet, or a full queue), as a blocking
+// send would, but not for a connection the orchestrator refused at its security handshake
+// (`refused` says why, empty while it was not): ZeroMQ then drops the connection and a blocking
+// send would wait for ever. A send that cannot queue leaves the frame as it was.
+template <class Refused>
+void queue(zmq::socket_t& socket, zmq::message_t& frame, Refused refused) {
   for (;;) {
-    if (impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::dontwait)) return;
-    if (const std::string failure = handshakeFailure(); !failure.empty()) throw PeerError(failure);
-    zmq::pollitem_t item{impl_->socket.handle(), 0, ZMQ_POLLOUT, 0};
+    if (socket.send(frame, zmq::send_flags::dontwait)) return;
+    if (const std::string failure = refused(); !failure.empty()) throw PeerError(failure);
+    zmq::pollitem_t item{socket.handle(), 0, ZMQ_POLLOUT, 0};
     try {
       zmq::poll(&item, 1, Millis(100));
     } catch (const zmq::error_t& e) {
       if (e.num() != EINTR) throw;
     }
   }
+}
+}  // namespace
+
+void Channel::send(const wire::Envelope& env) {
+  zmq::message_t frame = frameOf(env);
+  queue(impl_->socket, frame, [this] { return handshakeFailure(); });
+}
+
+void Channel::sendRaw(const std::string& bytes) {
+  zmq::message_t frame(bytes.data(), bytes.size());
+  queue(impl_->socket, frame, [this] { return handshakeFailure(); });
 }
 
 std::optional<wire::Envelope> Channel::receive(Millis timeout) {
@@ -369,10 +395,10 @@ std::vector<std::string> Hub::takeRefusals() {
 const std::string& Hub::endpoint() const { return impl_->endpoint; }
 
 void Hub::send(const std::string& peer, const wire::Envelope& env) {
-  const std::string bytes = serialize(env);
+  zmq::message_t frame = frameOf(env);
   try {
     impl_->socket.send(zmq::buffer(peer), zmq::send_flags::sndmore);
-    impl_->socket.send(zmq::buffer(bytes), zmq::send_flags::none);
+    impl_->socket.send(frame, zmq::send_flags::none);
   } catch (const zmq::error_t& e) {
     throw PeerError(std::string("cannot send to the peer: ") + e.what() +
                     " (not connected or gone)");
