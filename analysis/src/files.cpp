@@ -83,8 +83,8 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& t
   if (ec) {
     std::error_code ignored;
     std::filesystem::remove(tmp, ignored);
-    throw std::runtime_error("cannot rename " + tmp.string() + " to " + path.string() + ": " +
-                             ec.message());
+    throw Error(kindOfErrno(ec.value()),
+                "cannot rename " + tmp.string() + " to " + path.string() + ": " + ec.message());
   }
 }
 
@@ -106,13 +106,15 @@ void writeJsonFile(const std::filesystem::path& path, const Json& json, int inde
 std::ifstream openUserFile(const std::filesystem::path& path, const std::string& expected) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
-    throw std::runtime_error(path.string() + ": is a folder; expected " + expected);
+    throw InputError(path.string() + ": is a folder; expected " + expected);
   if (!std::filesystem::exists(path, ec))
-    throw std::runtime_error(path.string() + ": no such file; expected " + expected);
+    throw InputError(path.string() + ": no such file; expected " + expected);
   std::ifstream in(path);
-  if (!in)
-    throw std::runtime_error(fmt::format("{}: cannot be read ({}); expected {}", path.string(),
-                                         std::strerror(errno), expected));
+  if (!in) {
+    const int err = errno;
+    throw Error(kindOfErrno(err), fmt::format("{}: cannot be read ({}); expected {}", path.string(),
+                                              std::strerror(err), expected));
+  }
   return in;
 }
 
@@ -155,7 +157,7 @@ void claimOutputFiles(const std::vector<std::filesystem::path>& files, std::stri
                                                : "is not this command's to replace (no " +
                                                      files.front().filename().string() +
                                                      " of an earlier run of it beside it)";
-    throw std::runtime_error(fmt::format(
+    throw InputError(fmt::format(
         "{}: {} already exists and {}; it is left as it is: give {} another name or folder", option,
         f.string(), why, option));
   }
@@ -167,9 +169,8 @@ CsvWithPlot claimCsvWithPlot(const std::filesystem::path& file, std::string_view
   out.png.replace_extension(".png");
   out.log.replace_extension(".plot.log");
   if (out.png == file || out.log == file)
-    throw std::runtime_error(
-        option + " " + file.string() +
-        ": the CSV's plot takes its name ending .png: give a name ending .csv");
+    throw InputError(option + " " + file.string() +
+                     ": the CSV's plot takes its name ending .png: give a name ending .csv");
   claimOutputFiles({out.csv, out.png, out.log}, csv_text.substr(0, csv_text.find('\n') + 1),
                    option);
   return out;
@@ -180,9 +181,9 @@ void claimOutputFolder(const std::filesystem::path& folder, const std::string& m
   std::error_code ec;
   if (!std::filesystem::exists(std::filesystem::symlink_status(folder, ec))) return;
   if (!std::filesystem::is_directory(folder, ec))
-    throw std::runtime_error(option + ": " + folder.string() + " exists and is not a folder");
+    throw InputError(option + ": " + folder.string() + " exists and is not a folder");
   if (std::filesystem::is_empty(folder, ec) || holdsSignature(folder / marker, signature)) return;
-  throw std::runtime_error(fmt::format(
+  throw InputError(fmt::format(
       "{}: {} holds other files and no {} of this command's earlier output; nothing in it was "
       "touched: give {} a new or empty folder",
       option, folder.string(), marker, option));
@@ -190,13 +191,13 @@ void claimOutputFolder(const std::filesystem::path& folder, const std::string& m
 
 Json readJsonFile(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string());
+  if (!in) throw InputError("cannot read " + path.string());
   std::stringstream text;
   text << in.rdbuf();
   try {
     return Json::parse(text.str());
   } catch (const Json::exception& e) {
-    throw std::runtime_error(path.string() + " is not valid JSON (" + e.what() + ")");
+    throw InputError(path.string() + " is not valid JSON (" + e.what() + ")");
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/user_csv.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 namespace {
@@ -21,7 +22,7 @@ double number(const std::string& t, const std::string& where, const std::string&
   double v = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
-    throw std::runtime_error(
+    throw InputError(
         fmt::format("{}: column {}: {} is not a finite number", where, column, quotedCell(t)));
   return v;
 }
@@ -61,7 +62,7 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
   for (int i = 0; i < static_cast<int>(head.size()); ++i) {
     const auto& h = head[i];
     if (h == "height_m" || h == "height_mm") {
-      if (height_col >= 0) throw std::runtime_error(in.where() + ": two height columns; " + form);
+      if (height_col >= 0) throw InputError(in.where() + ": two height columns; " + form);
       height_col = i;
       height_scale = h == "height_mm" ? 1e-3 : 1.0;
     } else if (startsWith(h, "energy_mJ")) {
@@ -71,14 +72,13 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
       energy_cols.push_back(i);
       energy_scale.push_back(1.0);
     } else {
-      throw std::runtime_error(
-          fmt::format("{}: unknown column {}; {}", in.where(), quotedCell(h), form));
+      throw InputError(fmt::format("{}: unknown column {}; {}", in.where(), quotedCell(h), form));
     }
   }
-  if (energy_cols.empty()) throw std::runtime_error(in.where() + ": no energy column; " + form);
+  if (energy_cols.empty()) throw InputError(in.where() + ": no energy column; " + form);
   if (height_col < 0 && energy_cols.size() != 1)
-    throw std::runtime_error(in.where() +
-                             ": totals take one energy column (one row per replicate); " + form);
+    throw InputError(in.where() + ": totals take one energy column (one row per replicate); " +
+                     form);
   std::vector<std::vector<double>> rows;
   for (std::vector<std::string> c; in.next(c);) {
     const std::string where = in.where();
@@ -89,29 +89,28 @@ MeasuredEnergy readMeasuredEnergy(const std::filesystem::path& csv) {
   MeasuredEnergy m;
   if (height_col < 0) {
     for (const auto& r : rows) m.replicates_J.push_back(r[energy_cols[0]] * energy_scale[0]);
-    if (m.replicates_J.empty()) throw std::runtime_error(csv.string() + ": no rows");
+    if (m.replicates_J.empty()) throw InputError(csv.string() + ": no rows");
     for (std::size_t k = 0; k < m.replicates_J.size(); ++k)
       if (m.replicates_J[k] < 0)
-        throw std::runtime_error(fmt::format(
+        throw InputError(fmt::format(
             "{}: replicate {} (column {}): {} is negative; the flow energy is the work the blade "
             "does on the powder, >= 0 (check the sign convention of the export)",
             csv.string(), k + 1, head[energy_cols[0]], rows[k][energy_cols[0]]));
     return m;
   }
-  if (rows.size() < 2)
-    throw std::runtime_error(csv.string() + ": a profile needs at least two heights");
+  if (rows.size() < 2) throw InputError(csv.string() + ": a profile needs at least two heights");
   const auto hi = std::max_element(rows.begin(), rows.end(),
                                    [&](auto& a, auto& b) { return a[height_col] < b[height_col]; });
   const auto lo = std::min_element(rows.begin(), rows.end(),
                                    [&](auto& a, auto& b) { return a[height_col] < b[height_col]; });
   if ((*hi)[height_col] == (*lo)[height_col])
-    throw std::runtime_error(csv.string() + ": all rows have the same height");
+    throw InputError(csv.string() + ": all rows have the same height");
   m.height_high_m = (*hi)[height_col] * height_scale;
   m.height_low_m = (*lo)[height_col] * height_scale;
   for (std::size_t k = 0; k < energy_cols.size(); ++k) {
     const double e = ((*lo)[energy_cols[k]] - (*hi)[energy_cols[k]]) * energy_scale[k];
     if (e < 0)
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "{}: column {}: the cumulative energy falls from {:g} at the highest row to {:g} at the "
           "lowest; it is the work done from the top down, so it grows as the blade descends "
           "(check the column's sign and that the heights are the blade's)",
@@ -208,7 +207,7 @@ std::vector<std::filesystem::path> ft4Runs(const std::vector<std::filesystem::pa
       runs.push_back(f);
       continue;
     }
-    if (!std::filesystem::is_directory(f)) throw std::runtime_error(f.string() + ": not a folder");
+    if (!std::filesystem::is_directory(f)) throw InputError(f.string() + ": not a folder");
     std::vector<std::filesystem::path> found;
     for (const auto& e : std::filesystem::directory_iterator(f)) {
       const auto name = e.path().filename().string();
@@ -219,9 +218,9 @@ std::vector<std::filesystem::path> ft4Runs(const std::vector<std::filesystem::pa
       if (summary.value("status", "") == "completed") found.push_back(e.path());
     }
     if (found.empty())
-      throw std::runtime_error(f.string() +
-                               ": neither a run folder (scenario.resolved.yaml) nor a study "
-                               "folder with completed runs in it");
+      throw InputError(f.string() +
+                       ": neither a run folder (scenario.resolved.yaml) nor a study "
+                       "folder with completed runs in it");
     std::sort(found.begin(), found.end());
     runs.insert(runs.end(), found.begin(), found.end());
   }
@@ -240,9 +239,9 @@ std::vector<CalibrationPoint> calibrationPoints(const std::vector<std::filesyste
       try {
         w = profile.between(*measured.height_low_m, *measured.height_high_m);
       } catch (const std::invalid_argument& e) {
-        throw std::runtime_error(run.string() + ": " + e.what() +
-                                 " (the measured profile's range); compare over a range both "
-                                 "cover");
+        throw InputError(run.string() + ": " + e.what() +
+                         " (the measured profile's range); compare over a range both "
+                         "cover");
       }
     }
     points.push_back({run, par.parameter, w});

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 namespace {
@@ -37,8 +38,8 @@ double parseNumber(const std::string& text, const std::filesystem::path& file, i
   double v = 0;
   const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
   if (t.empty() || ec != std::errc() || end != t.data() + t.size() || !std::isfinite(v))
-    throw std::runtime_error(fmt::format("{}:{}: column {}: {} is not a finite number",
-                                         file.string(), line, column, quotedCell(text)));
+    throw InputError(fmt::format("{}:{}: column {}: {} is not a finite number", file.string(), line,
+                                 column, quotedCell(text)));
   return v;
 }
 
@@ -48,9 +49,9 @@ std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv,
                                     std::vector<double>* cut_windows) {
   std::ifstream in(csv);
   if (!in)
-    throw std::runtime_error(csv.string() +
-                             ": cannot be read (a run of scenarios/ft4-rheometer writes it into "
-                             "RUN/particles/; is this such a run?)");
+    throw InputError(csv.string() +
+                     ": cannot be read (a run of scenarios/ft4-rheometer writes it into "
+                     "RUN/particles/; is this such a run?)");
   std::vector<BladeRow> rows;
   std::string line;
   int n = 0;
@@ -64,13 +65,13 @@ std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv,
       continue;
     }
     if (columns == 0)
-      throw std::runtime_error(
+      throw InputError(
           fmt::format("{}:{}: expected the header line '{}' first", csv.string(), n, kHeader));
     const auto cells = splitComma(line);
     if (cells.size() != columns)
-      throw std::runtime_error(
-          fmt::format("{}:{}: expected {} columns ({}), found {}", csv.string(), n, columns,
-                      columns == 5 ? kHeader : kHeaderWithoutAveraged, cells.size()));
+      throw InputError(fmt::format("{}:{}: expected {} columns ({}), found {}", csv.string(), n,
+                                   columns, columns == 5 ? kHeader : kHeaderWithoutAveraged,
+                                   cells.size()));
     BladeRow r{parseNumber(cells[0], csv, n, "time_s"), parseNumber(cells[1], csv, n, "height_m"),
                parseNumber(cells[2], csv, n, "force_N"),
                parseNumber(cells[3], csv, n, "torque_Nm")};
@@ -86,8 +87,7 @@ std::vector<BladeRow> readBladeRows(const std::filesystem::path& csv,
     }
     rows.push_back(r);
   }
-  if (columns == 0)
-    throw std::runtime_error(csv.string() + ": empty (no header '" + kHeader + "')");
+  if (columns == 0) throw InputError(csv.string() + ": empty (no header '" + kHeader + "')");
   return rows;
 }
 
@@ -178,19 +178,19 @@ Ft4RunParameters readFt4RunParameters(const std::filesystem::path& run,
   try {
     doc = YAML::LoadFile(file.string());
   } catch (const std::exception& e) {
-    throw std::runtime_error(file.string() + ": cannot be read as a run's resolved scene (" +
-                             e.what() + "); is " + run.string() + " a run folder?");
+    throw InputError(file.string() + ": cannot be read as a run's resolved scene (" + e.what() +
+                     "); is " + run.string() + " a run folder?");
   }
   auto get = [&](const std::string& name) {
     const auto node = doc["parameters"][name];
     if (!node || !node.IsScalar())
-      throw std::runtime_error(file.string() + ": no parameter '" + name +
-                               "' (a run of scenarios/ft4-rheometer has it)");
+      throw InputError(file.string() + ": no parameter '" + name +
+                       "' (a run of scenarios/ft4-rheometer has it)");
     try {
       return node.as<double>();
     } catch (const std::exception&) {
-      throw std::runtime_error(file.string() + ": parameter '" + name + "' = '" +
-                               node.as<std::string>() + "' is not a number");
+      throw InputError(file.string() + ": parameter '" + name + "' = '" + node.as<std::string>() +
+                       "' is not a number");
     }
   };
   Ft4RunParameters p;
@@ -209,7 +209,7 @@ EnergyProfile runFlowEnergy(const std::filesystem::path& run) {
     profile.cut_windows_s = std::move(cut);
     return profile;
   } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(run.string() + ": " + e.what());
+    throw InputError(run.string() + ": " + e.what());
   }
 }
 

@@ -1,5 +1,7 @@
 #include "hdf5_handle.h"
 
+#include "cosim/util/errors.h"
+
 namespace cosim::analysis::h5 {
 
 void quiet() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
@@ -10,7 +12,7 @@ namespace {
 // snapshot in one short open-write-close, so readers at worst see the previous snapshot set.
 Handle accessWithoutLocks() {
   Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose,
-              "HDF5: cannot create a file access property list");
+              "HDF5: cannot create a file access property list", ErrorKind::resource);
   H5Pset_file_locking(fapl, false, true);
   return fapl;
 }
@@ -22,7 +24,8 @@ Handle openFile(const std::string& path, unsigned flags, const std::string& purp
   return Handle(H5Fopen(path.c_str(), flags, fapl), H5Fclose,
                 "cannot open HDF5 file " + path + " " + purpose +
                     ": the file is missing, not HDF5, damaged, or open for writing elsewhere in "
-                    "this process");
+                    "this process",
+                ErrorKind::input);
 }
 
 Handle createFile(const std::string& path) {
@@ -30,17 +33,19 @@ Handle createFile(const std::string& path) {
   Handle fapl = accessWithoutLocks();
   return Handle(
       H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl), H5Fclose,
-      "cannot create HDF5 file " + path + ": check that the run folder exists and is writable");
+      "cannot create HDF5 file " + path + ": check that the run folder exists and is writable",
+      ErrorKind::resource);
 }
 
 Handle openGroup(hid_t loc, const std::string& name, const std::string& file) {
   return Handle(H5Gopen2(loc, name.c_str(), H5P_DEFAULT), H5Gclose,
-                file + ": group '" + name + "' is missing (not a cosim particles file?)");
+                file + ": group '" + name + "' is missing (not a cosim particles file?)",
+                ErrorKind::input);
 }
 
 Handle createGroup(hid_t loc, const std::string& name, const std::string& file) {
   return Handle(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-                file + ": cannot create group '" + name + "'");
+                file + ": cannot create group '" + name + "'", ErrorKind::resource);
 }
 
 bool exists(hid_t loc, const std::string& name) {
@@ -50,25 +55,27 @@ bool exists(hid_t loc, const std::string& name) {
 namespace {
 void writeDataset(hid_t loc, const std::string& name, hid_t type, const void* data, int rank,
                   const hsize_t* dims, const std::string& file) {
-  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, file + ": cannot create dataspace");
+  Handle space(H5Screate_simple(rank, dims, nullptr), H5Sclose, file + ": cannot create dataspace",
+               ErrorKind::resource);
   Handle set(H5Dcreate2(loc, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-             H5Dclose, file + ": cannot create dataset '" + name + "'");
+             H5Dclose, file + ": cannot create dataset '" + name + "'", ErrorKind::resource);
   hsize_t total = 1;
   for (int i = 0; i < rank; ++i) total *= dims[i];
   if (total > 0 && H5Dwrite(set, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
-    throw std::runtime_error(file + ": cannot write dataset '" + name + "' (disk full?)");
+    throw ResourceError(file + ": cannot write dataset '" + name + "' (disk full?)");
   }
 }
 
 Handle openDataset(hid_t loc, const std::string& name, const std::string& file, int& rank,
                    hsize_t* dims) {
   Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose,
-             file + ": dataset '" + name + "' is missing");
-  Handle space(H5Dget_space(set), H5Sclose, file + ": cannot read the shape of '" + name + "'");
+             file + ": dataset '" + name + "' is missing", ErrorKind::input);
+  Handle space(H5Dget_space(set), H5Sclose, file + ": cannot read the shape of '" + name + "'",
+               ErrorKind::input);
   rank = H5Sget_simple_extent_ndims(space);
   if (rank < 1 || rank > 2) {
-    throw std::runtime_error(file + ": dataset '" + name + "' has rank " + std::to_string(rank) +
-                             ", expected 1 (scalar per particle) or 2 (vector per particle)");
+    throw InputError(file + ": dataset '" + name + "' has rank " + std::to_string(rank) +
+                     ", expected 1 (scalar per particle) or 2 (vector per particle)");
   }
   H5Sget_simple_extent_dims(space, dims, nullptr);
   return set;
@@ -97,7 +104,7 @@ std::vector<double> readDoubles(hid_t loc, const std::string& name, std::uint64_
   std::vector<double> out(static_cast<std::size_t>(rows * cols));
   if (!out.empty() &&
       H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-    throw std::runtime_error(file + ": cannot read dataset '" + name + "'");
+    throw InputError(file + ": cannot read dataset '" + name + "'");
   }
   return out;
 }
@@ -116,7 +123,7 @@ std::vector<std::int64_t> readInt64s(hid_t loc, const std::string& name, const s
   std::vector<std::int64_t> out(static_cast<std::size_t>(dims[0] * (rank == 2 ? dims[1] : 1)));
   if (!out.empty() &&
       H5Dread(set, H5T_NATIVE_INT64, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0) {
-    throw std::runtime_error(file + ": cannot read dataset '" + name + "'");
+    throw InputError(file + ": cannot read dataset '" + name + "'");
   }
   return out;
 }
@@ -125,11 +132,12 @@ namespace {
 void writeAttr(hid_t loc, const std::string& name, hid_t type, const void* value,
                const std::string& file) {
   if (H5Aexists(loc, name.c_str()) > 0) H5Adelete(loc, name.c_str());
-  Handle space(H5Screate(H5S_SCALAR), H5Sclose, file + ": cannot create dataspace");
+  Handle space(H5Screate(H5S_SCALAR), H5Sclose, file + ": cannot create dataspace",
+               ErrorKind::resource);
   Handle attr(H5Acreate2(loc, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
-              file + ": cannot create attribute '" + name + "'");
+              file + ": cannot create attribute '" + name + "'", ErrorKind::resource);
   if (H5Awrite(attr, type, value) < 0)
-    throw std::runtime_error(file + ": cannot write attribute '" + name + "'");
+    throw ResourceError(file + ": cannot write attribute '" + name + "'");
 }
 }  // namespace
 
@@ -144,7 +152,8 @@ void writeAttribute(hid_t loc, const std::string& name, std::int64_t value,
 
 void writeAttribute(hid_t loc, const std::string& name, const std::string& value,
                     const std::string& file) {
-  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, file + ": cannot create string type");
+  Handle type(H5Tcopy(H5T_C_S1), H5Tclose, file + ": cannot create string type",
+              ErrorKind::resource);
   H5Tset_size(type, value.empty() ? 1 : value.size());
   H5Tset_strpad(type, H5T_STR_NULLPAD);
   writeAttr(loc, name, type, value.empty() ? "" : value.data(), file);
@@ -153,7 +162,7 @@ void writeAttribute(hid_t loc, const std::string& name, const std::string& value
 void describeDataset(hid_t loc, const std::string& name, const std::string& units,
                      const std::string& description, const std::string& file) {
   Handle set(H5Dopen2(loc, name.c_str(), H5P_DEFAULT), H5Dclose,
-             file + ": dataset '" + name + "' is missing");
+             file + ": dataset '" + name + "' is missing", ErrorKind::input);
   writeAttribute(set, "units", units, file);
   writeAttribute(set, "description", description, file);
 }
@@ -162,35 +171,36 @@ bool hasAttribute(hid_t loc, const std::string& name) { return H5Aexists(loc, na
 
 double readDoubleAttribute(hid_t loc, const std::string& name, const std::string& file) {
   Handle attr(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose,
-              file + ": attribute '" + name + "' is missing");
+              file + ": attribute '" + name + "' is missing", ErrorKind::input);
   double v = 0;
   if (H5Aread(attr, H5T_NATIVE_DOUBLE, &v) < 0)
-    throw std::runtime_error(file + ": cannot read attribute '" + name + "'");
+    throw InputError(file + ": cannot read attribute '" + name + "'");
   return v;
 }
 
 std::string readStringAttribute(hid_t loc, const std::string& name, const std::string& file) {
   Handle attr(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose,
-              file + ": attribute '" + name + "' is missing");
-  Handle type(H5Aget_type(attr), H5Tclose, file + ": cannot read the type of '" + name + "'");
+              file + ": attribute '" + name + "' is missing", ErrorKind::input);
+  Handle type(H5Aget_type(attr), H5Tclose, file + ": cannot read the type of '" + name + "'",
+              ErrorKind::input);
   if (H5Tget_class(type) != H5T_STRING || H5Tis_variable_str(type) > 0) {
-    throw std::runtime_error(file + ": attribute '" + name + "' is not a fixed-length string");
+    throw InputError(file + ": attribute '" + name + "' is not a fixed-length string");
   }
   std::string s(H5Tget_size(type), '\0');
   if (H5Aread(attr, type, s.data()) < 0)
-    throw std::runtime_error(file + ": cannot read attribute '" + name + "'");
+    throw InputError(file + ": cannot read attribute '" + name + "'");
   while (!s.empty() && s.back() == '\0') s.pop_back();
   return s;
 }
 
 std::vector<std::string> members(hid_t group, const std::string& file) {
   H5G_info_t info;
-  if (H5Gget_info(group, &info) < 0) throw std::runtime_error(file + ": cannot list a group");
+  if (H5Gget_info(group, &info) < 0) throw InputError(file + ": cannot list a group");
   std::vector<std::string> names;
   for (hsize_t i = 0; i < info.nlinks; ++i) {
     ssize_t len =
         H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, nullptr, 0, H5P_DEFAULT);
-    if (len < 0) throw std::runtime_error(file + ": cannot read a member name");
+    if (len < 0) throw InputError(file + ": cannot read a member name");
     std::string name(static_cast<std::size_t>(len) + 1, '\0');
     H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, i, name.data(), name.size(),
                        H5P_DEFAULT);

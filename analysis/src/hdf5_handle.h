@@ -10,14 +10,19 @@
 #include <utility>
 #include <vector>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::analysis::h5 {
 
 class Handle {
  public:
   using Closer = herr_t (*)(hid_t);
   Handle() = default;
-  Handle(hid_t id, Closer closer, const std::string& what) : id_(id), closer_(closer) {
-    if (id_ < 0) throw std::runtime_error(what);
+  // Throws an Error of `kind` with `what` if `id` is HDF5's failure: input where an existing file
+  // is read (missing, damaged), resource where something is created or written.
+  Handle(hid_t id, Closer closer, const std::string& what, ErrorKind kind)
+      : id_(id), closer_(closer) {
+    if (id_ < 0) throw Error(kind, what);
   }
   Handle(const Handle&) = delete;
   Handle& operator=(const Handle&) = delete;

@@ -3,6 +3,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::analysis {
 
 MassBalance massBalance(double in, double out, double held_start, double held_end,
@@ -28,8 +30,7 @@ MassBalance massBalance(const TimeSeries& s) {
   const auto& out = s.at(column::precursor_out);
   const auto& held = s.at(column::precursor_held);
   const auto& coated = s.at(column::coated_mass);
-  if (s.rows() == 0)
-    throw std::runtime_error(s.source + " has no rows: no coupling step was recorded");
+  if (s.rows() == 0) throw InputError(s.source + " has no rows: no coupling step was recorded");
   const bool initialRow = in.front() == 0.0 && out.front() == 0.0;
   MassBalance b = massBalance(in.back(), out.back(), initialRow ? held.front() : 0.0, held.back(),
                               initialRow ? coated.front() : 0.0, coated.back());

@@ -10,6 +10,7 @@
 
 #include "cosim/analysis/minimum_fluidization.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 
@@ -47,9 +48,9 @@ std::optional<Scene> readScene(const std::filesystem::path& run) {
   try {
     root = YAML::LoadFile(path.string());
   } catch (const YAML::Exception& e) {
-    throw std::runtime_error(path.string() + ": cannot be read as YAML (" + e.what() +
-                             "); it is written by `cosim run`: restore it or move it away to "
-                             "report the run without the scene's constants");
+    throw InputError(path.string() + ": cannot be read as YAML (" + e.what() +
+                     "); it is written by `cosim run`: restore it or move it away to "
+                     "report the run without the scene's constants");
   }
   Scene s;
   const auto constants = root["constants"];

@@ -7,6 +7,7 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/util/all_finite.h"
+#include "cosim/util/errors.h"
 #include "hdf5_handle.h"
 
 namespace cosim::analysis {
@@ -20,14 +21,14 @@ ParticleFile::ParticleFile(const std::filesystem::path& path)
     : path_(path), impl_(std::make_unique<Impl>()) {
   const std::string name = path.string();
   if (!std::filesystem::exists(path)) {
-    throw std::runtime_error(name +
-                             " does not exist: the run recorded no particles (is the "
-                             "output interval set and did the run reach its first output time?)");
+    throw InputError(name +
+                     " does not exist: the run recorded no particles (is the "
+                     "output interval set and did the run reach its first output time?)");
   }
   impl_->file = h5::openFile(name, H5F_ACC_RDONLY, "for reading");
   const std::string format = h5::readStringAttribute(impl_->file, "format", name);
   if (format != "cosim-particles") {
-    throw std::runtime_error(name + " has format '" + format + "', expected 'cosim-particles'");
+    throw InputError(name + " has format '" + format + "', expected 'cosim-particles'");
   }
   std::stringstream fs(h5::readStringAttribute(impl_->file, "fields", name));
   for (std::string f; std::getline(fs, f, ',');) {
@@ -81,8 +82,8 @@ std::vector<double> ParticleFile::read(std::size_t snapshot, const std::string& 
   if (!hasField(field)) {
     std::string have;
     for (const auto& f : fields_) have += (have.empty() ? "" : ", ") + f;
-    throw std::runtime_error(name + " has no field '" + field + "' (recorded: " + have +
-                             "); record it in the scenario's output fields");
+    throw InputError(name + " has no field '" + field + "' (recorded: " + have +
+                     "); record it in the scenario's output fields");
   }
   const SnapshotInfo& info = snapshots_.at(snapshot);
   h5::Handle g = h5::openGroup(impl_->snapshots, info.group, name);
@@ -93,24 +94,23 @@ std::vector<double> ParticleFile::read(std::size_t snapshot, const std::string& 
   try {
     v = h5::readDoubles(g, field, rows, cols, name);
   } catch (const std::exception& e) {
-    throw std::runtime_error(where + ": " + e.what() +
-                             " (the file is damaged or was not written by cosim)");
+    throw Error(kindOf(e, ErrorKind::input),
+                where + ": " + e.what() + " (the file is damaged or was not written by cosim)");
   }
   // One row per parcel of the snapshot, every value a number: anything else is a damaged file,
   // and would pass silently into every statistic of a report.
   const std::uint64_t n = h5::rowsOf(g, "id", name);
   if (rows != n)
-    throw std::runtime_error(where + " has " + std::to_string(rows) + " rows for the " +
-                             std::to_string(n) +
-                             " parcel ids of the snapshot: the file is damaged or was not "
-                             "written by cosim");
+    throw InputError(where + " has " + std::to_string(rows) + " rows for the " + std::to_string(n) +
+                     " parcel ids of the snapshot: the file is damaged or was not "
+                     "written by cosim");
   if (!util::allFinite(v)) {
     const auto k = static_cast<std::size_t>(
         std::find_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }) - v.begin());
-    throw std::runtime_error(where + ": value " + std::to_string(v[k]) + " (row " +
-                             std::to_string(k / std::max<std::uint64_t>(cols, 1)) +
-                             ") is not a finite number; cosim never records one, so the file "
-                             "is damaged");
+    throw InputError(where + ": value " + std::to_string(v[k]) + " (row " +
+                     std::to_string(k / std::max<std::uint64_t>(cols, 1)) +
+                     ") is not a finite number; cosim never records one, so the file "
+                     "is damaged");
   }
   if (components != nullptr) *components = cols;
   return v;

@@ -9,6 +9,7 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 #include "hdf5_handle.h"
 
 namespace cosim::analysis {
@@ -41,7 +42,7 @@ void growConnectivity(hid_t f, std::uint64_t count, std::uint64_t& length,
   std::vector<std::int64_t> index(n);
   for (std::uint64_t i = 0; i < n; ++i) index[i] = static_cast<std::int64_t>(i);
   if (h5::exists(f, kConnectivity) && H5Ldelete(f, kConnectivity, H5P_DEFAULT) < 0)
-    throw std::runtime_error(file + ": cannot replace /" + std::string(kConnectivity));
+    throw ResourceError(file + ": cannot replace /" + std::string(kConnectivity));
   h5::writeInt64s(f, kConnectivity, index.data(), n, file);
   h5::describeDataset(f, kConnectivity, "-",
                       "0, 1, 2, ...: particles.xmf takes the first `count` values as the "
@@ -70,24 +71,24 @@ ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
       identity_(identity) {
   for (const auto& f : fields_) {
     if (f.empty() || f == "id" || f.find_first_of(",/") != std::string::npos) {
-      throw std::runtime_error("ParticleRecorder: field name '" + f +
-                               "' is not allowed (empty, 'id', or containing ',' or '/')");
+      throw std::logic_error("ParticleRecorder: field name '" + f +
+                             "' is not allowed (empty, 'id', or containing ',' or '/')");
     }
     shapes_.push_back({f, cosim::field::components(f)});
   }
   std::error_code ec;
   std::filesystem::create_directories(run_dir, ec);
   if (ec)
-    throw std::runtime_error("ParticleRecorder: cannot create run folder " + run_dir.string() +
-                             ": " + ec.message());
+    throw Error(kindOfErrno(ec.value()), "ParticleRecorder: cannot create run folder " +
+                                             run_dir.string() + ": " + ec.message());
 
   const std::string file = h5_.string();
   if (mode == Mode::append && std::filesystem::exists(h5_)) {
     h5::Handle f = h5::openFile(file, H5F_ACC_RDWR, "to continue recording");
     const std::string had = h5::readStringAttribute(f, "fields", file);
     if (had != joined(fields_)) {
-      throw std::runtime_error(file + " records fields '" + had + "' but this run records '" +
-                               joined(fields_) + "': use a new run folder or the same fields");
+      throw InputError(file + " records fields '" + had + "' but this run records '" +
+                       joined(fields_) + "': use a new run folder or the same fields");
     }
     h5::Handle snaps = h5::openGroup(f, "snapshots", file);
     for (const auto& name : h5::members(snaps, file)) {
@@ -130,29 +131,27 @@ ParticleRecorder::ParticleRecorder(const std::filesystem::path& run_dir,
 
 void ParticleRecorder::write(double time, const cosim::link::ParticleData& particles) {
   const std::string file = h5_.string();
-  if (!std::isfinite(time)) throw std::runtime_error(file + ": snapshot time is not finite");
+  if (!std::isfinite(time)) throw std::logic_error(file + ": snapshot time is not finite");
   const bool replace = !entries_.empty() && time == entries_.back().time;
   if (!entries_.empty() && !replace && !(time > entries_.back().time)) {
-    throw std::runtime_error(file + ": snapshot time " + std::to_string(time) +
-                             " s does not follow the previous one (" +
-                             std::to_string(entries_.back().time) + " s); times must increase");
+    throw InputError(file + ": snapshot time " + std::to_string(time) +
+                     " s does not follow the previous one (" +
+                     std::to_string(entries_.back().time) + " s); times must increase");
   }
   const std::uint64_t n = particles.size();
   for (auto& s : shapes_) {
     if (!particles.has(s.name)) {
-      throw std::runtime_error(
-          "ParticleRecorder: the particle state at t = " + std::to_string(time) +
-          " s has no field '" + s.name +
-          "'; the particles participant must send it (scenario output fields)");
+      throw PeerError("ParticleRecorder: the particle state at t = " + std::to_string(time) +
+                      " s has no field '" + s.name +
+                      "'; the particles participant must send it (scenario output fields)");
     }
     const auto len = static_cast<std::uint64_t>(particles.get(s.name).size());
     if (s.components == 0 && n > 0) s.components = len / n;  // field unknown to cosim::field
     const std::uint64_t comps = s.components == 0 ? 1 : s.components;
     if (len != n * comps) {
-      throw std::runtime_error("ParticleRecorder: field '" + s.name +
-                               "' at t = " + std::to_string(time) + " s has " +
-                               std::to_string(len) + " values for " + std::to_string(n) +
-                               " particles x " + std::to_string(comps) + " components");
+      throw PeerError("ParticleRecorder: field '" + s.name + "' at t = " + std::to_string(time) +
+                      " s has " + std::to_string(len) + " values for " + std::to_string(n) +
+                      " particles x " + std::to_string(comps) + " components");
     }
   }
 
@@ -164,8 +163,8 @@ void ParticleRecorder::write(double time, const cosim::link::ParticleData& parti
     h5::Handle f = h5::openFile(file, H5F_ACC_RDWR, "to add a snapshot");
     h5::Handle snaps = h5::openGroup(f, "snapshots", file);
     if (h5::exists(snaps, name)) {
-      throw std::runtime_error(file + ": snapshot " + name +
-                               " already exists (two recorders on one file?)");
+      throw InputError(file + ": snapshot " + name +
+                       " already exists (two recorders on one file?)");
     }
     h5::Handle g = h5::createGroup(snaps, name, file);
     h5::writeAttribute(g, "time", time, file);
@@ -182,10 +181,10 @@ void ParticleRecorder::write(double time, const cosim::link::ParticleData& parti
     }
     growConnectivity(f, n, connectivity_, file);
     if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0)
-      throw std::runtime_error(file + ": flush failed (disk full?)");
+      throw ResourceError(file + ": flush failed (disk full?)");
     if (replace) {
       if (H5Ldelete(snaps, entries_.back().group.c_str(), H5P_DEFAULT) < 0) {
-        throw std::runtime_error(file + ": cannot replace snapshot " + entries_.back().group);
+        throw ResourceError(file + ": cannot replace snapshot " + entries_.back().group);
       }
       H5Fflush(f, H5F_SCOPE_GLOBAL);
     }
@@ -204,11 +203,11 @@ void ParticleRecorder::truncateAfter(double time) {
     h5::Handle snaps = h5::openGroup(f, "snapshots", file);
     while (!entries_.empty() && entries_.back().time > time) {
       if (H5Ldelete(snaps, entries_.back().group.c_str(), H5P_DEFAULT) < 0)
-        throw std::runtime_error(file + ": cannot remove snapshot " + entries_.back().group);
+        throw ResourceError(file + ": cannot remove snapshot " + entries_.back().group);
       entries_.pop_back();
     }
     if (H5Fflush(f, H5F_SCOPE_GLOBAL) < 0)
-      throw std::runtime_error(file + ": flush failed (disk full?)");
+      throw ResourceError(file + ": flush failed (disk full?)");
   }
   next_index_ = entries_.empty() ? 0 : std::stoul(entries_.back().group) + 1;
   writeXdmf();

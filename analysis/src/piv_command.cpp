@@ -16,6 +16,7 @@
 #include "cosim/analysis/piv_compare.h"
 #include "cosim/analysis/piv_field.h"
 #include "cosim/analysis/report.h"
+#include "cosim/util/errors.h"
 #include "cosim/util/format.h"
 
 namespace cosim::analysis {
@@ -32,8 +33,8 @@ std::map<std::string, double> sceneParameters(const fs::path& run) {
   try {
     root = YAML::LoadFile(file.string());
   } catch (const YAML::Exception& e) {
-    throw std::runtime_error(file.string() + ": cannot be read as YAML (" + e.what() +
-                             "); give the PIV window on the command line instead");
+    throw InputError(file.string() + ": cannot be read as YAML (" + e.what() +
+                     "); give the PIV window on the command line instead");
   }
   const auto params = root["parameters"];
   if (!params || !params.IsMap()) return out;
@@ -53,12 +54,12 @@ double pick(const std::optional<double>& given, const std::map<std::string, doub
   const auto it = scene.find(parameter);
   if (it != scene.end()) return it->second;
   if (!fs::exists(run / "scenario.resolved.yaml")) {
-    throw std::runtime_error(fmt::format(
+    throw InputError(fmt::format(
         "cosim piv: {} holds no scenario.resolved.yaml, so it is not a folder `cosim run` wrote "
         "(give the run's folder), or give {} on the command line",
         run.string(), option));
   }
-  throw std::runtime_error(fmt::format(
+  throw InputError(fmt::format(
       "cosim piv: {} gives no scene parameter '{}': give {} on the command line (or add the "
       "parameter to the scene)",
       (run / "scenario.resolved.yaml").string(), parameter, option));
@@ -148,17 +149,17 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
   if (fs::is_directory(sim)) {
     sim = sim / kPivFolder / "profiles.csv";
     if (!fs::exists(sim))
-      throw std::runtime_error("cosim piv-compare: " + sim.string() +
-                               " does not exist: run `cosim piv " + c.simulated.string() +
-                               "` first (with --heights for the measured profiles' heights)");
+      throw InputError("cosim piv-compare: " + sim.string() + " does not exist: run `cosim piv " +
+                       c.simulated.string() +
+                       "` first (with --heights for the measured profiles' heights)");
   }
   for (const auto* label : {&c.simulated_label, &c.measured_label}) {
     const bool printable = std::all_of(label->begin(), label->end(),
                                        [](unsigned char ch) { return ch >= 0x20 && ch != 0x7f; });
     if (label->empty() || label->size() > 40 || !printable)
-      throw std::runtime_error("cosim piv-compare: --labels: " + quotedCell(*label) +
-                               ": expected two names of 1-40 printable characters, e.g. "
-                               "--labels 'cg 5,cg 10'");
+      throw InputError("cosim piv-compare: --labels: " + quotedCell(*label) +
+                       ": expected two names of 1-40 printable characters, e.g. "
+                       "--labels 'cg 5,cg 10'");
   }
   PivCompareOptions o;
   o.core_band = c.core_band;
@@ -211,9 +212,8 @@ int runPivCompareCommand(const PivCompareCommandOptions& c, std::ostream& out) {
     std::error_code ec;
     for (const auto& written : {file, png})
       if (fs::equivalent(written, input, ec))
-        throw std::runtime_error("cosim piv-compare: " + written.string() +
-                                 " would overwrite the input " + input.string() +
-                                 ": give another -o");
+        throw InputError("cosim piv-compare: " + written.string() + " would overwrite the input " +
+                         input.string() + ": give another -o");
   }
   const auto log = claimCsvWithPlot(file, csv, "cosim piv-compare -o").log;
   writeFileAtomically(file, csv);

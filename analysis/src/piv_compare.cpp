@@ -14,6 +14,7 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/user_csv.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 
@@ -31,7 +32,7 @@ double parse(const std::string& text, bool empty_is_nan, const std::string& wher
     used = 0;
   }
   if (used == 0 || used != text.size() || !std::isfinite(v))
-    throw std::runtime_error(where + ": " + quotedCell(text) + " is not a finite number");
+    throw InputError(where + ": " + quotedCell(text) + " is not a finite number");
   return v;
 }
 
@@ -83,13 +84,12 @@ std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
   const auto& head = in.header();
   for (std::size_t i = 0; i < head.size(); ++i) {
     if (!col.emplace(head[i], i).second)
-      throw std::runtime_error(in.where() + ": column " + quotedCell(head[i]) + " named twice");
+      throw InputError(in.where() + ": column " + quotedCell(head[i]) + " named twice");
   }
   for (const char* need : {"height_m", "x_m", "vz_m_s"}) {
     if (!col.count(need))
-      throw std::runtime_error(
-          in.where() + ": the header has no column '" + need +
-          "' (a profile CSV starts with a header naming height_m, x_m and vz_m_s)");
+      throw InputError(in.where() + ": the header has no column '" + need +
+                       "' (a profile CSV starts with a header naming height_m, x_m and vz_m_s)");
   }
   std::vector<ProfilePoint> out;
   for (std::vector<std::string> cells; in.next(cells);) {
@@ -101,14 +101,14 @@ std::vector<ProfilePoint> readProfileCsv(const std::filesystem::path& path) {
     p.vz = parse(cell("vz_m_s"), true, where + " column vz_m_s");
     // no particle in a bed outruns sound in air: a larger number is in other units
     if (std::fabs(p.vz) > kMaxSpeed)
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "{} column vz_m_s: {} m/s is faster than sound in air; the column is in m/s (a PIV "
           "export in mm/s or pixels per frame must be converted first)",
           where, p.vz));
     if (col.count("vz_stderr_m_s")) {
       p.stderr_vz = parse(cell("vz_stderr_m_s"), true, where + " column vz_stderr_m_s");
       if (p.stderr_vz < 0)
-        throw std::runtime_error(where + " column vz_stderr_m_s: a standard error is >= 0");
+        throw InputError(where + " column vz_stderr_m_s: a standard error is >= 0");
     }
     out.push_back(p);
   }
@@ -161,13 +161,13 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
       return std::fabs(c.first - m.height) <= o.height_tolerance;
     });
     if (it == curves.end())
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "the measured profile at {} m has no simulated profile (simulated heights: {}): run "
           "`cosim piv RUN --heights ...` with that height{}",
           m.height, heights.empty() ? "none" : heights,
           m.height > 2 ? " (heights are in metres above the bottom: given in mm?)" : ""));
     if (it->second.x.empty())
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "the simulated profile at {} m has no data (no parcel seen in that band)", it->first));
     auto pc = std::find_if(r.profiles.begin(), r.profiles.end(),
                            [&](const auto& p) { return p.height == it->first; });
@@ -195,7 +195,7 @@ PivComparison comparePiv(const std::vector<ProfilePoint>& simulated,
   if (r.all.points == 0) {
     std::size_t with_value = 0;
     for (const auto& m : measured) with_value += std::isfinite(m.vz) ? 1 : 0;
-    throw std::runtime_error(
+    throw InputError(
         with_value == 0
             ? std::string("the measured file has no point with a velocity (every vz_m_s is "
                           "empty): nothing to compare")

@@ -12,6 +12,7 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 
@@ -166,12 +167,12 @@ PivResult pivField(const ParticleFile& file, const PivOptions& options) {
   const bool radii = !options.depth;
   for (const char* f : {field::position, field::velocity}) {
     if (!file.hasField(f))
-      throw std::runtime_error(file.path().string() + ": has no field '" + f +
-                               "': the PIV view needs the parcels' positions and velocities");
+      throw InputError(file.path().string() + ": has no field '" + f +
+                       "': the PIV view needs the parcels' positions and velocities");
   }
   if (radii && !file.hasField(field::radius))
-    throw std::runtime_error(file.path().string() +
-                             ": has no field 'radius': give the depth that counts (--depth)");
+    throw InputError(file.path().string() +
+                     ": has no field 'radius': give the depth that counts (--depth)");
   PivAccumulator acc(options);
   const auto& snaps = file.snapshots();
   for (std::size_t s = 0; s < snaps.size(); ++s) {
@@ -185,7 +186,7 @@ PivResult pivField(const ParticleFile& file, const PivOptions& options) {
   }
   const PivResult& result = acc.result();  // the standard errors computed once
   if (result.snapshots == 0)
-    throw std::runtime_error(fmt::format(
+    throw InputError(fmt::format(
         "{}: no snapshot in {} <= t <= {} s (it holds {} snapshots{}): take another --from "
         "or --to",
         file.path().string(), options.from, options.to, snaps.size(),

@@ -8,6 +8,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "cosim/util/errors.h"
 #include "report_internal.h"
 
 namespace cosim::analysis {
@@ -21,15 +22,16 @@ void prepare(const std::filesystem::path& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec || !std::filesystem::is_directory(dir)) {
-    throw std::runtime_error("cannot create the report folder " + dir.string() + ": " +
-                             ec.message() + " (choose another with --output)");
+    throw Error(ec ? kindOfErrno(ec.value()) : ErrorKind::input,
+                "cannot create the report folder " + dir.string() + ": " + ec.message() +
+                    " (choose another with --output)");
   }
   removePngs(dir);  // a figure left from an earlier report must not pass for a new one
 }
 void validate(const ReportOptions& o) {
   auto bad = [](const std::string& option, double value, const std::string& expected) {
-    throw std::runtime_error("report option " + option + " = " + std::to_string(value) +
-                             ": expected " + expected);
+    throw InputError("report option " + option + " = " + std::to_string(value) + ": expected " +
+                     expected);
   };
   if (!std::isfinite(o.coating_start)) bad("--coating-start", o.coating_start, "a time in seconds");
   for (double t : o.predict_times) {
@@ -52,9 +54,9 @@ void validate(const ReportOptions& o) {
   if (!(o.uncoated_relative >= 0))
     bad("uncoated_relative", o.uncoated_relative, "a fraction of the mean >= 0 (1e-6)");
   if (!std::isnan(o.fit_start) && !std::isnan(o.fit_end) && !(o.fit_end > o.fit_start)) {
-    throw std::runtime_error("report options --fit-start " + std::to_string(o.fit_start) +
-                             " and --fit-end " + std::to_string(o.fit_end) +
-                             ": the window is empty; give --fit-end after --fit-start");
+    throw InputError("report options --fit-start " + std::to_string(o.fit_start) +
+                     " and --fit-end " + std::to_string(o.fit_end) +
+                     ": the window is empty; give --fit-end after --fit-start");
   }
 }
 }  // namespace
@@ -190,8 +192,7 @@ void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::file
 int runReport(const ReportOptions& o) {
   std::ostream& log = o.log != nullptr ? *o.log : std::cout;
   try {
-    if (o.runs.empty())
-      throw std::runtime_error("no run folder given: `cosim report RUN [RUN...]`");
+    if (o.runs.empty()) throw InputError("no run folder given: `cosim report RUN [RUN...]`");
     validate(o);
     std::vector<RunAnalysis> analyses;
     for (const auto& run : o.runs) {

@@ -13,6 +13,7 @@
 #include "cosim/analysis/summary.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 #include "report_internal.h"
 
 namespace cosim::analysis {
@@ -36,7 +37,8 @@ std::optional<double> readRunSummary(const std::filesystem::path& run, RunAnalys
     a.parameters = summary.parameters;
     return summary.cg;
   } catch (const std::exception& e) {
-    throw std::runtime_error(std::string(e.what()) + "; move it away to report the run without it");
+    throw Error(kindOf(e, ErrorKind::input),
+                std::string(e.what()) + "; move it away to report the run without it");
   }
 }
 
@@ -184,28 +186,28 @@ RunAnalysis analyseRun(const std::filesystem::path& run, const ReportOptions& o)
   a.run = run;
   a.label = runLabel(run);
   if (!std::filesystem::is_directory(run)) {
-    throw std::runtime_error("run folder " + run.string() +
-                             " does not exist (give the folder a `cosim run` wrote, "
-                             "e.g. runs/plasma-coating-bed)");
+    throw InputError("run folder " + run.string() +
+                     " does not exist (give the folder a `cosim run` wrote, "
+                     "e.g. runs/plasma-coating-bed)");
   }
   const std::optional<double> cg = readRunSummary(run, a);  // what the run used
   ParticleFile file(run / kParticlesFile);
   if (!file.hasField(cosim::field::coating_mass)) {
-    throw std::runtime_error(file.path().string() +
-                             " has no coating_mass field: this scene has no coating "
-                             "(no mass_transfer model), and cosim report analyses coating. The "
-                             "run's own records describe its bed: timeseries.csv (pressure_drop, "
-                             "particle_count), summary.json (observables), particles.xmf in "
-                             "ParaView, and `cosim piv " +
-                             run.string() + "` for the particle velocity at the front wall");
+    throw InputError(file.path().string() +
+                     " has no coating_mass field: this scene has no coating "
+                     "(no mass_transfer model), and cosim report analyses coating. The "
+                     "run's own records describe its bed: timeseries.csv (pressure_drop, "
+                     "particle_count), summary.json (observables), particles.xmf in "
+                     "ParaView, and `cosim piv " +
+                     run.string() + "` for the particle velocity at the front wall");
   }
   const auto& snaps = file.snapshots();
-  if (snaps.empty()) throw std::runtime_error(file.path().string() + " holds no snapshot yet");
+  if (snaps.empty()) throw InputError(file.path().string() + " holds no snapshot yet");
   const double t0 = std::isnan(o.fit_start) ? snaps.front().time : o.fit_start;
   const double t1 = std::isnan(o.fit_end) ? snaps.back().time : o.fit_end;
   if (t1 <= t0) {
-    throw std::runtime_error("fit window [" + std::to_string(t0) + ", " + std::to_string(t1) +
-                             "] s is empty: give --fit-start below --fit-end");
+    throw InputError("fit window [" + std::to_string(t0) + ", " + std::to_string(t1) +
+                     "] s is empty: give --fit-start below --fit-end");
   }
 
   const ParcelHistories histories = readSnapshots(file, o, bootstrapSnapshots(snaps, t0, t1, o), a);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cosim/analysis/report.h"
+#include "cosim/util/errors.h"
 #include "report_internal.h"
 #include "report_json.h"
 
@@ -21,7 +22,7 @@ Json series(const std::vector<CoatingStatistics>& s, double CoatingStatistics::*
 class Csv {
  public:
   Csv(const std::filesystem::path& path, const std::string& header) : path_(path), f_(path) {
-    if (!f_) throw std::runtime_error("cannot write " + path.string());
+    if (!f_) throw Error(kindOfErrno(errno), "cannot write " + path.string());
     f_ << header << '\n';
   }
   Csv& operator<<(double v) {

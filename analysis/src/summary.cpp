@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::analysis {
 
 namespace {
@@ -86,7 +88,7 @@ void to_json(Json& j, const Summary& s) {
 
 void from_json(const Json& j, Summary& s) {
   if (j.value("format", std::string()) != "cosim-summary")
-    throw std::runtime_error("not a cosim summary (\"format\" is not \"cosim-summary\")");
+    throw InputError("not a cosim summary (\"format\" is not \"cosim-summary\")");
   s = Summary{};
   j.at("scenario").get_to(s.scenario);
   j.at("run_id").get_to(s.run_id);
@@ -115,7 +117,8 @@ void writeSummary(const std::filesystem::path& path, const Summary& summary) {
     try {
       overwriteFile(path, jsonText(json, 2));
     } catch (const std::runtime_error& again) {
-      throw std::runtime_error(std::string(e.what()) + "; in place: " + again.what());
+      throw Error(kindOf(again, ErrorKind::resource),
+                  std::string(e.what()) + "; in place: " + again.what());
     }
   }
 }
@@ -125,7 +128,7 @@ Summary readSummary(const std::filesystem::path& path) {
   try {
     return j.get<Summary>();
   } catch (const std::exception& e) {
-    throw std::runtime_error(path.string() + " is not a cosim summary: " + e.what());
+    throw InputError(path.string() + " is not a cosim summary: " + e.what());
   }
 }
 

@@ -37,7 +37,7 @@ TimeSeriesRecorder::TimeSeriesRecorder(const std::filesystem::path& path,
     : path_(path), columns_(std::move(columns)) {
   for (const auto& c : columns_) {
     if (c.empty() || c.find_first_of(",\n\r\"") != std::string::npos || c == column::time) {
-      throw std::runtime_error(
+      throw std::logic_error(
           "TimeSeriesRecorder: column name '" + c + "' for " + path.string() +
           " is not allowed (empty, 'time', or containing a comma, quote or newline)");
     }
@@ -54,8 +54,8 @@ TimeSeriesRecorder::TimeSeriesRecorder(const std::filesystem::path& path,
     std::getline(in, first);
     if (!first.empty() && first.back() == '\r') first.pop_back();
     if (first != h) {
-      throw std::runtime_error(path.string() + " has columns '" + first +
-                               "' but this run writes '" + h + "': use a new run folder");
+      throw InputError(path.string() + " has columns '" + first + "' but this run writes '" + h +
+                       "': use a new run folder");
     }
     file_ = std::fopen(path.c_str(), "a");
   } else {
@@ -106,25 +106,24 @@ const std::vector<double>& TimeSeries::at(const std::string& name) const {
   }
   std::string have;
   for (const auto& c : columns) have += (have.empty() ? "" : ", ") + c;
-  throw std::runtime_error(source + " has no column '" + name + "' (columns: " + have + ")");
+  throw InputError(source + " has no column '" + name + "' (columns: " + have + ")");
 }
 
 TimeSeries readTimeSeries(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in) {
-    throw std::runtime_error(path.string() +
-                             " cannot be read: the run wrote no time series "
-                             "(did it complete a coupling step?)");
+    throw InputError(path.string() +
+                     " cannot be read: the run wrote no time series "
+                     "(did it complete a coupling step?)");
   }
   TimeSeries ts;
   ts.source = path.string();
   std::string line;
   if (!std::getline(in, line))
-    throw std::runtime_error(path.string() + " is empty (expected a header line 'time,...')");
+    throw InputError(path.string() + " is empty (expected a header line 'time,...')");
   ts.columns = splitCsv(line);
   if (ts.columns.empty() || ts.columns.front() != column::time) {
-    throw std::runtime_error(path.string() + ":1: header must start with 'time', found '" + line +
-                             "'");
+    throw InputError(path.string() + ":1: header must start with 'time', found '" + line + "'");
   }
   ts.values.assign(ts.columns.size(), {});
   std::vector<std::string> lines;
@@ -137,9 +136,9 @@ TimeSeries readTimeSeries(const std::filesystem::path& path) {
     auto cells = splitCsv(l);
     if (cells.size() != ts.columns.size()) {
       if (i + 1 == lines.size()) break;
-      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": " +
-                               std::to_string(cells.size()) + " values, header has " +
-                               std::to_string(ts.columns.size()));
+      throw InputError(path.string() + ":" + std::to_string(i + 2) + ": " +
+                       std::to_string(cells.size()) + " values, header has " +
+                       std::to_string(ts.columns.size()));
     }
     std::vector<double> row;
     bool ok = true;
@@ -154,8 +153,8 @@ TimeSeries readTimeSeries(const std::filesystem::path& path) {
     }
     if (!ok) {
       if (i + 1 == lines.size()) break;
-      throw std::runtime_error(path.string() + ":" + std::to_string(i + 2) + ": not a number in '" +
-                               l + "'");
+      throw InputError(path.string() + ":" + std::to_string(i + 2) + ": not a number in '" + l +
+                       "'");
     }
     for (std::size_t c = 0; c < row.size(); ++c) ts.values[c].push_back(row[c]);
   }
@@ -164,7 +163,7 @@ TimeSeries readTimeSeries(const std::filesystem::path& path) {
 
 void truncateTimeSeries(const std::filesystem::path& path, std::size_t rows) {
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + ": cannot open it to cut it back");
+  if (!in) throw InputError(path.string() + ": cannot open it to cut it back");
   std::string text, line;
   std::size_t kept = 0;
   if (std::getline(in, line)) text += line + "\n";  // header
@@ -173,9 +172,9 @@ void truncateTimeSeries(const std::filesystem::path& path, std::size_t rows) {
     ++kept;
   }
   if (kept < rows) {
-    throw std::runtime_error(path.string() + " has " + std::to_string(kept) +
-                             " rows, fewer than the " + std::to_string(rows) +
-                             " the checkpoint recorded: the run folder was changed after it");
+    throw InputError(path.string() + " has " + std::to_string(kept) + " rows, fewer than the " +
+                     std::to_string(rows) +
+                     " the checkpoint recorded: the run folder was changed after it");
   }
   writeFileAtomically(path, text);
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 namespace {
@@ -44,15 +45,15 @@ std::vector<std::string> userCsvCells(std::string_view line, const std::string& 
         cell += line[i++];
       }
       if (!closed)
-        throw std::runtime_error(where +
-                                 ": a double quote is left open (a cell in quotes "
-                                 "ends with a quote on the same line)");
+        throw InputError(where +
+                         ": a double quote is left open (a cell in quotes "
+                         "ends with a quote on the same line)");
       const auto comma = line.find(',', i);
       const auto rest =
           trimmed(line.substr(i, comma == std::string_view::npos ? line.npos : comma - i));
       if (!rest.empty())
-        throw std::runtime_error(where + ": text " + quotedCell(rest) +
-                                 " after a quoted cell (a quote inside quotes is written \"\")");
+        throw InputError(where + ": text " + quotedCell(rest) +
+                         " after a quoted cell (a quote inside quotes is written \"\")");
       i = comma;
       cell = std::string(trimmed(cell));
     } else {
@@ -86,13 +87,13 @@ std::string UserCsv::where() const { return fmt::format("{}:{}", path_.string(),
 const std::vector<std::string>& UserCsv::header() {
   if (have_header_) return header_;
   std::string line;
-  if (!nextLine(line)) throw std::runtime_error(path_.string() + ": empty; expected " + expected_);
+  if (!nextLine(line)) throw InputError(path_.string() + ": empty; expected " + expected_);
   header_ = userCsvCells(line, where());
   have_header_ = true;
   if (header_.size() == 1) {
     for (const char sep : {';', '\t'}) {
       if (header_[0].find(sep) == std::string::npos) continue;
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "{}: the header's cells are separated by {} (a spreadsheet saved in a locale with a "
           "decimal comma?); cosim reads cells separated by commas and numbers with a decimal "
           "point: save as CSV with ',' between cells and '.' in numbers",
@@ -108,7 +109,7 @@ bool UserCsv::next(std::vector<std::string>& cells) {
   if (!nextLine(line)) return false;
   cells = userCsvCells(line, where());
   if (cells.size() != columns)
-    throw std::runtime_error(fmt::format(
+    throw InputError(fmt::format(
         "{}: {} cells, the header has {}{}", where(), cells.size(), columns,
         cells.size() > columns ? " (numbers with a decimal comma? cosim reads numbers with a "
                                  "decimal point, cells separated by commas)"

@@ -58,8 +58,8 @@ ZonePassWriter::ZonePassWriter(const std::filesystem::path& path, Mode mode) : p
     std::getline(in, line);
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line != kHeader) {
-      throw std::runtime_error(path.string() + " has columns '" + line + "', expected '" + kHeader +
-                               "': it was not written by this cosim; use a new run folder");
+      throw InputError(path.string() + " has columns '" + line + "', expected '" + kHeader +
+                       "': it was not written by this cosim; use a new run folder");
     }
     while (std::getline(in, line)) rows_ += line.empty() ? 0 : 1;
     file_ = std::fopen(path.c_str(), "a");
@@ -97,13 +97,12 @@ void ZonePassWriter::write(const std::vector<ZonePass>& passes) {
 
 std::vector<ZonePass> readZonePasses(const std::filesystem::path& path) {
   std::ifstream in(path);
-  if (!in) throw std::runtime_error(path.string() + " cannot be read");
+  if (!in) throw InputError(path.string() + " cannot be read");
   std::string line;
-  if (!std::getline(in, line)) throw std::runtime_error(path.string() + " is empty");
+  if (!std::getline(in, line)) throw InputError(path.string() + " is empty");
   if (!line.empty() && line.back() == '\r') line.pop_back();
   if (line != kHeader) {
-    throw std::runtime_error(path.string() + ":1: header '" + line + "', expected '" + kHeader +
-                             "'");
+    throw InputError(path.string() + ":1: header '" + line + "', expected '" + kHeader + "'");
   }
   std::vector<std::string> lines;
   while (std::getline(in, line)) lines.push_back(line);
@@ -133,13 +132,13 @@ std::vector<ZonePass> readZonePasses(const std::filesystem::path& path) {
     }
     if (!ok) {
       if (last) break;  // cut short by a crash
-      throw std::runtime_error(where +
-                               "expected parcel_id,entry_time,exit_time,coating_kg,"
-                               "entered|at_start,left|run_end|deleted; found '" +
-                               lines[i] + "'");
+      throw InputError(where +
+                       "expected parcel_id,entry_time,exit_time,coating_kg,"
+                       "entered|at_start,left|run_end|deleted; found '" +
+                       lines[i] + "'");
     }
     if (!(p.exit_time >= p.entry_time)) {
-      throw std::runtime_error(where + "exit_time " + c[2] + " is before entry_time " + c[1]);
+      throw InputError(where + "exit_time " + c[2] + " is before entry_time " + c[1]);
     }
     out.push_back(p);
   }
