@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::orchestrator {
 
@@ -118,7 +119,7 @@ CoupledState fromJson(const Json& j) {
   if (j.contains("wake")) {
     const Json& w = j.at("wake");
     if (w.at("modes").get<std::size_t>() != models::WakeKernel::kModes) {
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "its wake history has {} modes per parcel, this cosim keeps {} (written by another "
           "version of undisturbed_velocity 'self_disturbance_transient'): start a new run",
           w.at("modes").get<std::size_t>(), models::WakeKernel::kModes));
@@ -141,7 +142,7 @@ CoupledState fromJson(const Json& j) {
     for (const auto& [name, values] : a.at("fields").items()) {
       where.field(name) = values.get<std::vector<double>>();
       if (where.field(name).size() % std::max<std::size_t>(where.ids.size(), 1) != 0)
-        throw std::runtime_error("its sample_ahead." + name + " does not match its ids");
+        throw InputError("its sample_ahead." + name + " does not match its ids");
     }
     s.sample_ahead = std::move(where);
   }
@@ -279,16 +280,16 @@ CoupledState readCoupledState(const fs::path& checkpoint) {
   try {
     const Json j = analysis::readJsonFile(file);
     if (j.value("format", "") != "cosim-checkpoint")
-      throw std::runtime_error("not a cosim checkpoint (no format: cosim-checkpoint)");
+      throw InputError("not a cosim checkpoint (no format: cosim-checkpoint)");
     return fromJson(j);
   } catch (const nlohmann::json::exception& e) {
     // a key missing or of the wrong type: the file is not what this cosim wrote
-    throw std::runtime_error(file.string() +
-                             ": the checkpoint's state is damaged or was not written by this "
-                             "version of cosim (" +
-                             e.what() + ")");
+    throw InputError(file.string() +
+                     ": the checkpoint's state is damaged or was not written by this "
+                     "version of cosim (" +
+                     e.what() + ")");
   } catch (const std::exception& e) {
-    throw std::runtime_error(file.string() + ": " + e.what());
+    throw Error(kindOf(e, ErrorKind::input), file.string() + ": " + e.what());
   }
 }
 

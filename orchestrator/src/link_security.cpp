@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
@@ -29,23 +31,22 @@ std::string bindAddress(const std::string& bind) {
   if (bind.rfind("tcp://:", 0) != 0) return bind;
   char name[256] = {0};
   if (::gethostname(name, sizeof name - 1) != 0)
-    throw std::runtime_error("transport.bind " + bind + ": cannot read this host's name");
+    throw InputError("transport.bind " + bind + ": cannot read this host's name");
   addrinfo hints{};
   hints.ai_family = AF_INET;
   hints.ai_socktype = SOCK_STREAM;
   addrinfo* found = nullptr;
   if (::getaddrinfo(name, nullptr, &hints, &found) != 0 || found == nullptr) {
-    throw std::runtime_error("transport.bind " + bind + ": this host's name '" + name +
-                             "' has no IPv4 address; name the interface participants reach "
-                             "(tcp://HOST:PORT)");
+    throw InputError("transport.bind " + bind + ": this host's name '" + name +
+                     "' has no IPv4 address; name the interface participants reach "
+                     "(tcp://HOST:PORT)");
   }
   char address[NI_MAXHOST] = {0};
   const int rc = ::getnameinfo(found->ai_addr, found->ai_addrlen, address, sizeof address, nullptr,
                                0, NI_NUMERICHOST);
   ::freeaddrinfo(found);
   if (rc != 0)
-    throw std::runtime_error("transport.bind " + bind + ": cannot read the address of '" + name +
-                             "'");
+    throw InputError("transport.bind " + bind + ": cannot read the address of '" + name + "'");
   return "tcp://" + std::string(address) + bind.substr(6);
 }
 
@@ -62,14 +63,14 @@ std::optional<link::CurveKeyPair> orchestratorKeys(const TransportSection& t,
   try {
     link::requireCurve();
   } catch (const std::exception& e) {
-    throw std::runtime_error(why + ", but " + e.what());
+    throw Error(kindOf(e, ErrorKind::resource), why + ", but " + e.what());
   }
   if (!fs::exists(file)) {
-    throw std::runtime_error(why + ", and its key file " + file.string() +
-                             " does not exist: create it with 'cosim keys' (or 'cosim keys FILE' "
-                             "and name FILE in transport.key_file); to run tcp:// "
-                             "without encryption on a network you trust, set "
-                             "transport.insecure: true");
+    throw InputError(why + ", and its key file " + file.string() +
+                     " does not exist: create it with 'cosim keys' (or 'cosim keys FILE' "
+                     "and name FILE in transport.key_file); to run tcp:// "
+                     "without encryption on a network you trust, set "
+                     "transport.insecure: true");
   }
   return link::readKeyPairFile(file);
 }

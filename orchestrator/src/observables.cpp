@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::orchestrator {
 
@@ -19,9 +20,9 @@ std::vector<std::string> split(const std::string& s) {
 }
 
 [[noreturn]] void bad(const std::string& q, const std::string& why) {
-  throw std::runtime_error("observable quantity '" + q + "': " + why +
-                           " (forms: particles.<field>[.x|y|z].<mean|min|max|std|cv|sum>, "
-                           "series.<column>.<mean|final|min|max>, totals.<name>)");
+  throw InputError("observable quantity '" + q + "': " + why +
+                   " (forms: particles.<field>[.x|y|z].<mean|min|max|std|cv|sum>, "
+                   "series.<column>.<mean|final|min|max>, totals.<name>)");
 }
 
 [[noreturn]] void undefined(const std::string& q, const std::string& why) {

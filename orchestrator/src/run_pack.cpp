@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "checkpoints.h"
+#include "cosim/util/errors.h"
 #include "run_record.h"
 #include "stability.h"
 
@@ -95,25 +96,24 @@ class Packer {
 PackResult packRun(const fs::path& run, const fs::path& dest, const Scenario& sc) {
   const std::string r = run.string(), d = dest.string();
   if (const auto holder = runFolderInUse(run)) {
-    throw std::runtime_error("a run (" + *holder + ") is writing into " + r +
-                             " now: stop it first (Ctrl-C, or kill -INT with that pid: it writes "
-                             "a checkpoint and stops), then pack it");
+    throw InputError("a run (" + *holder + ") is writing into " + r +
+                     " now: stop it first (Ctrl-C, or kill -INT with that pid: it writes "
+                     "a checkpoint and stops), then pack it");
   }
   const CheckpointStore store(run);
   const auto newest = store.newest();
   if (!newest) {
-    throw std::runtime_error(r +
-                             " holds no complete checkpoint, so a copy could not continue it; "
-                             "runs write checkpoints with checkpoint.interval (docs/restarts.md)");
+    throw InputError(r +
+                     " holds no complete checkpoint, so a copy could not continue it; "
+                     "runs write checkpoints with checkpoint.interval (docs/restarts.md)");
   }
   if (fs::exists(dest) && !(fs::is_directory(dest) && fs::is_empty(dest))) {
-    throw std::runtime_error(d +
-                             " already exists and is not an empty folder; cosim never writes "
-                             "over it: choose another destination");
+    throw InputError(d +
+                     " already exists and is not an empty folder; cosim never writes "
+                     "over it: choose another destination");
   }
   if (within(dest, run)) {
-    throw std::runtime_error(d + " lies inside the run folder " + r +
-                             ": choose a destination outside it");
+    throw InputError(d + " lies inside the run folder " + r + ": choose a destination outside it");
   }
 
   PackResult result;
@@ -160,9 +160,10 @@ PackResult packRun(const fs::path& run, const fs::path& dest, const Scenario& sc
   } catch (const fs::filesystem_error& e) {
     std::error_code ec;
     fs::remove_all(partial, ec);
-    throw std::runtime_error("copying " + r + " to " + d + " failed (" + e.code().message() +
-                             " at " + e.path1().string() + "); nothing was written to " + d +
-                             " and " + r + " is unchanged");
+    throw Error(kindOfErrno(e.code().value()),
+                "copying " + r + " to " + d + " failed (" + e.code().message() + " at " +
+                    e.path1().string() + "); nothing was written to " + d + " and " + r +
+                    " is unchanged");
   }
   return result;
 }

@@ -134,9 +134,9 @@ bool RunRecord::claim(const fs::path& folder) {
   std::error_code made;
   fs::create_directories(folder, made);
   if (made)
-    throw std::runtime_error("cannot create the run folder " + folder.string() + ": " +
-                             made.message() +
-                             "; choose a folder you can write to with -o (or output.folder)");
+    throw Error(kindOfErrno(made.value()),
+                "cannot create the run folder " + folder.string() + ": " + made.message() +
+                    "; choose a folder you can write to with -o (or output.folder)");
   const fs::path lock = folder / kLockFile;
   for (int attempt = 0; attempt < 100; ++attempt) {
     const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
@@ -149,7 +149,7 @@ bool RunRecord::claim(const fs::path& folder) {
       const int err = errno;
       ::close(fd);
       if (err == EWOULDBLOCK) return false;  // a run that is alive holds it
-      throw std::runtime_error("cannot lock " + lock.string() + ": " + std::strerror(err));
+      throw Error(kindOfErrno(err), "cannot lock " + lock.string() + ": " + std::strerror(err));
     }
     struct stat held {};
     struct stat at_path {};
@@ -163,7 +163,7 @@ bool RunRecord::claim(const fs::path& folder) {
                     ::pwrite(fd, pid.data(), pid.size(), 0) == static_cast<ssize_t>(pid.size());
     if (!ok) {
       ::close(fd);
-      throw std::runtime_error("cannot write " + lock.string() + " (disk full?)");
+      throw ResourceError("cannot write " + lock.string() + " (disk full?)");
     }
     lock_ = lock;
     lock_fd_ = fd;
@@ -184,23 +184,23 @@ void RunRecord::release() {
 
 const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
   const fs::path base = output.empty() ? sc_.output.folder : fs::absolute(output);
-  if (const auto why = overScene(base, sc_)) throw std::runtime_error(*why);
+  if (const auto why = overScene(base, sc_)) throw InputError(*why);
   // A folder the user named (-o) is that run's folder or none: refused if it holds anything
   // (or a run holds it), never replaced by another name the user would not look in.
   if (!output.empty()) {
     const bool used = fs::exists(base) && (!fs::is_directory(base) || !fs::is_empty(base));
-    if (used && !overwrite) throw std::runtime_error(refusal(base));
+    if (used && !overwrite) throw InputError(refusal(base));
     if (!claim(base)) {
-      throw std::runtime_error(overwrite ? "the run folder " + base.string() +
-                                               " is in use by another run (" +
-                                               holderText(base / kLockFile) +
-                                               "); wait for it or choose another folder with -o"
-                                         : refusal(base));
+      throw InputError(overwrite
+                           ? "the run folder " + base.string() + " is in use by another run (" +
+                                 holderText(base / kLockFile) +
+                                 "); wait for it or choose another folder with -o"
+                           : refusal(base));
     }
     // A run that held the folder may have finished between the look above and our claim.
     if (!overwrite && holdsRunFiles(base)) {
       release();
-      throw std::runtime_error(refusal(base));
+      throw InputError(refusal(base));
     }
     folder_ = base;
     writeResolvedScene();
@@ -225,9 +225,9 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
       break;
     }
     if (overwrite) {
-      throw std::runtime_error("the run folder " + candidate.string() +
-                               " is in use by another run (" + holderText(candidate / kLockFile) +
-                               "); wait for it or choose another folder");
+      throw InputError("the run folder " + candidate.string() + " is in use by another run (" +
+                       holderText(candidate / kLockFile) +
+                       "); wait for it or choose another folder");
     }
   }
   writeResolvedScene();
@@ -238,9 +238,9 @@ const fs::path& RunRecord::open(const fs::path& output, bool overwrite) {
 
 const fs::path& RunRecord::reopen(const fs::path& folder) {
   if (!claim(folder)) {
-    throw std::runtime_error("the run folder " + folder.string() + " is in use by another run (" +
-                             holderText(folder / kLockFile) +
-                             "); a run can be resumed once it has stopped");
+    throw InputError("the run folder " + folder.string() + " is in use by another run (" +
+                     holderText(folder / kLockFile) +
+                     "); a run can be resumed once it has stopped");
   }
   folder_ = folder;
   log_.open(folder_ / "cosim.log");
@@ -319,7 +319,7 @@ std::vector<ObservableValue> RunRecord::observables(
       v.value = std::numeric_limits<double>::quiet_NaN();
       v.undefined = e.what();
     } catch (const std::exception& e) {
-      throw std::runtime_error("observables." + spec.name + ": " + e.what());
+      throw Error(kindOf(e, ErrorKind::input), "observables." + spec.name + ": " + e.what());
     }
     v.reference = spec.reference;
     if (v.undefined.empty()) v.relative_error = relativeError(v.value, v.reference);

@@ -9,6 +9,8 @@
 #include <random>
 #include <stdexcept>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::orchestrator {
 
 namespace fs = std::filesystem;
@@ -32,17 +34,19 @@ fs::path writeRunTokenFile(const fs::path& folder, const std::string& token) {
   const fs::path file = folder / kRunTokenFile;
   ::unlink(file.c_str());  // an earlier run's (or resume's) token
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-  if (fd < 0)
-    throw std::runtime_error("cannot write the run token to " + file.string() + ": " +
-                             std::strerror(errno));
+  if (fd < 0) {
+    const int err = errno;
+    throw Error(kindOfErrno(err),
+                "cannot write the run token to " + file.string() + ": " + std::strerror(err));
+  }
   const std::string text = token + "\n";
   const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
   const int err = errno;
   ::close(fd);
   if (!ok) {
     ::unlink(file.c_str());
-    throw std::runtime_error("cannot write the run token to " + file.string() + ": " +
-                             std::strerror(err));
+    throw Error(kindOfErrno(err),
+                "cannot write the run token to " + file.string() + ": " + std::strerror(err));
   }
   return file;
 }

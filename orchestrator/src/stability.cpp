@@ -16,6 +16,7 @@
 
 #include "cosim/link/fields.h"
 #include "cosim/util/all_finite.h"
+#include "cosim/util/errors.h"
 #include "cosim/util/format.h"
 
 namespace cosim::orchestrator {
@@ -280,8 +281,8 @@ void StepMonitor::checkParticleLedger(const std::vector<std::int64_t>& before,
   std::vector<std::int64_t> now(after);
   std::sort(now.begin(), now.end());
   if (std::adjacent_find(now.begin(), now.end()) != now.end()) {
-    throw std::runtime_error("particles: the state lists a particle id twice at step " +
-                             std::to_string(step));
+    throw SolverError("particles: the state lists a particle id twice at step " +
+                      std::to_string(step));
   }
   // expected = before - deleted + inserted, as a set
   std::vector<std::int64_t> kept(before), gone(deleted), born(inserted);
@@ -306,7 +307,7 @@ void StepMonitor::checkParticleLedger(const std::vector<std::int64_t>& before,
        << " s)";
     if (!vanished.empty()) os << "; first vanished id " << vanished.front();
     if (!appeared.empty()) os << "; first new id " << appeared.front();
-    throw std::runtime_error(os.str());
+    throw SolverError(os.str());
   }
 }
 
@@ -316,7 +317,7 @@ std::optional<std::string> StepMonitor::checkCourant(double co, std::uint64_t st
     os << "fluid: Courant number " << co << " at step " << step << " (t = " << time
        << " s) exceeds checks.max_courant = " << sc_.checks.max_courant
        << ": reduce coupling.dt to about " << sc_.coupling.dt * 0.5 / co << " s (Courant 0.5)";
-    throw std::runtime_error(os.str());
+    throw SolverError(os.str());
   }
   if (co > 1.0 && !courant_warned_) {
     courant_warned_ = true;
@@ -351,7 +352,7 @@ void StepMonitor::checkMassBalance(double in, double out, double held, double re
        << " kg - out " << out << " kg - change held " << held << " kg - removed by particles "
        << removed << " kg = " << in - out - held - removed << " kg, relative " << err
        << " > checks.mass_balance_tolerance = " << sc_.checks.mass_balance_tolerance;
-    throw std::runtime_error(os.str());
+    throw SolverError(os.str());
   }
 }
 

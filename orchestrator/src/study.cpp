@@ -23,13 +23,13 @@ namespace fs = std::filesystem;
 std::pair<std::string, std::vector<std::string>> parseVary(const std::string& text) {
   auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0 || eq + 1 >= text.size()) {
-    throw std::runtime_error("--vary " + text +
-                             ": expected key=v1,v2,... (e.g. --vary coupling.dem_steps=5,10,20)");
+    throw InputError("--vary " + text +
+                     ": expected key=v1,v2,... (e.g. --vary coupling.dem_steps=5,10,20)");
   }
   std::vector<std::string> values;
   std::stringstream ss(text.substr(eq + 1));
   for (std::string v; std::getline(ss, v, ',');) {
-    if (v.empty()) throw std::runtime_error("--vary " + text + ": empty value in the list");
+    if (v.empty()) throw InputError("--vary " + text + ": empty value in the list");
     values.push_back(v);
   }
   return {text.substr(0, eq), values};
@@ -222,7 +222,7 @@ int finestVariant(const StudyOptions& opt, const std::vector<Variant>& variants)
     }
   }
   if (finest >= static_cast<int>(variants.size()))
-    throw std::runtime_error("--finest is larger than the number of variants");
+    throw InputError("--finest is larger than the number of variants");
   return finest;
 }
 
@@ -291,12 +291,11 @@ void drawPlot(const fs::path& folder, bool quiet) {
 }  // namespace
 
 int runStudy(const StudyOptions& opt) {
-  if (opt.vary.empty())
-    throw std::runtime_error("cosim study needs at least one --vary key=v1,v2,...");
+  if (opt.vary.empty()) throw InputError("cosim study needs at least one --vary key=v1,v2,...");
   // Validate the base scenario first (clear errors before any run starts).
   Scenario base = loadScenario(opt.scenario, opt.sets, opt.unsets);
   if (base.observables.empty()) {
-    throw std::runtime_error(
+    throw InputError(
         base.file.string() +
         ": observables: the scenario defines no observables, so a study has nothing to measure; "
         "add e.g. observables: { v: { quantity: particles.velocity.z.mean } }");
