@@ -11,6 +11,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::link {
 
 namespace fs = std::filesystem;
@@ -25,9 +27,10 @@ void writePrivateFile(const fs::path& file, const std::string& text, bool replac
   if (replace) ::unlink(file.c_str());
   const int fd = ::open(file.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
   if (fd < 0) {
-    throw std::runtime_error(
-        "cannot create the key file " + file.string() + ": " + std::strerror(errno) +
-        (errno == EEXIST ? " (it exists; cosim never replaces a key file)" : ""));
+    const int err = errno;
+    throw Error(err == EEXIST ? ErrorKind::input : kindOfErrno(err),
+                "cannot create the key file " + file.string() + ": " + std::strerror(err) +
+                    (err == EEXIST ? " (it exists; cosim never replaces a key file)" : ""));
   }
   const bool ok = ::fchmod(fd, 0600) == 0 &&
                   ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
@@ -35,8 +38,8 @@ void writePrivateFile(const fs::path& file, const std::string& text, bool replac
   ::close(fd);
   if (!ok) {
     ::unlink(file.c_str());
-    throw std::runtime_error("cannot write the key file " + file.string() + ": " +
-                             std::strerror(err));
+    throw Error(kindOfErrno(err),
+                "cannot write the key file " + file.string() + ": " + std::strerror(err));
   }
 }
 
@@ -44,24 +47,26 @@ void writePrivateFile(const fs::path& file, const std::string& text, bool replac
 YAML::Node readPrivateYaml(const fs::path& file, const std::string& what, const std::string& fix) {
   struct stat st {};
   if (::stat(file.c_str(), &st) != 0) {
-    throw std::runtime_error(what + " " + file.string() + ": " + std::strerror(errno) + "; " + fix);
+    const int err = errno;
+    throw Error(kindOfErrno(err),
+                what + " " + file.string() + ": " + std::strerror(err) + "; " + fix);
   }
   if ((st.st_mode & 077) != 0) {
     std::ostringstream mode;
     mode << std::oct << (st.st_mode & 0777);
-    throw std::runtime_error(what + " " + file.string() + " has mode 0" + mode.str() +
-                             ": others may read its secret key; make it private with 'chmod 600 " +
-                             file.string() + "' (or replace the key if others have read it)");
+    throw InputError(what + " " + file.string() + " has mode 0" + mode.str() +
+                     ": others may read its secret key; make it private with 'chmod 600 " +
+                     file.string() + "' (or replace the key if others have read it)");
   }
   YAML::Node node;
   try {
     node = YAML::LoadFile(file.string());
   } catch (const std::exception& e) {
-    throw std::runtime_error(what + " " + file.string() + " is not a cosim key file (" + e.what() +
-                             "); " + fix);
+    throw InputError(what + " " + file.string() + " is not a cosim key file (" + e.what() + "); " +
+                     fix);
   }
   if (!node.IsMap())
-    throw std::runtime_error(what + " " + file.string() + " is not a cosim key file; " + fix);
+    throw InputError(what + " " + file.string() + " is not a cosim key file; " + fix);
   return node;
 }
 
@@ -70,8 +75,8 @@ std::string keyIn(const YAML::Node& node, const char* key, const fs::path& file,
   std::string value;
   if (node[key] && node[key].IsScalar()) value = node[key].as<std::string>();
   if (!isZ85Key(value)) {
-    throw std::runtime_error(what + " " + file.string() + ": '" + key +
-                             "' is missing or not a 40-character Z85 key; " + fix);
+    throw InputError(what + " " + file.string() + ": '" + key +
+                     "' is missing or not a 40-character Z85 key; " + fix);
   }
   return value;
 }
@@ -91,7 +96,7 @@ bool curveAvailable() { return zmq_has("curve") != 0; }
 
 void requireCurve() {
   if (!curveAvailable()) {
-    throw std::runtime_error(
+    throw ResourceError(
         "this libzmq cannot encrypt (zmq_has(\"curve\") is false: built without libsodium); "
         "install a libzmq with CurveZMQ (Debian's libzmq5 has it), or, on a network you trust, "
         "set transport.insecure: true");
@@ -102,8 +107,8 @@ CurveKeyPair newCurveKeyPair() {
   requireCurve();
   char pub[41] = {0}, sec[41] = {0};
   if (zmq_curve_keypair(pub, sec) != 0)
-    throw std::runtime_error(std::string("cannot make a CurveZMQ key pair: ") +
-                             zmq_strerror(zmq_errno()));
+    throw ResourceError(std::string("cannot make a CurveZMQ key pair: ") +
+                        zmq_strerror(zmq_errno()));
   CurveKeyPair pair{pub, sec};
   std::memset(sec, 0, sizeof sec);
   return pair;
@@ -175,10 +180,10 @@ CurveClientKeys parseCurveKeysVariable(const std::string& text) {
   in >> k.orchestrator_public >> k.own.public_key >> k.own.secret_key >> extra;
   if (!isZ85Key(k.orchestrator_public) || !isZ85Key(k.own.public_key) ||
       !isZ85Key(k.own.secret_key) || !extra.empty()) {
-    throw std::runtime_error(std::string("the environment variable ") + kCurveKeysVariable +
-                             " is not three 40-character Z85 keys (orchestrator public, "
-                             "participant public, participant secret); cosim sets it for the "
-                             "participants it starts: unset it, or use --key-file");
+    throw InputError(std::string("the environment variable ") + kCurveKeysVariable +
+                     " is not three 40-character Z85 keys (orchestrator public, "
+                     "participant public, participant secret); cosim sets it for the "
+                     "participants it starts: unset it, or use --key-file");
   }
   return k;
 }

@@ -1,9 +1,13 @@
 #include "cosim/link/file_transfer.h"
 
+#include <cerrno>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
 #include <string>
+
+#include "cosim/link/errors.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::link {
 
@@ -16,14 +20,17 @@ void packFolder(const fs::path& root, FileList& out) {
        ++it) {
     if (!it->is_regular_file() || it->is_symlink()) continue;
     std::ifstream in(it->path(), std::ios::binary);
-    if (!in) throw std::runtime_error("cannot read " + it->path().string() + " to send it");
+    if (!in) {
+      const int err = errno;
+      throw Error(kindOfErrno(err), "cannot read " + it->path().string() + " to send it");
+    }
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     total += bytes.size();
     if (total > kMaxTransferBytes) {
-      throw std::runtime_error("the files of " + root.string() + " are more than " +
-                               std::to_string(kMaxTransferBytes >> 20) +
-                               " MiB, too much to send over the link; give the participant the "
-                               "run folder on a shared filesystem instead (no --workdir)");
+      throw InputError("the files of " + root.string() + " are more than " +
+                       std::to_string(kMaxTransferBytes >> 20) +
+                       " MiB, too much to send over the link; give the participant the "
+                       "run folder on a shared filesystem instead (no --workdir)");
     }
     auto* f = out.Add();
     f->set_path(fs::relative(it->path(), root).generic_string());
@@ -38,15 +45,18 @@ void unpackFiles(const FileList& files, const fs::path& root) {
     bool safe = !f.path().empty() && rel.is_relative() && !rel.has_root_name();
     for (const auto& part : rel) safe = safe && part != ".." && part != "." && !part.empty();
     if (!safe) {
-      throw std::runtime_error("refusing a file sent as '" + f.path() +
-                               "': only paths inside the participant's folder are accepted");
+      throw ProtocolError("refusing a file sent as '" + f.path() +
+                          "': only paths inside the participant's folder are accepted");
     }
     const fs::path target = root / rel;
     fs::create_directories(target.parent_path());
     {
       std::ofstream out(target, std::ios::binary | std::ios::trunc);
       out.write(f.content().data(), static_cast<std::streamsize>(f.content().size()));
-      if (!out) throw std::runtime_error("cannot write " + target.string() + " (disk full?)");
+      if (!out) {
+        const int err = errno;
+        throw Error(kindOfErrno(err), "cannot write " + target.string() + " (disk full?)");
+      }
     }
     if (f.mode() != 0) fs::permissions(target, static_cast<fs::perms>(f.mode()) & fs::perms::mask);
   }

@@ -56,10 +56,12 @@ std::string readTokenFile(const std::string& file) {
   const auto last = token.find_last_not_of(" \t\r\n");
   token = first == std::string::npos ? "" : token.substr(first, last - first + 1);
   if (!in.is_open() || token.empty()) {
-    throw std::runtime_error("--token-file " + file + ": " +
-                             (in.is_open() ? "the file is empty" : std::strerror(errno)) +
-                             "; cosim writes the run's token to .cosim-run-token in the run folder "
-                             "when it starts a run with a participant of launch: external");
+    const int err = errno;
+    throw Error(in.is_open() ? ErrorKind::input : kindOfErrno(err),
+                "--token-file " + file + ": " +
+                    (in.is_open() ? "the file is empty" : std::strerror(err)) +
+                    "; cosim writes the run's token to .cosim-run-token in the run folder "
+                    "when it starts a run with a participant of launch: external");
   }
   return token;
 }
@@ -146,12 +148,12 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
     std::cout << app.help();
     return std::nullopt;
   } catch (const CLI::ParseError& e) {
-    throw std::runtime_error(std::string(e.what()) + "; " + usage);
+    throw InputError(std::string(e.what()) + "; " + usage);
   }
   o.command_timeout_ms = 1000 * command_timeout_s;
   if (rest != nullptr) *rest = app.remaining();
   if (!o.check_options.empty() || o.options_reference) return o;
-  if (o.endpoint.empty() || o.name.empty()) throw std::runtime_error(usage);
+  if (o.endpoint.empty() || o.name.empty()) throw InputError(usage);
   if (!token_file.empty()) {
     o.token = readTokenFile(token_file);
   } else if (const char* t = std::getenv(kRunTokenVariable)) {
@@ -160,14 +162,14 @@ std::optional<ParticipantOptions> ParticipantOptions::parse(int argc, char** arg
   if (!key_file.empty()) {
     const ParticipantKeyFile f = readParticipantKeyFile(key_file);
     if (!f.participant.empty() && f.participant != o.name) {
-      throw std::runtime_error("--key-file " + key_file + " holds the keys of participant '" +
-                               f.participant + "', not of '" + o.name +
-                               "': give this participant its own key file");
+      throw InputError("--key-file " + key_file + " holds the keys of participant '" +
+                       f.participant + "', not of '" + o.name +
+                       "': give this participant its own key file");
     }
     if (!o.run_id.empty() && !f.run_id.empty() && f.run_id != o.run_id) {
-      throw std::runtime_error("--key-file " + key_file + " holds the keys of run " + f.run_id +
-                               ", not of run " + o.run_id +
-                               ": every run issues new keys; copy this run's key file");
+      throw InputError("--key-file " + key_file + " holds the keys of run " + f.run_id +
+                       ", not of run " + o.run_id +
+                       ": every run issues new keys; copy this run's key file");
     }
     o.curve = f.keys;
   } else if (const char* k = std::getenv(kCurveKeysVariable)) {

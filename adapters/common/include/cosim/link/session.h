@@ -17,6 +17,7 @@
 #include "cosim/link/curve_keys.h"
 #include "cosim/link/particle_data.h"
 #include "cosim/link/transport.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::link {
 
@@ -87,7 +88,7 @@ class Solver {
     (void)particles;
     (void)out;
     (void)lost_ids;
-    throw std::runtime_error("this adapter does not sample fluid fields");
+    throw InputError("this adapter does not sample fluid fields");
   }
   // Advance one coupling interval (dt == 0: only report the current state).
   virtual void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced& out,
@@ -97,12 +98,12 @@ class Solver {
   // files written. Called between coupling steps.
   virtual std::vector<std::string> checkpoint(const std::string& path) {
     (void)path;
-    throw std::runtime_error("this adapter cannot write checkpoints");
+    throw InputError("this adapter cannot write checkpoints");
   }
   // After configure, when the run resumes: continue from what checkpoint(path) wrote.
   virtual void restore(const std::string& path) {
     (void)path;
-    throw std::runtime_error("this adapter cannot resume from a checkpoint");
+    throw InputError("this adapter cannot resume from a checkpoint");
   }
   virtual void finish() {}
 };
