@@ -1,6 +1,7 @@
 #include "cosim/liggghts/engine.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "cosim/liggghts/liggghts_error.h"
 #include "cosim/liggghts/order_by_id.h"
 #include "cosim/util/all_finite.h"
+#include "cosim/util/errors.h"
 #include "dump.h"
 #include "fix.h"
 #include "fix_property_atom.h"
@@ -95,8 +97,7 @@ Engine::~Engine() {
 
 template <class F>
 void Engine::guarded(const std::string& what, F&& f) {
-  if (broken_)
-    throw std::runtime_error("LIGGGHTS already stopped on an earlier error; cannot " + what);
+  if (broken_) throw SolverError("LIGGGHTS already stopped on an earlier error; cannot " + what);
   try {
     LiggghtsCall call;
     f();
@@ -133,9 +134,9 @@ void Engine::failWithLiggghtsMessage(const std::string& what, bool aborted) {
 
 void Engine::runScript(const std::filesystem::path& script) {
   if (!std::filesystem::exists(script))
-    throw std::runtime_error("LIGGGHTS script '" + script.string() +
-                             "' does not exist (option `script` of the particles participant; "
-                             "the path is relative to the participant's folder)");
+    throw InputError("LIGGGHTS script '" + script.string() +
+                     "' does not exist (option `script` of the particles participant; "
+                     "the path is relative to the participant's folder)");
   script_ = script;
   const std::string path = script.string();
   guarded("running " + path, [&] { lmp_->input->file(path.c_str()); });
@@ -182,10 +183,10 @@ std::string forResume(const std::string& command, const std::filesystem::path& r
 void Engine::resumeScript(const std::filesystem::path& script,
                           const std::filesystem::path& restart) {
   if (!std::filesystem::exists(script))
-    throw std::runtime_error("LIGGGHTS script '" + script.string() + "' does not exist");
+    throw InputError("LIGGGHTS script '" + script.string() + "' does not exist");
   if (!std::filesystem::exists(restart))
-    throw std::runtime_error("cannot resume: the checkpoint has no LIGGGHTS restart file " +
-                             restart.string());
+    throw InputError("cannot resume: the checkpoint has no LIGGGHTS restart file " +
+                     restart.string());
   script_ = script;
   keep_restored_forces_ = std::filesystem::exists(restart.parent_path() / kOtherForcesMarker);
   // The script rewritten line for line (a left-out command becomes an empty line, a continued
@@ -222,9 +223,10 @@ void Engine::resumeScript(const std::filesystem::path& script,
     std::ofstream f(resumed);
     f << out.str();
     if (!f.flush())
-      throw std::runtime_error("cannot resume: cannot write " + resumed.string() +
-                               " (the script rewritten for the resume) in the participant's "
-                               "folder; is the disk full or the folder read-only?");
+      throw cosim::Error(kindOfErrno(errno),
+                         "cannot resume: cannot write " + resumed.string() +
+                             " (the script rewritten for the resume) in the participant's "
+                             "folder; is the disk full or the folder read-only?");
   }
   const std::string path = resumed.string();
   guarded("running " + script.string() + " for the resume (as " + path + ")",
@@ -240,9 +242,9 @@ void Engine::command(const std::string& line) {
 void Engine::installCoupling() {
   if (coupled_) return;
   if (!lmp_->atom->rmass_flag || !lmp_->atom->radius_flag)
-    throw std::runtime_error("LIGGGHTS script " + script_.string() +
-                             ": the coupling needs spherical particles with per-particle mass and "
-                             "radius; use `atom_style granular` (or sphere)");
+    throw InputError("LIGGGHTS script " + script_.string() +
+                     ": the coupling needs spherical particles with per-particle mass and "
+                     "radius; use `atom_style granular` (or sphere)");
   if (!findProperty(lmp_->modify, kCoatingMassProperty, "property/atom", "scalar"))
     command(std::string("fix ") + kCoatingMassProperty + " all property/atom " +
             kCoatingMassProperty + " scalar yes no no 0");
@@ -338,7 +340,7 @@ TimestepReport Engine::timestepReport(double impact_speed) const {
   auto* nu = dynamic_cast<LAMMPS_NS::FixPropertyGlobal*>(
       findProperty(lmp_->modify, "poissonsRatio", "property/global", "peratomtype"));
   if (!E || !nu)
-    throw std::runtime_error(
+    throw InputError(
         "LIGGGHTS script " + script_.string() +
         " defines no `fix ... property/global youngsModulus peratomtype ...` and "
         "`poissonsRatio`; the adapter needs them to check the DEM time step (or set the option "
@@ -372,9 +374,9 @@ void Engine::applyTerms(const Terms& terms) {
   const std::size_t n = terms.ids.size();
   auto check_size = [&](const std::vector<double>& v, std::size_t per, const char* name) {
     if (!v.empty() && v.size() != n * per)
-      throw std::runtime_error(std::string("forcing field ") + name + " has " +
-                               std::to_string(v.size()) + " values for " + std::to_string(n) +
-                               " particles (expected " + std::to_string(n * per) + ")");
+      throw PeerError(std::string("forcing field ") + name + " has " + std::to_string(v.size()) +
+                      " values for " + std::to_string(n) + " particles (expected " +
+                      std::to_string(n * per) + ")");
   };
   check_size(terms.drag_coefficient, 1, "drag_coefficient");
   check_size(terms.fluid_velocity, 3, "fluid_velocity");
@@ -394,12 +396,12 @@ void Engine::applyTerms(const Terms& terms) {
     };
     if (bad(terms.drag_coefficient, 1) || bad(terms.fluid_velocity, 3) ||
         bad(terms.explicit_force, 3) || bad(terms.coating_increment, 1))
-      throw std::runtime_error("forcing for particle id " + std::to_string(terms.ids[k]) +
-                               " contains a NaN or infinite value");
+      throw SolverError("forcing for particle id " + std::to_string(terms.ids[k]) +
+                        " contains a NaN or infinite value");
     if (!terms.drag_coefficient.empty() && terms.drag_coefficient[k] < 0)
-      throw std::runtime_error("drag_coefficient of particle id " + std::to_string(terms.ids[k]) +
-                               " is negative (" + std::to_string(terms.drag_coefficient[k]) +
-                               " kg/s); K must be >= 0");
+      throw SolverError("drag_coefficient of particle id " + std::to_string(terms.ids[k]) +
+                        " is negative (" + std::to_string(terms.drag_coefficient[k]) +
+                        " kg/s); K must be >= 0");
   }
   auto twice = [&](std::int64_t id) {
     return std::runtime_error("forcing lists particle id " + std::to_string(id) + " twice");
@@ -476,9 +478,9 @@ void Engine::applyTerms(const Terms& terms) {
     if (!found_anywhere[k] && count++ < 10)
       missing.append(" ").append(std::to_string(terms.ids[k]));
   if (count > 0)
-    throw std::runtime_error("forcing names " + std::to_string(count) +
-                             " particle id(s) that LIGGGHTS does not have:" + missing +
-                             (count > 10 ? " ..." : ""));
+    throw PeerError("forcing names " + std::to_string(count) +
+                    " particle id(s) that LIGGGHTS does not have:" + missing +
+                    (count > 10 ? " ..." : ""));
 }
 
 void Engine::advance(int steps) {
@@ -567,8 +569,8 @@ std::filesystem::path Engine::writeRestart(const std::filesystem::path& file) {
            << kLastTorqueProperty
            << ", the last step's forces other than the fluid's and torques\n";
     if (!marker)
-      throw std::runtime_error("cannot write " +
-                               (file.parent_path() / kOtherForcesMarker).string());
+      throw cosim::Error(kindOfErrno(errno),
+                         "cannot write " + (file.parent_path() / kOtherForcesMarker).string());
   }
   return file;
 }

@@ -13,8 +13,10 @@
 
 #include "cosim/liggghts/liggghts_error.h"
 #include "cosim/liggghts/scene_check.h"
+#include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/particle_wire.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::liggghts {
 
@@ -184,7 +186,7 @@ int LiggghtsSolver::serve() {
         case kQuit:
           return 1;
         default:
-          throw std::runtime_error("unknown command from rank 0");
+          throw std::logic_error("unknown command from rank 0");
       }
     } catch (const LiggghtsError& e) {
       if (e.collectiveBroken()) {
@@ -226,7 +228,7 @@ void LiggghtsSolver::doConfigure(const cosim::wire::Welcome& welcome) {
 
   if (const auto why = timestepMismatch(options_.script, engine_->timestep(), welcome.cfd_dt(),
                                         welcome.dem_steps()))
-    throw std::runtime_error(*why);
+    throw InputError(*why);
   warnIfDumpsOffTheRunClock(welcome);
   checkTimestep();
 }
@@ -261,7 +263,7 @@ void LiggghtsSolver::checkTimestep() {
   dt_reported_ = true;
   const TimestepVerdict v = judgeTimestep(report);
   if (v.verdict == Verdict::unstable && options_.dt_check == DtCheckPolicy::refuse)
-    throw std::runtime_error(fmt::format(
+    throw SolverError(fmt::format(
         "LIGGGHTS script {}: the DEM time step is too large for these particles: {}. Contacts "
         "would be unstable (limits: 0.3 x Rayleigh time, 1/3 x Hertz time). Use `timestep {:.3g}` "
         "(0.2 x Rayleigh time or 1/5 x Hertz time, whichever is smaller) and adjust "
@@ -277,7 +279,7 @@ void LiggghtsSolver::checkTimestep() {
 }
 
 void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
-  if (!engine_) throw std::runtime_error("Advance before configure");
+  if (!engine_) throw cosim::link::ProtocolError("Advance before configure");
   ParticleData terms = cosim::link::fromWire(cmd.terms());
   Terms t;
   t.ids = std::move(terms.ids);  // moved out of the packet, not copied
@@ -286,23 +288,24 @@ void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
   t.explicit_force = terms.take(field::explicit_force);
   t.coating_increment = terms.take(field::coating_increment);
   if (!t.drag_coefficient.empty() && t.fluid_velocity.empty())
-    throw std::runtime_error("Advance carries drag_coefficient without fluid_velocity");
+    throw cosim::link::ProtocolError("Advance carries drag_coefficient without fluid_velocity");
 
   int steps = 0;
   if (cmd.dt() > 0) {
     if (cmd.substeps() == 0)
-      throw std::runtime_error(fmt::format("Advance dt {:.6g} s with substeps = 0", cmd.dt()));
+      throw cosim::link::ProtocolError(
+          fmt::format("Advance dt {:.6g} s with substeps = 0", cmd.dt()));
     const double per_step = cmd.dt() / cmd.substeps();
     const double dt = engine_->timestep();
     if (std::abs(per_step - dt) > 1e-9 * dt)
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "Advance asks for {} DEM steps in {:.6g} s = {:.6g} s per step, but the LIGGGHTS "
           "script {} uses `timestep {:.6g}`; make coupling.dt / coupling.dem_steps equal the "
           "script's timestep",
           cmd.substeps(), cmd.dt(), per_step, options_.script, dt));
     steps = static_cast<int>(cmd.substeps());
   } else if (cmd.dt() < 0) {
-    throw std::runtime_error(fmt::format("Advance with negative dt {:.6g}", cmd.dt()));
+    throw cosim::link::ProtocolError(fmt::format("Advance with negative dt {:.6g}", cmd.dt()));
   }
   engine_->applyTerms(t);
   engine_->advance(steps);
@@ -311,7 +314,7 @@ void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
 }
 
 std::vector<std::string> LiggghtsSolver::doCheckpoint(const std::string& path) {
-  if (!engine_) throw std::runtime_error("Checkpoint before configure");
+  if (!engine_) throw cosim::link::ProtocolError("Checkpoint before configure");
   std::filesystem::path dir(path.empty() ? "." : path);
   const auto file = engine_->writeRestart(dir / "liggghts.restart");
   return {file.string()};

@@ -47,9 +47,9 @@ int main(int argc, char** argv) {
           "mpirun for several ranks.",
           &rest);
       if (options && !rest.empty())
-        throw std::runtime_error("unknown argument '" + rest.front() +
-                                 "'; usage: cosim-liggghts --endpoint <addr> --name <participant> "
-                                 "--run-id <id> (--help for all options)");
+        throw cosim::InputError("unknown argument '" + rest.front() +
+                                "'; usage: cosim-liggghts --endpoint <addr> --name <participant> "
+                                "--run-id <id> (--help for all options)");
       if (options) rc = cosim::link::runParticipant(solver, *options);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "cosim-liggghts: %s\n", e.what());

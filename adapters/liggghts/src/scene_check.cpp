@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cosim/liggghts/adapter_options.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::liggghts {
 
@@ -81,7 +82,7 @@ void checkScene(const cosim::wire::Welcome& welcome) {
   const fs::path script = dir / options.script;
   std::ifstream in(script);
   if (!in) {
-    throw std::runtime_error(
+    throw InputError(
         "scenario file, participants.<particles>.options.script: the LIGGGHTS "
         "script '" +
         options.script +
@@ -96,7 +97,7 @@ void checkScene(const cosim::wire::Welcome& welcome) {
       // A resume replaces the box creation by the checkpoint's restart file
       if (resuming && (w[0] == "read_data" || w[0] == "read_restart")) continue;
       if (!fs::exists(dir / *file))
-        throw std::runtime_error(fmt::format(
+        throw InputError(fmt::format(
             "{}: `{}` reads '{}', which is not in the participant's files: folder (paths in the "
             "script are relative to that folder)",
             where, w[0] == "fix" ? "fix " + w[1] + " ... " + w[3] : w[0], *file));
@@ -112,7 +113,7 @@ void checkScene(const cosim::wire::Welcome& welcome) {
         const double v = std::strtod(w[i].c_str(), &end);
         if (end == w[i].c_str() || *end != '\0') continue;  // a LIGGGHTS variable, or a keyword
         if (!(v >= 0) || !std::isfinite(v))
-          throw std::runtime_error(fmt::format(
+          throw InputError(fmt::format(
               "{}: `fix {} ... {}` has the value {}: a friction coefficient must be a finite "
               "number >= 0 (e.g. 0.52); in a templated script it comes from the "
               "scene's parameters",
@@ -123,7 +124,7 @@ void checkScene(const cosim::wire::Welcome& welcome) {
       char* end = nullptr;
       const double dt = std::strtod(w[1].c_str(), &end);
       if (end == w[1].c_str() || *end != '\0' || !(dt > 0) || !std::isfinite(dt))
-        throw std::runtime_error(
+        throw InputError(
             fmt::format("{}: `timestep {}`: expected a positive number of "
                         "seconds",
                         where, w[1]));
@@ -133,7 +134,7 @@ void checkScene(const cosim::wire::Welcome& welcome) {
   if (last_dt) {
     if (const auto why =
             timestepMismatch(options.script, *last_dt, welcome.cfd_dt(), welcome.dem_steps()))
-      throw std::runtime_error(*why);
+      throw InputError(*why);
   }
 }
 
