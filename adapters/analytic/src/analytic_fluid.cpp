@@ -7,9 +7,11 @@
 #include <iostream>
 
 #include "analytic_main.h"
+#include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
 #include "cosim/util/adapter_options.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analytic {
 
@@ -139,7 +141,7 @@ class AnalyticFluid final : public link::Solver {
     if (cmd.dt() == 0.0) return;
     if (terms.has(field::transfer_coefficient)) {
       if (terms.ids != ids_)
-        throw std::runtime_error("Advance terms are for other particles than the last Sample");
+        throw link::ProtocolError("Advance terms are for other particles than the last Sample");
       const auto& k = terms.get(field::transfer_coefficient);
       state.ids = terms.ids;
       auto& removed = state.field(field::precursor_removed);

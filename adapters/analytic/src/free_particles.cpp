@@ -11,9 +11,11 @@
 #include <numbers>
 
 #include "analytic_main.h"
+#include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/session.h"
 #include "cosim/util/adapter_options.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analytic {
 
@@ -133,8 +135,8 @@ class FreeParticles final : public link::Solver {
     for (std::size_t i = 0; i < n; ++i) row[terms.ids[i]] = i;
     for (const auto& [id, i] : row) {
       if (!particles_.count(id)) {
-        throw std::runtime_error("terms for particle " + std::to_string(id) +
-                                 ", which does not exist");
+        throw link::ProtocolError("terms for particle " + std::to_string(id) +
+                                  ", which does not exist");
       }
       if (dm) particles_[id].coating += (*dm)[i];
     }
@@ -210,7 +212,7 @@ class FreeParticles final : public link::Solver {
     os.write(reinterpret_cast<const char*>(&n), sizeof n);
     for (const auto& [id, p] : particles_) os.write(reinterpret_cast<const char*>(&p), sizeof p);
     os.close();
-    if (!os) throw std::runtime_error("free-particles: cannot write " + file.string());
+    if (!os) throw ResourceError("free-particles: cannot write " + file.string());
     return {file.string()};
   }
 
@@ -220,13 +222,12 @@ class FreeParticles final : public link::Solver {
     std::uint64_t n = 0;
     is.read(reinterpret_cast<char*>(&n), sizeof n);
     if (!is || n > (1ULL << 32))
-      throw std::runtime_error("free-particles: " + file.string() +
-                               " is not a checkpoint of this adapter");
+      throw InputError("free-particles: " + file.string() + " is not a checkpoint of this adapter");
     particles_.clear();
     for (std::uint64_t i = 0; i < n; ++i) {
       Particle p{};
       is.read(reinterpret_cast<char*>(&p), sizeof p);
-      if (!is) throw std::runtime_error("free-particles: " + file.string() + " is truncated");
+      if (!is) throw InputError("free-particles: " + file.string() + " is truncated");
       particles_[p.id] = p;
     }
   }
@@ -234,8 +235,8 @@ class FreeParticles final : public link::Solver {
  private:
   void add(const Particle& p) {
     if (particles_.count(p.id))
-      throw std::runtime_error("free-particles options: particle id " + std::to_string(p.id) +
-                               " given twice");
+      throw InputError("free-particles options: particle id " + std::to_string(p.id) +
+                       " given twice");
     particles_[p.id] = p;
   }
   std::vector<std::string> send_;
