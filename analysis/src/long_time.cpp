@@ -13,6 +13,7 @@
 #include "cosim/analysis/coating_statistics.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::analysis {
 
@@ -24,31 +25,66 @@ int Compartments::of(double x, double y, double z) const {
   return std::clamp(layer, 0, layers - 1) * rings + std::clamp(ring, 0, rings - 1);
 }
 
+namespace {
+// The record's output interval: the most frequent spacing of the snapshots in `use` (a stop's
+// extra snapshot makes two shorter ones).
+double recordInterval(const std::vector<SnapshotInfo>& snaps, const std::vector<std::size_t>& use) {
+  std::vector<double> gaps;
+  for (std::size_t k = 1; k < use.size(); ++k)
+    gaps.push_back(snaps[use[k]].time - snaps[use[k - 1]].time);
+  std::sort(gaps.begin(), gaps.end());
+  double best = gaps.front();
+  std::size_t most = 0;
+  for (std::size_t a = 0; a < gaps.size();) {
+    std::size_t b = a;
+    while (b < gaps.size() && gaps[b] - gaps[a] <= 1e-6 * gaps[a]) ++b;
+    if (b - a > most) {
+      most = b - a;
+      best = gaps[a];
+    }
+    a = b;
+  }
+  return best;
+}
+}  // namespace
+
 CoatingDatabase readCoatingDatabase(const ParticleFile& file, double from, double until,
                                     Compartments grid) {
   const std::string where = file.path().string();
   if (grid.rings < 1 || grid.layers < 1)
-    throw std::runtime_error("long-time model: at least one ring and one layer");
+    throw InputError("long-time model: at least one ring and one layer");
   if (!file.hasField(field::position) || !file.hasField(field::coating_mass))
-    throw std::runtime_error(where + ": no positions or coating recorded (a scene with coating)");
+    throw InputError(where + ": no positions or coating recorded (a scene with coating)");
   std::vector<std::size_t> use;
   const auto& snaps = file.snapshots();
   for (std::size_t i = 0; i < snaps.size(); ++i) {
     const double t = snaps[i].time;
     if (t + 1e-9 >= from && (until < 0 || t <= until + 1e-9)) use.push_back(i);
   }
-  if (use.size() < 3)
-    throw std::runtime_error(fmt::format(
+  auto tooFew = [&] {
+    return InputError(fmt::format(
         "{}: {} snapshots between t = {:g} and {:g} s; the long-time model needs at least 3 "
         "(a record of several seconds, output.interval 0.1 s)",
         where, use.size(), from, until));
+  };
+  if (use.size() < 3) throw tooFew();
   CoatingDatabase db;
   db.grid = grid;
-  db.interval = snaps[use[1]].time - snaps[use[0]].time;
+  db.interval = recordInterval(snaps, use);
+  // A run stopped with Ctrl-C (or by a time limit) writes one more snapshot where it stopped,
+  // between two of the output interval: set aside, the record steps on without it.
+  const double t0 = snaps[use[0]].time;
+  std::erase_if(use, [&](std::size_t i) {
+    const double k = (snaps[i].time - t0) / db.interval;
+    const bool off = std::fabs(k - std::round(k)) > 1e-6 * std::max(1.0, k);
+    if (off) db.off_interval.push_back(snaps[i].time);
+    return off;
+  });
+  if (use.size() < 3) throw tooFew();
   for (std::size_t k = 0; k < use.size(); ++k) {
     db.times.push_back(snaps[use[k]].time);
     if (k > 0 && std::fabs(db.times[k] - db.times[k - 1] - db.interval) > 1e-6 * db.interval)
-      throw std::runtime_error(fmt::format(
+      throw InputError(fmt::format(
           "{}: the snapshots are not evenly spaced (t = {:g} s after {:g} s, not {:g} s later): "
           "the model steps by one interval; give --from after the uneven ones",
           where, db.times[k], db.times[k - 1], db.interval));

@@ -83,6 +83,11 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     if (db.left_out > 0)
       out << fmt::format("  {} parcels not in every snapshot (inserted or deleted) left out\n",
                          db.left_out);
+    for (const double t : db.off_interval)
+      out << fmt::format(
+          "  the snapshot at t = {:g} s lies between two of the record's interval (written where "
+          "the run was stopped): set aside\n",
+          t);
     out << fmt::format(
         "  longest wait for the coating zone {:.3g} s, mixing time {:.3g} s, record {:.3g} s\n",
         model.longest_wait_seconds, model.mixing_seconds, model.record_seconds);

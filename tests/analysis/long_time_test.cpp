@@ -6,10 +6,17 @@
 #include "cosim/analysis/long_time.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
+#include <string>
 #include <vector>
+
+#include "cosim/analysis/particle_file.h"
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/link/fields.h"
 
 using namespace cosim::analysis;
 
@@ -150,4 +157,54 @@ TEST(LongTimeModel, SaysWhenTheRecordIsTooShortForTheSlowMotion) {
   EXPECT_TRUE(named);
   // all start far from the jet and never leave: none is ever coated
   EXPECT_EQ(predictLongTime(s, db, {3600.0}, 1).points[0].never_coated_share, 1.0);
+}
+
+namespace {
+namespace fs = std::filesystem;
+
+// A particles.h5 of two parcels with snapshots at `times`.
+fs::path recordAt(const std::string& name, const std::vector<double>& times) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("cosim-long-time-" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass},
+                       RunIdentity{"long-time-test", 1.0});
+  for (const double t : times) {
+    cosim::link::ParticleData p;
+    p.ids = {1, 2};
+    p.field(cosim::field::position) = {0.001, 0, 0.01, 0.002, 0, 0.02};
+    p.field(cosim::field::coating_mass) = {1e-12 * t, 0};
+    rec.write(t, p);
+  }
+  return dir / "particles.h5";
+}
+}  // namespace
+
+// A run stopped with Ctrl-C records one more snapshot where it stopped (here 0.26 s between the
+// 0.1 s ones, and 0.43 s at the end): the record keeps its interval and sets those aside.
+TEST(LongTimeDatabase, SetsAsideTheSnapshotsAStopWroteBetweenTheInterval) {
+  const ParticleFile f(recordAt("stopped", {0.0, 0.1, 0.2, 0.26, 0.3, 0.4, 0.43}));
+  const auto db = readCoatingDatabase(f, 0.0, -1, Compartments{2, 2});
+  EXPECT_DOUBLE_EQ(db.interval, 0.1);
+  ASSERT_EQ(db.times.size(), 5u);
+  EXPECT_NEAR(db.times.back(), 0.4, 1e-12);
+  ASSERT_EQ(db.off_interval.size(), 2u);
+  EXPECT_NEAR(db.off_interval[0], 0.26, 1e-12);
+  EXPECT_NEAR(db.off_interval[1], 0.43, 1e-12);
+  EXPECT_NEAR(db.coating.back()[0], 0.4e-12, 1e-24);
+}
+
+// A snapshot missing from the sequence is a gap the model cannot step over: refused, naming the
+// file and the times.
+TEST(LongTimeDatabase, RefusesARecordWithASnapshotMissing) {
+  const ParticleFile f(recordAt("gap", {0.0, 0.1, 0.2, 0.3, 0.5, 0.6}));
+  try {
+    (void)readCoatingDatabase(f, 0.0, -1, Compartments{2, 2});
+    FAIL() << "a record with a gap was accepted";
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("particles.h5"), std::string::npos) << what;
+    EXPECT_NE(what.find("t = 0.5 s after 0.3 s"), std::string::npos) << what;
+  }
 }

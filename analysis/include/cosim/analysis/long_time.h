@@ -39,10 +39,14 @@ struct CoatingDatabase {
   std::vector<std::vector<int>> state;       // [snapshot][parcel]
   std::vector<std::vector<double>> coating;  // [snapshot][parcel] [kg]
   std::size_t left_out = 0;  // parcels not in every snapshot (inserted or deleted): not modelled
+  std::vector<double>
+      off_interval;  // [s] snapshots set aside: between two of the interval (a stop's)
 };
 
-// Snapshots with from <= t <= until (until < 0: to the end) at a constant interval; throws naming
-// the file when there are fewer than 3, when the interval changes, or when a field is missing.
+// Snapshots with from <= t <= until (until < 0: to the end) at a constant interval (the most
+// frequent spacing); a snapshot between two of them (written where a run was stopped) is set
+// aside and listed in off_interval. Throws naming the file when fewer than 3 remain, when one is
+// missing from the interval's sequence, or when a field is missing.
 CoatingDatabase readCoatingDatabase(const ParticleFile& file, double from, double until,
                                     Compartments grid);
 
