@@ -25,13 +25,15 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::foam
 {
 
 namespace
 {
 
-// OpenFOAM errors become std::runtime_error carrying OpenFOAM's own message
+// OpenFOAM errors become solver errors (cosim/util/errors.h) carrying OpenFOAM's own message
 template<class F>
 auto guarded(const char* what, F&& f) -> decltype(f())
 {
@@ -41,7 +43,7 @@ auto guarded(const char* what, F&& f) -> decltype(f())
     }
     catch (const Foam::error& e)
     {
-        throw std::runtime_error
+        throw ::cosim::SolverError
         (
             std::string("OpenFOAM error while ") + what + ": " + e.message()
         );
@@ -316,7 +318,7 @@ public:
                 {
                     if (name == "precursor_fraction" && !settings_.species)
                     {
-                        throw std::runtime_error
+                        throw ::cosim::InputError
                         (
                             "precursor_fraction was requested but the scene has no "
                             "mass transfer (Welcome.species is false)"
@@ -345,7 +347,7 @@ public:
                 }
                 else
                 {
-                    throw std::runtime_error
+                    throw ::cosim::InputError
                     (
                         "cosimFoam cannot sample field '" + name + "' (it provides "
                         "fluid_velocity, voidage, fluid_density, fluid_viscosity, "

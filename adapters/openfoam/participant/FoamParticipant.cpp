@@ -13,9 +13,11 @@
 #include <stdexcept>
 
 #include "SceneCheck.h"
+#include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
 #include "cosim/link/particle_wire.h"
 #include "cosim/util/child_process.h"
+#include "cosim/util/errors.h"
 #include "cosim/util/text_file.h"
 
 namespace cosim::foam {
@@ -49,16 +51,21 @@ void runTool(const std::vector<std::string>& argv) {
   const std::string log = "log." + tool;
   int rc = 0;
   std::string why;
+  // A tool that could not start: what the machine lacks; one that failed: what it read from the
+  // case is wrong (its log says what), unless it was killed (SIGKILL: out of memory).
+  ErrorKind kind = ErrorKind::input;
   try {
     rc = util::runProgram(argv, log);
   } catch (const std::exception& e) {
     rc = 127;
     why = std::string(": ") + e.what();
+    kind = kindOf(e, ErrorKind::resource);
   }
+  if (rc == 128 + 9) kind = ErrorKind::resource;
   if (rc != 0) {
-    throw std::runtime_error("cosimFoam: `" + util::displayCommand(argv) + "` failed in " +
-                             fs::current_path().string() + why + " (see " + log + "):\n" +
-                             util::tailOfFile(log, 15));
+    throw Error(kind, "cosimFoam: `" + util::displayCommand(argv) + "` failed in " +
+                          fs::current_path().string() + why + " (see " + log + "):\n" +
+                          util::tailOfFile(log, 15));
   }
 }
 
@@ -104,8 +111,8 @@ double restoreTimeFolder(const fs::path& from, int ranks) {
       for (const auto& e : fs::directory_iterator(from / sub))
         if (timeOfFolder(e.path())) saved = e.path();
     if (!saved)
-      throw std::runtime_error("cosimFoam: cannot resume: " + (from / sub).string() +
-                               " holds no time folder (was the checkpoint written by cosimFoam?)");
+      throw InputError("cosimFoam: cannot resume: " + (from / sub).string() +
+                       " holds no time folder (was the checkpoint written by cosimFoam?)");
     restored = *timeOfFolder(*saved);
     const fs::path caseDir = sub.empty() ? fs::current_path() : fs::current_path() / sub;
     for (const auto& e : fs::directory_iterator(caseDir)) {
@@ -163,11 +170,11 @@ void FoamParticipant::configure(const wire::Welcome& welcome) {
   const auto caps = capabilities();
   for (const auto& name : send_) {
     if (std::find(caps.provides.begin(), caps.provides.end(), name) == caps.provides.end()) {
-      throw std::runtime_error("cosimFoam cannot send field '" + name +
-                               "' the scene asks for (Welcome.send)");
+      throw InputError("cosimFoam cannot send field '" + name +
+                       "' the scene asks for (Welcome.send)");
     }
     if (name == field::precursor_fraction && !species_) {
-      throw std::runtime_error(
+      throw InputError(
           "the scene asks cosimFoam for precursor_fraction but has no mass transfer "
           "(Welcome.species is false): no precursor is solved");
     }
@@ -185,7 +192,7 @@ void FoamParticipant::configure(const wire::Welcome& welcome) {
   bridge_.command(RankCommand::configure);
   gas_ = makeGas(bridge_, foamArgs_, yaml, species, resuming, workdir);
   if (resumeAt && std::abs(gas_->time() - *resumeAt) > 1e-9 * std::max(1.0, *resumeAt)) {
-    throw std::runtime_error(
+    throw InputError(
         "cosimFoam: cannot resume: OpenFOAM started at t = " + std::to_string(gas_->time()) +
         " s, not at the checkpoint's " + std::to_string(*resumeAt) +
         " s; system/controlDict must say `startFrom latestTime;`");
@@ -199,7 +206,7 @@ void FoamParticipant::restore(const std::string& /*path*/) {
 void FoamParticipant::sample(const cosim::link::ParticleData& particles,
                              cosim::link::ParticleData& out, std::vector<std::int64_t>& lost_ids) {
   if (!particles.has(field::position) || !particles.has(field::radius)) {
-    throw std::runtime_error(
+    throw link::ProtocolError(
         "Sample for cosimFoam must carry position and radius of every particle (got: " +
         [&] {
           std::string s;
@@ -215,8 +222,8 @@ void FoamParticipant::sample(const cosim::link::ParticleData& particles,
   if (particles.has(field::velocity)) set.velocity = particles.get(field::velocity);
   for (std::size_t i = 0; i < set.radius.size(); ++i) {
     if (!(set.radius[i] > 0)) {
-      throw std::runtime_error("Sample: particle " + std::to_string(set.ids[i]) + " has radius " +
-                               std::to_string(set.radius[i]) + " (must be > 0)");
+      throw link::ProtocolError("Sample: particle " + std::to_string(set.ids[i]) + " has radius " +
+                                std::to_string(set.radius[i]) + " (must be > 0)");
     }
   }
   std::vector<std::string> names;
@@ -248,7 +255,7 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
   double dt = cmd.dt();
   if (dt == 0) return;  // nothing to report before the first step
   if (!(dt > 0)) {
-    throw std::runtime_error("Advance for cosimFoam: dt must be > 0, got " + std::to_string(dt));
+    throw link::ProtocolError("Advance for cosimFoam: dt must be > 0, got " + std::to_string(dt));
   }
 
   // Terms aligned with the particles of the last Sample (same ids, any order)
@@ -264,9 +271,9 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
       for (std::size_t t = 0; t < terms.size(); ++t) {
         const auto it = where.find(terms.ids[t]);
         if (it == where.end()) {
-          throw std::runtime_error("Advance for cosimFoam: particle " +
-                                   std::to_string(terms.ids[t]) +
-                                   " has exchange terms but was not in this step's Sample");
+          throw link::ProtocolError("Advance for cosimFoam: particle " +
+                                    std::to_string(terms.ids[t]) +
+                                    " has exchange terms but was not in this step's Sample");
         }
         slot[t] = it->second;
       }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "GasDomain.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::foam {
 namespace fs = std::filesystem;
@@ -22,9 +23,9 @@ fs::path moduleFile() {
        {exeDir / ".." / "lib" / "libcosimFoamGas.so", exeDir / "libcosimFoamGas.so"}) {
     if (fs::exists(p)) return p;
   }
-  throw std::runtime_error("cosimFoam: libcosimFoamGas.so not found in " +
-                           (exeDir / ".." / "lib").string() + " nor " + exeDir.string() +
-                           " (build the cosim_foam_gas target, or set COSIM_FOAM_GAS_LIBRARY)");
+  throw ResourceError("cosimFoam: libcosimFoamGas.so not found in " +
+                      (exeDir / ".." / "lib").string() + " nor " + exeDir.string() +
+                      " (build the cosim_foam_gas target, or set COSIM_FOAM_GAS_LIBRARY)");
 }
 
 }  // namespace
@@ -35,13 +36,13 @@ std::unique_ptr<GasDomain> GasDomain::create(int argc, char** argv, const GasSet
     const fs::path file = moduleFile();
     handle = dlopen(file.c_str(), RTLD_NOW | RTLD_GLOBAL);
     if (handle == nullptr) {
-      throw std::runtime_error("cosimFoam: cannot load " + file.string() + ": " + dlerror());
+      throw ResourceError("cosimFoam: cannot load " + file.string() + ": " + dlerror());
     }
   }
   using Factory = GasDomain* (*)(int, char**, const GasSettings*);
   auto factory = reinterpret_cast<Factory>(dlsym(handle, "cosimFoamCreateGas"));
   if (factory == nullptr) {
-    throw std::runtime_error("cosimFoam: libcosimFoamGas.so has no cosimFoamCreateGas");
+    throw ResourceError("cosimFoam: libcosimFoamGas.so has no cosimFoamCreateGas");
   }
   return std::unique_ptr<GasDomain>(factory(argc, argv, &settings));
 }

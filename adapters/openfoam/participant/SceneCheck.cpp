@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 #include "cosim/util/host_memory.h"
 
 namespace cosim::foam {
@@ -93,13 +94,13 @@ void checkBlockCellCounts(const fs::path& dict, const fs::path& dir, int ranks) 
              (*it)[1].str() + ") (" + counts + ")): ";
     };
     if (n.size() != 3)
-      throw std::runtime_error(where() + "expected 3 cell counts, got " + std::to_string(n.size()));
+      throw InputError(where() + "expected 3 cell counts, got " + std::to_string(n.size()));
     double block_cells = 1;
     for (int d = 0; d < 3; ++d) {
       char* end = nullptr;
       const long c = std::strtol(n[d].c_str(), &end, 10);
       if (*end != '\0' || c < 1)
-        throw std::runtime_error(
+        throw InputError(
             where() + "the " + axis[d] + " cell count is '" + n[d] +
             "': every block needs a whole number of cells, at least 1, in each direction. In a "
             "templated case the count comes from the scene's parameters: a cell size larger "
@@ -120,7 +121,7 @@ void checkBlockCellCounts(const fs::path& dict, const fs::path& dir, int ranks) 
     std::ostringstream count;
     count.precision(3);
     count << cells;
-    throw std::runtime_error(
+    throw InputError(
         "cosimFoam: " + file + ": the mesh would have " + count.str() + " cells, which need at " +
         "least " + gb(cells * kBytesPerCell) + " GB (about 1 KB a cell) against " + gb(memory) +
         " GB of memory (" + std::to_string(std::max(1, ranks)) + " rank(s) of this host's " +
@@ -143,35 +144,33 @@ int subdomainsOf(const fs::path& dict) {
 
 void checkCase(const AdapterSettings& settings, int ranks, const fs::path& dir) {
   if (!fs::exists(dir / "system/controlDict")) {
-    throw std::runtime_error(
-        "cosimFoam: no system/controlDict in " + dir.string() +
-        ": the fluid participant's `files:` folder must be an OpenFOAM case (system/, "
-        "constant/, 0/; see docs/openfoam.md)");
+    throw InputError("cosimFoam: no system/controlDict in " + dir.string() +
+                     ": the fluid participant's `files:` folder must be an OpenFOAM case (system/, "
+                     "constant/, 0/; see docs/openfoam.md)");
   }
   const bool haveMesh =
       fs::exists(dir / "constant/polyMesh/faces") || fs::exists(dir / "constant/polyMesh/faces.gz");
   const bool blockMesh = settings.mesh == "blockMesh" || (settings.mesh == "auto" && !haveMesh);
   if (blockMesh && !fs::exists(dir / "system/blockMeshDict")) {
-    throw std::runtime_error("cosimFoam: " + dir.string() +
-                             " has no mesh (constant/polyMesh) and no system/blockMeshDict to "
-                             "make one");
+    throw InputError("cosimFoam: " + dir.string() +
+                     " has no mesh (constant/polyMesh) and no system/blockMeshDict to "
+                     "make one");
   }
   if (blockMesh) checkBlockCellCounts(dir / "system/blockMeshDict", dir, ranks);
   if (!blockMesh && !haveMesh) {
-    throw std::runtime_error("cosimFoam: options.mesh is 'existing' but " + dir.string() +
-                             "/constant/polyMesh has no mesh");
+    throw InputError("cosimFoam: options.mesh is 'existing' but " + dir.string() +
+                     "/constant/polyMesh has no mesh");
   }
   if (ranks > 1) {
     if (!fs::exists(dir / "system/decomposeParDict")) {
-      throw std::runtime_error("cosimFoam: running on " + std::to_string(ranks) +
-                               " MPI ranks needs system/decomposeParDict in " + dir.string());
+      throw InputError("cosimFoam: running on " + std::to_string(ranks) +
+                       " MPI ranks needs system/decomposeParDict in " + dir.string());
     }
     const int n = subdomainsOf(dir / "system/decomposeParDict");
     if (n != ranks) {
-      throw std::runtime_error(
-          "cosimFoam: system/decomposeParDict numberOfSubdomains is " + std::to_string(n) +
-          " but the participant runs on " + std::to_string(ranks) +
-          " MPI ranks (scenario key participants.<fluid>.mpi): make them equal");
+      throw InputError("cosimFoam: system/decomposeParDict numberOfSubdomains is " +
+                       std::to_string(n) + " but the participant runs on " + std::to_string(ranks) +
+                       " MPI ranks (scenario key participants.<fluid>.mpi): make them equal");
     }
   }
   // The patches the options name: in the mesh's boundary file, or in the blockMeshDict that
@@ -184,11 +183,10 @@ void checkCase(const AdapterSettings& settings, int ranks, const fs::path& dir) 
                                   std::pair{"outlet_patches", &settings.gas.outlet_patches}}) {
     for (const auto& patch : *list) {
       if (!hasWord(text, patch)) {
-        throw std::runtime_error("scenario file, participants.<fluid>.options." + std::string(key) +
-                                 ": no patch '" + patch + "' in " +
-                                 fs::relative(names, dir).string() +
-                                 " of the case; give the names of the mesh's inlet and outlet "
-                                 "patches (docs/openfoam.md)");
+        throw InputError("scenario file, participants.<fluid>.options." + std::string(key) +
+                         ": no patch '" + patch + "' in " + fs::relative(names, dir).string() +
+                         " of the case; give the names of the mesh's inlet and outlet "
+                         "patches (docs/openfoam.md)");
       }
     }
   }
@@ -197,7 +195,7 @@ void checkCase(const AdapterSettings& settings, int ranks, const fs::path& dir) 
 void checkScene(const cosim::wire::Welcome& welcome, int ranks) {
   for (const auto& name : welcome.send()) {
     if (name == field::precursor_fraction && !welcome.species()) {
-      throw std::runtime_error(
+      throw InputError(
           "the scene asks cosimFoam for precursor_fraction but has no mass transfer: no "
           "precursor is solved");
     }

@@ -11,7 +11,7 @@
 
 namespace cosim::foam {
 
-// The case in `dir` as the run would prepare it. Throws std::runtime_error naming the file or
+// The case in `dir` as the run would prepare it. Throws cosim::InputError naming the file or
 // option on refusal.
 void checkCase(const AdapterSettings& settings, int ranks, const std::filesystem::path& dir);
 
