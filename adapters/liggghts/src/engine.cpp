@@ -404,7 +404,7 @@ void Engine::applyTerms(const Terms& terms) {
                         " kg/s); K must be >= 0");
   }
   auto twice = [&](std::int64_t id) {
-    return std::runtime_error("forcing lists particle id " + std::to_string(id) + " twice");
+    return PeerError("forcing lists particle id " + std::to_string(id) + " twice");
   };
   {  // every id once (the orchestrator sends them in ascending order: then no copy is sorted)
     std::vector<std::int64_t> sorted;
