@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::util {
 
 namespace fs = std::filesystem;
@@ -21,7 +23,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path&
                            const fs::path& log, const std::map<std::string, std::string>& env,
                            const std::vector<int>& cpus)
     : log_(log) {
-  if (argv.empty()) throw std::runtime_error("empty command");
+  if (argv.empty()) throw std::logic_error("empty command");
   // Everything the child needs is prepared before fork (no allocation after it).
   std::vector<char*> args;
   args.reserve(argv.size() + 1);
@@ -32,9 +34,9 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path&
   for (int c : cpus) CPU_SET(c, &cpu_set);
   const pid_t parent = getpid();
   int err_pipe[2];
-  if (pipe2(err_pipe, O_CLOEXEC) != 0) throw std::runtime_error("pipe failed");
+  if (pipe2(err_pipe, O_CLOEXEC) != 0) throw ResourceError("pipe failed");
   pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error(std::string("fork failed: ") + std::strerror(errno));
+  if (pid < 0) throw ResourceError(std::string("fork failed: ") + std::strerror(errno));
   if (pid == 0) {
     close(err_pipe[0]);
     setpgid(0, 0);                     // own group: mpirun and its ranks are stopped together
@@ -77,7 +79,7 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const fs::path&
     waitpid(pid, nullptr, 0);
     reaped_ = true;
     pid_ = -1;
-    throw std::runtime_error("cannot start '" + argv[0] + "': " + std::strerror(child_errno));
+    throw ResourceError("cannot start '" + argv[0] + "': " + std::strerror(child_errno));
   }
 }
 

@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cosim/util/errors.h"
+
 namespace cosim::util {
 
 std::vector<int> allowedCpus() {
@@ -36,13 +38,13 @@ void bindThisProcess(const std::vector<int>& cpus) {
   for (const auto& task : fs::directory_iterator("/proc/self/task", ec)) {
     const pid_t tid = static_cast<pid_t>(std::stol(task.path().filename().string()));
     if (sched_setaffinity(tid, sizeof set, &set) != 0 && errno != ESRCH) {
-      throw std::runtime_error("cannot bind this process to CPU(s) " + cpuListText(cpus) + ": " +
-                               std::strerror(errno));
+      throw InputError("cannot bind this process to CPU(s) " + cpuListText(cpus) + ": " +
+                       std::strerror(errno));
     }
   }
   if (ec && sched_setaffinity(0, sizeof set, &set) != 0) {
-    throw std::runtime_error("cannot bind this process to CPU(s) " + cpuListText(cpus) + ": " +
-                             std::strerror(errno));
+    throw InputError("cannot bind this process to CPU(s) " + cpuListText(cpus) + ": " +
+                     std::strerror(errno));
   }
 }
 

@@ -19,7 +19,7 @@ class ChildProcess {
   // argv[0] is looked up in PATH unless it holds a '/'. stdout and stderr are appended to `log`
   // (e.g. /dev/null), stdin is /dev/null; `env` is added to the inherited environment.
   // `cpus`: the CPUs the child and all its threads run on (empty: wherever the system puts them).
-  // Throws std::runtime_error if the executable cannot be started.
+  // Throws cosim::ResourceError if the executable cannot be started (no fork, no exec).
   ChildProcess(const std::vector<std::string>& argv, const std::filesystem::path& cwd,
                const std::filesystem::path& log, const std::map<std::string, std::string>& env,
                const std::vector<int>& cpus = {});
@@ -49,7 +49,7 @@ class ChildProcess {
 };
 
 // Runs a program to completion in `cwd` with its output appended to `log` and returns its exit
-// code (128 + signal if killed). Throws std::runtime_error if it cannot be started.
+// code (128 + signal if killed). Throws cosim::ResourceError if it cannot be started.
 int runProgram(const std::vector<std::string>& argv, const std::filesystem::path& log,
                const std::map<std::string, std::string>& env = {},
                const std::filesystem::path& cwd = ".");

@@ -15,7 +15,7 @@ std::vector<int> allowedCpus();
 std::vector<int> initialCpus();
 
 // Binds every thread of this process to `cpus` (threads started later inherit it). Throws
-// std::runtime_error naming the CPUs when the system refuses.
+// cosim::InputError naming the CPUs when the system refuses (choose others: coupling.cpus).
 void bindThisProcess(const std::vector<int>& cpus);
 
 // "0", "1-3", "0,2": the list as taskset and Slurm write it.
