@@ -8,6 +8,11 @@
 #include <set>
 #include <stdexcept>
 
+#include "cosim/analysis/bed_report.h"
+#include "cosim/analysis/particle_file.h"
+#include "cosim/analysis/particle_recorder.h"
+#include "cosim/analysis/summary.h"
+#include "cosim/link/fields.h"
 #include "cosim/util/errors.h"
 #include "report_internal.h"
 
@@ -189,11 +194,50 @@ void writeComparisonTables(const std::vector<RunAnalysis>& runs, const std::file
   writeFileAtomically(dir / "comparison.csv", csv);
 }
 
+namespace {
+// Whether the run's records hold coating: its particles.h5's fields, else its summary.json's
+// word; a run with neither is left to the coating analysis, which says what is missing.
+bool hasCoating(const std::filesystem::path& run) {
+  if (std::filesystem::exists(run / kParticlesFile))
+    return ParticleFile(run / kParticlesFile).hasField(cosim::field::coating_mass);
+  if (std::filesystem::exists(run / kSummaryFile)) return readSummary(run / kSummaryFile).coating;
+  return true;
+}
+
+// One run without coating: the bed over the window (the second half of the record unless
+// --fit-start / --fit-end say otherwise), as report.json and report.md.
+int runBedReport(const ReportOptions& o, std::ostream& log) {
+  const auto& run = o.runs.front();
+  log << "cosim report: analysing " << run.string() << " (no coating: the bed's own records)\n";
+  const BedAnalysis a = analyseBed(run, o.fit_start, o.fit_end);
+  const std::filesystem::path out = o.output.empty() ? run / "report" : o.output;
+  claimOutputFolder(out, "report.json", "\"cosim-report\"", "cosim report -o");
+  prepare(out);
+  writeJsonFile(out / "report.json", toJson(a), 1);
+  writeFileAtomically(out / "report.md", bedReportText(a));
+  log << fmt::format("cosim report: {}: over t = {:g} .. {:g} s", a.label, a.from, a.to);
+  if (a.pressure_drop.n > 0)
+    log << fmt::format(", pressure drop {:.4g} Pa (+- {:.3g})", a.pressure_drop.mean,
+                       a.pressure_drop.sd);
+  if (a.height_median.n > 0)
+    log << fmt::format(", median parcel height {:.4g} mm", 1000 * a.height_median.mean);
+  log << "\ncosim report: wrote " << (out / "report.md").string() << " and report.json\n";
+  return 0;
+}
+}  // namespace
+
 int runReport(const ReportOptions& o) {
   std::ostream& log = o.log != nullptr ? *o.log : std::cout;
   try {
     if (o.runs.empty()) throw InputError("no run folder given: `cosim report RUN [RUN...]`");
     validate(o);
+    if (!hasCoating(o.runs.front()) && o.runs.size() == 1) return runBedReport(o, log);
+    for (const auto& run : o.runs)
+      if (!hasCoating(run))
+        throw InputError(run.string() +
+                         " has no coating (no coating_mass in its particles.h5): a comparison "
+                         "compares coating; report it alone (`cosim report " +
+                         run.string() + "`) for what its bed did");
     std::vector<RunAnalysis> analyses;
     for (const auto& run : o.runs) {
       log << "cosim report: analysing " << run.string() << "\n";
