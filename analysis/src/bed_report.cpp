@@ -2,10 +2,9 @@
 
 #include <fmt/format.h>
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/particle_recorder.h"
@@ -77,8 +76,7 @@ void readSeries(const std::filesystem::path& file, BedAnalysis& a) {
 void readParticles(const ParticleFile& file, BedAnalysis& a) {
   std::vector<double> median, p90, speed;
   const bool velocity = file.hasField(field::velocity);
-  if (!velocity)
-    a.notes.push_back(file.path().string() + " holds no velocity: no parcel speeds");
+  if (!velocity) a.notes.push_back(file.path().string() + " holds no velocity: no parcel speeds");
   const auto& snaps = file.snapshots();
   for (std::size_t k = 0; k < snaps.size(); ++k) {
     if (!inWindow(snaps[k].time, a.from, a.to)) continue;
@@ -93,7 +91,8 @@ void readParticles(const ParticleFile& file, BedAnalysis& a) {
       const auto u = file.read(k, field::velocity);
       std::vector<double> s;
       s.reserve(u.size() / 3);
-      for (std::size_t i = 0; i + 2 < u.size(); i += 3) s.push_back(std::hypot(u[i], u[i + 1], u[i + 2]));
+      for (std::size_t i = 0; i + 2 < u.size(); i += 3)
+        s.push_back(std::hypot(u[i], u[i + 1], u[i + 2]));
       if (!s.empty()) speed.push_back(quantile(s, 0.5));
     }
     ++a.snapshots;
@@ -200,8 +199,8 @@ std::string bedReportText(const BedAnalysis& a) {
   };
   std::string t = fmt::format("# {}: the bed over t = {:g} .. {:g} s\n\n", a.label, a.from, a.to);
   if (a.summary)
-    t += fmt::format("Scene {}, run {} ({} to {:g} s).\n\n", a.summary->scenario,
-                     a.summary->status, a.summary->start_time, a.summary->end_time);
+    t += fmt::format("Scene {}, run {} ({} to {:g} s).\n\n", a.summary->scenario, a.summary->status,
+                     a.summary->start_time, a.summary->end_time);
   t += "| quantity | mean | standard deviation (% of the mean) | least | largest |\n"
        "|---|---:|---:|---:|---:|\n";
   t += row("pressure drop across the bed", a.pressure_drop, 1, "Pa");
@@ -209,17 +208,18 @@ std::string bedReportText(const BedAnalysis& a) {
   t += row("bed height: median parcel centre", a.height_median, 1000, "mm");
   t += row("bed top: 90 % of the parcel centres below", a.height_p90, 1000, "mm");
   t += row("median parcel speed", a.speed_median, 1000, "mm/s");
-  t += fmt::format("\nHeights and speeds from {} snapshots of particles.h5; the pressure drop from "
-                   "{} rows of timeseries.csv.\n",
-                   a.snapshots, a.pressure_drop.n);
+  t += fmt::format(
+      "\nHeights and speeds from {} snapshots of particles.h5; the pressure drop from "
+      "{} rows of timeseries.csv.\n",
+      a.snapshots, a.pressure_drop.n);
   if (a.summary && !a.summary->observables.empty()) {
     t += "\n| observable | value | reference | relative error |\n|---|---:|---:|---:|\n";
     for (const auto& o : a.summary->observables) {
-      t += fmt::format("| {} | {} | {} | {} |\n", o.name,
-                       o.undefined.empty() ? fmt::format("{:.6g}", o.value)
-                                           : "no value (" + o.undefined + ")",
-                       o.reference ? fmt::format("{:.6g}", *o.reference) : "",
-                       o.relative_error ? fmt::format("{:.3g}", *o.relative_error) : "");
+      t += fmt::format(
+          "| {} | {} | {} | {} |\n", o.name,
+          o.undefined.empty() ? fmt::format("{:.6g}", o.value) : "no value (" + o.undefined + ")",
+          o.reference ? fmt::format("{:.6g}", *o.reference) : "",
+          o.relative_error ? fmt::format("{:.3g}", *o.relative_error) : "");
     }
   }
   for (const auto& n : a.notes) t += "\nNote: " + n + "\n";

@@ -91,6 +91,11 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     out << fmt::format(
         "  longest wait for the coating zone {:.3g} s, mixing time {:.3g} s, record {:.3g} s\n",
         model.longest_wait_seconds, model.mixing_seconds, model.record_seconds);
+    out << fmt::format(
+        "  coating per parcel and second: {:.4g} kg in the record's second half, {:.4g} kg in the "
+        "model once settled\n",
+        model.record_gain_per_interval / db.interval,
+        model.settled_gain_per_interval / db.interval);
     for (const auto& w : model.warnings) out << "  warning: " << w << "\n";
     out << "  time [s]     mean [kg]      CV       never coated\n";
     std::string text = std::string(kCsvHeader) + "\n";
@@ -121,6 +126,8 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
                             {"z_max_m", db.grid.z_max},
                             {"longest_wait_s", model.longest_wait_seconds},
                             {"mixing_s", model.mixing_seconds},
+                            {"record_rate_kg_s", model.record_gain_per_interval / db.interval},
+                            {"settled_rate_kg_s", model.settled_gain_per_interval / db.interval},
                             {"seed", o.seed},
                             {"warnings", model.warnings},
                             {"wall_s", pr.wall_seconds}};

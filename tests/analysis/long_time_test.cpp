@@ -208,3 +208,24 @@ TEST(LongTimeDatabase, RefusesARecordWithASnapshotMissing) {
     EXPECT_NE(what.find("t = 0.5 s after 0.3 s"), std::string::npos) << what;
   }
 }
+
+// A bed still settling through its record: every parcel starts far from the jet and the bed
+// exchanges with it at 0.5-1 % an interval, so the record's second half coats far below the
+// chain's settled rate (its stationary share in the zone, the gain being 1 per interval there).
+// The model says so, and its settled rate is the exact chain's.
+TEST(LongTimeModel, SaysWhenItSettlesToAnotherRateThanTheRecordShows) {
+  const std::vector<double> slow = {0.995, 0.005, 0.00,  //
+                                    0.01,  0.69,  0.30,  //
+                                    0.00,  0.60,  0.40};
+  const auto db = synthetic(slow, 50000, 40, 7);
+  const auto m = fitLongTimeModel(db);
+  // stationary (a chain 0 <-> 1 <-> 2): pi1 = pi0 * 0.005 / 0.01, pi2 = pi1 * 0.3 / 0.6
+  const double pi0 = 1.0, pi1 = 0.5, pi2 = 0.25;
+  const double exact = pi2 / (pi0 + pi1 + pi2);
+  EXPECT_NEAR(m.settled_gain_per_interval, exact, 0.005 * exact);  // 5.5e-4 reached (seed 7)
+  EXPECT_LT(m.record_gain_per_interval, 0.5 * exact);
+  bool said = false;
+  for (const auto& w : m.warnings)
+    said = said || w.find("settles to a coating rate") != std::string::npos;
+  EXPECT_TRUE(said);
+}

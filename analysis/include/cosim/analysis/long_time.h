@@ -66,8 +66,14 @@ struct LongTimeModel {
   // the record's end: the bed's longest coating cycle, which the record must hold.
   std::vector<double> zone_return_seconds;
   double longest_wait_seconds = 0;
+  // Coating per parcel and interval [kg], on average: the record's over its second half, and the
+  // chain's once settled from the record's last occupancy; a warning when they differ by more
+  // than kSettledRateTolerance.
+  double record_gain_per_interval = 0;
+  double settled_gain_per_interval = 0;
   std::vector<std::string> warnings;  // plain-language: the record is too short, and why
 };
+inline constexpr double kSettledRateTolerance = 0.05;
 
 // `min_departures`: a state the parcels occupy with fewer recorded departures than this is
 // named in the warnings (its rates rest on too few moves).
