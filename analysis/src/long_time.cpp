@@ -257,7 +257,8 @@ void checkSettledRate(const CoatingDatabase& db, LongTimeModel& m) {
         "the model settles to a coating rate {:+.0f} % off the record's over its second half "
         "({:.4g} against {:.4g} kg per parcel and second): the record's bed had not settled, or "
         "its compartments lump parcels that coat differently; the batch's mean errs by about as "
-        "much (a longer record, or more --rings and --layers)",
+        "much (a later --from, past the bed's start-up; a longer record; or more --rings and "
+        "--layers)",
         100 * (model / record - 1), model / m.interval, record / m.interval));
 }
 
