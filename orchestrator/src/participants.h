@@ -71,10 +71,9 @@ class Participants {
 
   // One message to each participant named in `messages`, then the reply `reply` from each.
   Replies exchange(std::map<std::string, wire::Envelope> messages, wire::Envelope::BodyCase reply);
-  // An Advance to each participant in `build`, its message built when its turn to leave comes,
-  // then their Advanced replies. The participant that answered last in the previous interval is
-  // the step's critical path: its message is built and sent first, and the others' are built
-  // and sent while it computes.
+  // An Advance to each participant in `build` (every message built first, then sent), then their
+  // Advanced replies. The participant that answered last in the previous interval is the step's
+  // critical path: its message leaves first, the others' are serialised while it computes.
   using MessageBuilder = std::function<wire::Envelope()>;
   Replies advance(const std::map<std::string, MessageBuilder>& build);
   // The same for one participant.
@@ -89,8 +88,7 @@ class Participants {
     advance_wire_.clear();
   }
   // Where an Advance exchange's wall time goes, summed over the exchanges: "send" (building
-  // the wire messages and handing them to ZeroMQ, one participant after the other; the first
-  // participant computes while the next one's is built) and, per
+  // the wire messages and handing them to ZeroMQ, one participant after the other) and, per
   // participant, "<name>_reply" (from the exchange's start to its reply's arrival). Against the
   // compute time it reported, that shows what the wire and the wake-ups cost each one.
   const std::map<std::string, double>& advanceWireSeconds() const { return advance_wire_; }
