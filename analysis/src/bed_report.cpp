@@ -74,6 +74,10 @@ void readSeries(const std::filesystem::path& file, BedAnalysis& a) {
 
 // The snapshots in the window: the bed's height and the parcels' speed in each.
 void readParticles(const ParticleFile& file, BedAnalysis& a) {
+  if (!file.hasField(field::position)) {
+    a.notes.push_back(file.path().string() + " holds no positions: no bed height");
+    return;
+  }
   std::vector<double> median, p90, speed;
   const bool velocity = file.hasField(field::velocity);
   if (!velocity) a.notes.push_back(file.path().string() + " holds no velocity: no parcel speeds");
