@@ -10,7 +10,9 @@
 
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/long_time.h"
+#include "cosim/analysis/long_time_check.h"
 #include "cosim/analysis/particle_file.h"
+#include "cosim/util/errors.h"
 
 namespace cosim::orchestrator {
 
@@ -33,6 +35,74 @@ std::vector<double> reportTimes(double end, double until, const std::vector<doub
       t.end());
   return t;
 }
+
+// The check's times (--to): the run's snapshots on the record's grid after its end, nearest below
+// a quarter, half and three quarters of the way, the batch report's times and `extra`, and the
+// last.
+std::vector<double> checkTimes(const a::CoatingDatabase& db, const a::ParticleFile& file,
+                               const std::vector<double>& extra) {
+  const double end = db.times.back();
+  std::vector<double> grid;
+  for (const auto& s : file.snapshots()) {
+    const double k = (s.time - end) / db.interval;
+    if (s.time > end + 1e-9 && std::fabs(k - std::round(k)) <= 1e-6 * std::max(1.0, k))
+      grid.push_back(s.time);
+  }
+  if (grid.empty()) return {};
+  const double last = grid.back();
+  std::vector<double> want = {end + 0.25 * (last - end), end + 0.5 * (last - end),
+                              end + 0.75 * (last - end), last};
+  for (double x : reportTimes(end, last, extra)) want.push_back(x);
+  std::vector<double> t;
+  for (double w : want) {
+    const auto it = std::upper_bound(grid.begin(), grid.end(), w + 1e-9);
+    if (it != grid.begin()) t.push_back(*std::prev(it));
+  }
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  return t;
+}
+
+// The model against the rest of its run, printed and as JSON.
+a::Json printCheck(const a::LongTimeCheck& c, std::ostream& out) {
+  out << "  the model against the run's own snapshots after the record (--to):\n"
+      << "  time [s]   mean: model / run      CV: model / run     never coated: model / run\n";
+  a::Json rows = a::Json::array();
+  for (const auto& r : c.rows) {
+    out << fmt::format(
+        "  {:>8.6g}  {:>10.4g} / {:<10.4g} {:+6.2f} %  {:>7.4f} / {:<7.4f} {:+6.2f} %  {:>6.2f} / "
+        "{:<6.2f} % {:+6.2f} points\n",
+        r.time, r.predicted.mean, r.recorded.mean, 100 * r.mean_error, r.predicted.cv,
+        r.recorded.cv, 100 * r.cv_error, 100 * r.predicted.never_coated_share,
+        100 * r.recorded.never_coated_share, r.never_points);
+    rows.push_back({{"time_s", r.time},
+                    {"model",
+                     {{"mean_kg", r.predicted.mean},
+                      {"cv", r.predicted.cv},
+                      {"never_coated_share", r.predicted.never_coated_share}}},
+                    {"run",
+                     {{"mean_kg", r.recorded.mean},
+                      {"cv", r.recorded.cv},
+                      {"never_coated_share", r.recorded.never_coated_share}}},
+                    {"mean_error", r.mean_error},
+                    {"cv_error", r.cv_error},
+                    {"never_coated_points", r.never_points}});
+  }
+  out << fmt::format(
+      "  the parcels' coating at t = {:g} s ({} parcels): Kolmogorov-Smirnov distance {:.4f} "
+      "(two independent samples of this size exceed {:.4f} one time in twenty)\n",
+      c.rows.empty() ? 0.0 : c.rows.back().time, c.parcels, c.ks_distance, c.ks_critical);
+  out << "  deciles [kg], model / run:";
+  for (std::size_t i = 0; i < c.predicted_deciles.size(); ++i)
+    out << fmt::format(" {:.3g}/{:.3g}", c.predicted_deciles[i], c.recorded_deciles[i]);
+  out << "\n";
+  return {{"rows", rows},
+          {"parcels", c.parcels},
+          {"ks_distance", c.ks_distance},
+          {"ks_critical_5pct", c.ks_critical},
+          {"model_deciles_kg", c.predicted_deciles},
+          {"run_deciles_kg", c.recorded_deciles}};
+}
 }  // namespace
 
 CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
@@ -50,6 +120,10 @@ CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
       ->delimiter(',')
       ->check(CLI::NonNegativeNumber);
   b->add_option("--from", o.from, "the record used starts here [s] (skip the start-up)")
+      ->check(CLI::NonNegativeNumber);
+  b->add_option("--to", o.to,
+                "the record used ends here [s]; the run's snapshots after it check the model "
+                "(its prediction beside what the run recorded)")
       ->check(CLI::NonNegativeNumber);
   b->add_option("--rings", o.rings, "compartments: rings about the vertical axis (default 6)")
       ->check(CLI::Range(1, 100));
@@ -70,7 +144,11 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     a::Compartments grid;
     grid.rings = o.rings;
     grid.layers = o.layers;
-    const auto db = a::readCoatingDatabase(file, o.from, -1, grid);
+    if (o.to >= 0 && o.to <= o.from)
+      throw InputError(fmt::format(
+          "command line: --to {:g} lies before --from {:g}: the record must have a length", o.to,
+          o.from));
+    const auto db = a::readCoatingDatabase(file, o.from, o.to, grid);
     const auto model = a::fitLongTimeModel(db);
     const auto times = reportTimes(db.times.back(), o.until, o.times);
     const auto pr = a::predictLongTime(model, db, times, o.seed);
@@ -115,6 +193,14 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     }
     out << fmt::format("  predicted in {:.3g} s\n", pr.wall_seconds);
     a::Json j;
+    if (o.to >= 0) {
+      const auto check = a::checkLongTime(
+          model, db, a::readRecordedCoating(file, checkTimes(db, file, o.times)), o.seed);
+      if (check.rows.empty())
+        out << "  --to: the run has no snapshot after the record's end to check the model with\n";
+      else
+        j["check"] = printCheck(check, out);
+    }
     j["long_time_model"] = {{"record_from_s", db.times.front()},
                             {"record_to_s", db.times.back()},
                             {"interval_s", db.interval},

@@ -1,7 +1,7 @@
 // `cosim batch`: a whole coating batch (minutes to an hour) from a recorded run, by the long-time
 // model of analysis/long_time.h (docs/physics.md, "Coating over a whole batch").
 //   cosim batch RUN [--until 3600] [--times 20,60,1200] [--from T] [--rings 6] [--layers 8]
-//                   [--seed 1] [-o FOLDER]
+//                   [--seed 1] [--to T] [-o FOLDER]
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -17,6 +17,7 @@ struct BatchOptions {
   double until = 3600;        // [s] the batch's length
   std::vector<double> times;  // [s] more times to report (besides a grid up to `until`)
   double from = 0;            // [s] the record used starts here (skip the start-up)
+  double to = -1;  // [s] the record used ends here; the run's later snapshots check the model
   int rings = 6;
   int layers = 8;
   std::uint64_t seed = 1;

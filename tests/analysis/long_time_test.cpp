@@ -14,9 +14,11 @@
 #include <string>
 #include <vector>
 
+#include "cosim/analysis/long_time_check.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/particle_recorder.h"
 #include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
 
 using namespace cosim::analysis;
 
@@ -228,4 +230,67 @@ TEST(LongTimeModel, SaysWhenItSettlesToAnotherRateThanTheRecordShows) {
   for (const auto& w : m.warnings)
     said = said || w.find("settles to a coating rate") != std::string::npos;
   EXPECT_TRUE(said);
+}
+
+// The two-sample Kolmogorov-Smirnov distance by hand: {1,2,3} against {2,3,4}: at 1, 1/3 against
+// 0; at 2, 2/3 against 1/3; at 3, 1 against 2/3: 1/3. With ties ({0,0,1} against {0,1,1}): 1/3.
+TEST(LongTimeCheck, KolmogorovSmirnovDistanceByHand) {
+  EXPECT_DOUBLE_EQ(ksDistance({1, 2, 3}, {2, 3, 4}), 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(ksDistance({0, 0, 1}, {0, 1, 1}), 1.0 / 3.0);
+  EXPECT_DOUBLE_EQ(ksDistance({5, 1}, {1, 5}), 0.0);
+  EXPECT_DOUBLE_EQ(ksDistance({1}, {2}), 1.0);
+}
+
+// The model fitted on the first 40 intervals of a known chain's record, held against the same
+// record 20, 100 and 300 intervals later (the parcels' own later history, not the exact answer):
+// within the sampling noise of 20,000 parcels, and the histograms as close as two independent
+// samples' (Kolmogorov-Smirnov below twice the 5 % critical distance).
+TEST(LongTimeCheck, AgreesWithTheRestOfAKnownChainsRecord) {
+  const CoatingDatabase full = synthetic(kTrue, 20000, 340, 7);
+  CoatingDatabase db = full;
+  db.times.resize(41);
+  db.state.resize(41);
+  db.coating.resize(41);
+  const LongTimeModel m = fitLongTimeModel(db);
+  std::vector<RecordedCoating> rest;
+  for (int k : {60, 140, 340}) rest.push_back({full.times[k], full.ids, full.coating[k]});
+  rest.push_back({full.times[20], full.ids, full.coating[20]});  // within the record: not a row
+  const LongTimeCheck c = checkLongTime(m, db, rest, 3);
+  ASSERT_EQ(c.rows.size(), 3u);
+  EXPECT_NEAR(c.rows[0].time, 6.0, 1e-9);
+  EXPECT_NEAR(c.rows[2].time, 34.0, 1e-9);
+  for (const auto& r : c.rows) {
+    SCOPED_TRACE(r.time);
+    std::printf("t = %g: mean %+.4f, CV %+.4f, never %+.3f points\n", r.time, r.mean_error,
+                r.cv_error, r.never_points);
+    EXPECT_LT(std::fabs(r.mean_error), 0.01);
+    EXPECT_LT(std::fabs(r.cv_error), 0.03);
+    EXPECT_LT(std::fabs(r.never_points), 1.0);
+  }
+  EXPECT_EQ(c.parcels, 20000u);
+  EXPECT_NEAR(c.ks_critical, 1.358 * std::sqrt(2.0 / 20000), 1e-12);
+  std::printf("KS %.4f (critical %.4f)\n", c.ks_distance, c.ks_critical);
+  EXPECT_LT(c.ks_distance, 2 * c.ks_critical);
+  ASSERT_EQ(c.recorded_deciles.size(), 9u);
+
+  // a model that does not hold the record's motion (the zone never left once entered, and so
+  // twice too much coating): the check shows it
+  LongTimeModel wrong = m;
+  for (int b = 0; b < 3; ++b) wrong.P[6 + b] = b == 2 ? 1.0 : 0.0;
+  wrong.gains[8] = {kGain};
+  const LongTimeCheck w = checkLongTime(wrong, db, rest, 3);
+  EXPECT_GT(w.rows.back().mean_error, 0.5);
+  EXPECT_GT(w.ks_distance, 10 * w.ks_critical);
+}
+
+// The recorded side: each time the snapshot at or just before it; none before the first.
+TEST(LongTimeCheck, ReadsTheRecordedSnapshotAtOrBeforeEachTime) {
+  const ParticleFile f(recordAt("check", {0.0, 0.1, 0.2, 0.3}));
+  const auto r = readRecordedCoating(f, {0.2, 0.25});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_DOUBLE_EQ(r[0].time, 0.2);
+  EXPECT_DOUBLE_EQ(r[1].time, 0.2);
+  ASSERT_EQ(r[0].coating.size(), 2u);
+  EXPECT_DOUBLE_EQ(r[0].coating[0], 1e-12 * 0.2);
+  EXPECT_THROW(readRecordedCoating(f, {-0.5}), cosim::InputError);
 }

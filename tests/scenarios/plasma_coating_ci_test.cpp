@@ -311,6 +311,27 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   }
   EXPECT_FALSE(batch.at("long_time_model").at("warnings").empty());
   EXPECT_TRUE(fs::exists(r.folder / "batch" / "batch.csv"));
+
+  // The model held against the rest of its own run (--to): fitted on the record's first half,
+  // its prediction beside the run's later snapshots; the last of them is the record's end, whose
+  // statistics the batch above read from the record itself.
+  const double end = points[0].at("time_s").get<double>();
+  BatchOptions half = bo;
+  half.to = 0.5 * end;
+  half.output = (out / "batch-check").string();
+  std::ostringstream said2, errs2;
+  ASSERT_EQ(runBatchCommand(half, said2, errs2), 0) << errs2.str();
+  std::printf("%s", said2.str().c_str());
+  const auto checked = cosim::analysis::readJsonFile(out / "batch-check" / "batch.json");
+  ASSERT_TRUE(checked.contains("check"));
+  const auto& rows = checked.at("check").at("rows");
+  ASSERT_FALSE(rows.empty());
+  EXPECT_NEAR(rows.back().at("time_s").get<double>(), end, 1e-9);
+  EXPECT_NEAR(rows.back().at("run").at("mean_kg").get<double>(),
+              points[0].at("mean_kg").get<double>(), 1e-12 * points[0].at("mean_kg").get<double>());
+  EXPECT_NEAR(rows.back().at("run").at("never_coated_share").get<double>(),
+              points[0].at("never_coated_share").get<double>(), 1e-12);
+  EXPECT_EQ(checked.at("check").at("parcels").get<std::size_t>(), n);
 }
 
 // Resume with the real solvers (docs/restarts.md): the bed run to 0.05 s with checkpoints every

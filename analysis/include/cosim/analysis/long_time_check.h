@@ -1,0 +1,57 @@
+// The long-time model held against the rest of its own run: fitted on the record up to a time T,
+// it carries the parcels on from T, and the run's own snapshots after T say how far its answer is
+// from the CFD-DEM's (mean, CV, never-coated share at each check time; the distribution of the
+// parcels' coating at the last one). `cosim batch RUN --to T` prints it; docs/physics.md,
+// "Coating over a whole batch", says how to read it.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cosim/analysis/long_time.h"
+
+namespace cosim::analysis {
+
+class ParticleFile;
+
+// The coating of every parcel in one recorded snapshot.
+struct RecordedCoating {
+  double time = 0;  // [s]
+  std::vector<std::int64_t> ids;
+  std::vector<double> coating;  // [kg], in the order of ids
+};
+
+// The snapshots of `file` at `times` (each the snapshot at or just before it, within 1e-6 s of
+// the record's grid). Throws naming the file when a time lies before the first snapshot.
+std::vector<RecordedCoating> readRecordedCoating(const ParticleFile& file,
+                                                 const std::vector<double>& times);
+
+struct LongTimeCheckRow {
+  double time = 0;  // [s]
+  LongTimePoint predicted, recorded;
+  double mean_error = 0;    // predicted / recorded - 1
+  double cv_error = 0;      // predicted / recorded - 1
+  double never_points = 0;  // predicted - recorded never-coated share, in percentage points
+};
+
+struct LongTimeCheck {
+  std::vector<LongTimeCheckRow> rows;
+  std::size_t parcels = 0;  // compared at the last check time: in the model and in the record
+  // The parcels' coating at the last check time, predicted against recorded: the two-sample
+  // Kolmogorov-Smirnov distance (largest gap between the two cumulative distributions) and the
+  // distance two independent samples of these sizes exceed one time in twenty.
+  double ks_distance = 0;
+  double ks_critical = 0;
+  std::vector<double> predicted_deciles, recorded_deciles;  // 10 %, 20 %, ... 90 % [kg]
+};
+
+// Two-sample Kolmogorov-Smirnov distance of `a` and `b` (neither empty).
+double ksDistance(std::vector<double> a, std::vector<double> b);
+
+// Carries the model's parcels (fitted on `db`) on to each recorded time after the record's end
+// and compares. The recorded side takes the parcels the model carries (by id): a parcel the
+// record has and the model does not (inserted later) is left out of both.
+LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& db,
+                            const std::vector<RecordedCoating>& record, std::uint64_t seed = 1);
+
+}  // namespace cosim::analysis

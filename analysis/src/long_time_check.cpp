@@ -1,0 +1,117 @@
+#include "cosim/analysis/long_time_check.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+#include "cosim/analysis/coating_statistics.h"
+#include "cosim/analysis/particle_file.h"
+#include "cosim/link/fields.h"
+#include "cosim/util/errors.h"
+
+namespace cosim::analysis {
+
+std::vector<RecordedCoating> readRecordedCoating(const ParticleFile& file,
+                                                 const std::vector<double>& times) {
+  const auto& snaps = file.snapshots();
+  if (!file.hasField(field::coating_mass))
+    throw InputError(file.path().string() + ": no coating recorded (a scene with coating)");
+  std::vector<RecordedCoating> out;
+  for (const double t : times) {
+    std::size_t at = snaps.size();
+    for (std::size_t i = 0; i < snaps.size(); ++i)
+      if (snaps[i].time <= t + 1e-6) at = i;
+    if (at == snaps.size())
+      throw InputError(fmt::format("{}: no snapshot at or before t = {:g} s",
+                                   file.path().string(), t));
+    out.push_back({snaps[at].time, file.ids(at), file.read(at, field::coating_mass)});
+  }
+  return out;
+}
+
+double ksDistance(std::vector<double> a, std::vector<double> b) {
+  std::sort(a.begin(), a.end());
+  std::sort(b.begin(), b.end());
+  const double na = static_cast<double>(a.size()), nb = static_cast<double>(b.size());
+  double d = 0;
+  std::size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    const double x = std::min(a[i], b[j]);  // step both distributions past every value x
+    while (i < a.size() && a[i] <= x) ++i;
+    while (j < b.size() && b[j] <= x) ++j;
+    d = std::max(d, std::fabs(static_cast<double>(i) / na - static_cast<double>(j) / nb));
+  }
+  return d;
+}
+
+namespace {
+LongTimePoint pointOf(double t, const std::vector<double>& c) {
+  const auto s = coatingStatistics(t, c, 0.0);
+  const auto zero = std::count_if(c.begin(), c.end(), [](double x) { return x <= 0; });
+  return {t, s.mean, s.cv,
+          c.empty() ? 0.0 : static_cast<double>(zero) / static_cast<double>(c.size())};
+}
+
+std::vector<double> deciles(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  std::vector<double> q;
+  for (int k = 1; k <= 9; ++k)
+    q.push_back(v.empty() ? 0.0 : v[static_cast<std::size_t>(k * (v.size() - 1) / 10)]);
+  return q;
+}
+}  // namespace
+
+LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& db,
+                            const std::vector<RecordedCoating>& record, std::uint64_t seed) {
+  LongTimeCheck check;
+  const double end = db.times.back();
+  std::vector<const RecordedCoating*> after;
+  for (const auto& r : record)
+    if (r.time > end + 1e-9 * std::max(1.0, end)) after.push_back(&r);
+  if (after.empty()) return check;
+  std::sort(after.begin(), after.end(),
+            [](const auto* x, const auto* y) { return x->time < y->time; });
+  std::unordered_map<std::int64_t, std::size_t> slot;
+  for (std::size_t j = 0; j < db.ids.size(); ++j) slot[db.ids[j]] = j;
+  // the recorded parcels the model carries, and which of the model's the record still holds
+  std::vector<std::vector<double>> recorded(after.size());
+  std::vector<std::vector<char>> held(after.size(), std::vector<char>(db.ids.size(), 0));
+  for (std::size_t k = 0; k < after.size(); ++k)
+    for (std::size_t i = 0; i < after[k]->ids.size(); ++i) {
+      const auto it = slot.find(after[k]->ids[i]);
+      if (it == slot.end()) continue;
+      recorded[k].push_back(after[k]->coating[i]);
+      held[k][it->second] = 1;
+    }
+  // one prediction per check time, each carried from the record's end with the same seed, so
+  // that every row has the parcels' predicted coating to restrict to the ones the record holds
+  for (std::size_t k = 0; k < after.size(); ++k) {
+    const double t = after[k]->time;
+    const auto pr = predictLongTime(model, db, {t}, seed);
+    std::vector<double> predicted;
+    for (std::size_t j = 0; j < db.ids.size(); ++j)
+      if (held[k][j]) predicted.push_back(pr.final_coating[j]);
+    LongTimeCheckRow row;
+    row.time = t;
+    row.predicted = pointOf(t, predicted);
+    row.recorded = pointOf(after[k]->time, recorded[k]);
+    row.mean_error = row.predicted.mean / row.recorded.mean - 1;
+    row.cv_error = row.predicted.cv / row.recorded.cv - 1;
+    row.never_points = 100 * (row.predicted.never_coated_share - row.recorded.never_coated_share);
+    check.rows.push_back(row);
+    if (k + 1 == after.size() && !predicted.empty() && !recorded[k].empty()) {
+      check.parcels = predicted.size();
+      check.ks_distance = ksDistance(predicted, recorded[k]);
+      const double n = static_cast<double>(predicted.size());
+      const double m = static_cast<double>(recorded[k].size());
+      check.ks_critical = 1.358 * std::sqrt((n + m) / (n * m));
+      check.predicted_deciles = deciles(predicted);
+      check.recorded_deciles = deciles(recorded[k]);
+    }
+  }
+  return check;
+}
+
+}  // namespace cosim::analysis
