@@ -24,8 +24,8 @@ std::vector<RecordedCoating> readRecordedCoating(const ParticleFile& file,
     for (std::size_t i = 0; i < snaps.size(); ++i)
       if (snaps[i].time <= t + 1e-6) at = i;
     if (at == snaps.size())
-      throw InputError(fmt::format("{}: no snapshot at or before t = {:g} s",
-                                   file.path().string(), t));
+      throw InputError(
+          fmt::format("{}: no snapshot at or before t = {:g} s", file.path().string(), t));
     out.push_back({snaps[at].time, file.ids(at), file.read(at, field::coating_mass)});
   }
   return out;

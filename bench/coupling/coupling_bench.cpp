@@ -12,7 +12,7 @@
 // a running orchestrator does not (0 minor faults per step measured on a 4,000-parcel coating bed).
 // The thresholds are pinned high below so every benchmark measures that steady state whatever ran
 // before it; page_faults shows it holds.
-// Run: build/bin/cosim_coupling_bench
+// Run: build/bin/cosim_coupling_bench (COSIM_BENCH_LARGE=1 for 2^20 and 10^7 particles too)
 #include <benchmark/benchmark.h>
 #include <malloc.h>
 #include <sys/resource.h>
@@ -21,6 +21,7 @@
 #include <atomic>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <random>
 #include <string>
 #include <thread>
@@ -137,8 +138,21 @@ ParticleData unpack(const wire::Envelope& e) {
   }
 }
 
+// COSIM_BENCH_LARGE=1 adds 2^20 and 10^7 particles (a cluster-sized bed through one process: about
+// 1.3 GB a message at 10^7, some 6 GB of memory at the peak; a few iterations each).
+bool large() {
+  const char* v = std::getenv("COSIM_BENCH_LARGE");
+  return v != nullptr && std::string(v) != "0" && !std::string(v).empty();
+}
+
 void sizes(benchmark::internal::Benchmark* b) {
   for (int n : {1000, 4000, 16000, 65536}) b->Arg(n);
+  if (large()) b->Arg(1 << 20)->Arg(10000000);
+}
+
+void tcpSizes(benchmark::internal::Benchmark* b) {
+  for (int n : {4000, 65536}) b->Arg(n);
+  if (large()) b->Arg(1 << 20)->Arg(10000000);
 }
 
 // ---- packing round trip ------------------------------------------------------------------------
@@ -255,13 +269,9 @@ void BM_Exchange(benchmark::State& state, const char* transport, Pair pair) {
 }
 
 BENCHMARK_CAPTURE(BM_Exchange, particles_ipc, "ipc", kParticleStep)->Apply(sizes)->UseRealTime();
-BENCHMARK_CAPTURE(BM_Exchange, particles_tcp, "tcp", kParticleStep)
-    ->Arg(4000)
-    ->Arg(65536)
-    ->UseRealTime();
+BENCHMARK_CAPTURE(BM_Exchange, particles_tcp, "tcp", kParticleStep)->Apply(tcpSizes)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, particles_tcp_curve, "tcp_curve", kParticleStep)
-    ->Arg(4000)
-    ->Arg(65536)
+    ->Apply(tcpSizes)
     ->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, fluid_sample_ipc, "ipc", kFluidSample)->Apply(sizes)->UseRealTime();
 BENCHMARK_CAPTURE(BM_Exchange, fluid_advance_ipc, "ipc", kFluidStep)->Apply(sizes)->UseRealTime();
