@@ -11,6 +11,7 @@
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
 #include "cosim/util/errors.h"
+#include "report_internal.h"
 
 namespace cosim::analysis {
 
@@ -45,17 +46,10 @@ double quantile(std::vector<double>& v, double q) {
   return v[lo] + (at - static_cast<double>(lo)) * (v[hi] - v[lo]);
 }
 
-std::string labelOf(const std::filesystem::path& run) {
-  auto p = run.lexically_normal();
-  if (p.has_filename()) return p.filename().string();
-  return p.parent_path().filename().string();
-}
-
 bool inWindow(double t, double from, double to) { return t >= from - 1e-9 && t <= to + 1e-9; }
 
 // The series' rows in the window: pressure drop and parcel count.
-void readSeries(const std::filesystem::path& file, BedAnalysis& a) {
-  const TimeSeries ts = readTimeSeries(file);
+void readSeries(const TimeSeries& ts, const std::filesystem::path& file, BedAnalysis& a) {
   const auto& time = ts.at("time");
   auto column = [&](const char* name, WindowStatistics& out) {
     if (!ts.has(name)) {
@@ -107,15 +101,12 @@ void readParticles(const ParticleFile& file, BedAnalysis& a) {
 }
 
 // The record's first and last time: the series' rows, else the snapshots.
-std::pair<double, double> recordSpan(const std::filesystem::path& run,
+std::pair<double, double> recordSpan(const std::optional<TimeSeries>& series,
                                      const std::optional<ParticleFile>& particles) {
   double first = std::numeric_limits<double>::infinity(), last = -first;
-  if (std::filesystem::exists(run / kTimeSeriesFile)) {
-    const TimeSeries ts = readTimeSeries(run / kTimeSeriesFile);
-    if (ts.rows() > 0) {
-      first = ts.at("time").front();
-      last = ts.at("time").back();
-    }
+  if (series && series->rows() > 0) {
+    first = series->at("time").front();
+    last = series->at("time").back();
   }
   if (particles && !particles->snapshots().empty()) {
     first = std::min(first, particles->snapshots().front().time);
@@ -124,24 +115,30 @@ std::pair<double, double> recordSpan(const std::filesystem::path& run,
   return {first, last};
 }
 
-Json statisticsJson(const WindowStatistics& s) {
-  if (s.n == 0) return nullptr;
-  return Json{{"n", s.n}, {"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
-}
-
 }  // namespace
+
+// null when the window held no value
+void to_json(Json& j, const WindowStatistics& s) {
+  if (s.n == 0)
+    j = nullptr;
+  else
+    j = Json{{"n", s.n}, {"mean", s.mean}, {"sd", s.sd}, {"min", s.min}, {"max", s.max}};
+}
 
 BedAnalysis analyseBed(const std::filesystem::path& run, double from, double to) {
   BedAnalysis a;
   a.run = run;
-  a.label = labelOf(run);
+  a.label = runLabel(run);
   if (!std::filesystem::is_directory(run))
     throw InputError("run folder " + run.string() +
                      " does not exist (give the folder a `cosim run` wrote)");
   if (std::filesystem::exists(run / kSummaryFile)) a.summary = readSummary(run / kSummaryFile);
   std::optional<ParticleFile> particles;
   if (std::filesystem::exists(run / kParticlesFile)) particles.emplace(run / kParticlesFile);
-  const auto [first, last] = recordSpan(run, particles);
+  std::optional<TimeSeries> series;
+  if (std::filesystem::exists(run / kTimeSeriesFile))
+    series.emplace(readTimeSeries(run / kTimeSeriesFile));
+  const auto [first, last] = recordSpan(series, particles);
   if (!(last >= first))
     throw InputError(run.string() + " holds neither " + kTimeSeriesFile + " rows nor " +
                      kParticlesFile + " snapshots: nothing to report yet");
@@ -152,8 +149,8 @@ BedAnalysis analyseBed(const std::filesystem::path& run, double from, double to)
         "the window [{:g}, {:g}] s is empty: give --fit-start below --fit-end (the run's record "
         "spans {:g} to {:g} s)",
         a.from, a.to, first, last));
-  if (std::filesystem::exists(run / kTimeSeriesFile))
-    readSeries(run / kTimeSeriesFile, a);
+  if (series)
+    readSeries(*series, run / kTimeSeriesFile, a);
   else
     a.notes.push_back((run / kTimeSeriesFile).string() + " is missing: no pressure drop");
   if (particles)
@@ -168,27 +165,28 @@ BedAnalysis analyseBed(const std::filesystem::path& run, double from, double to)
 }
 
 Json toJson(const BedAnalysis& a) {
-  Json j{{"format", "cosim-report"}, {"kind", "bed"}, {"run", a.run.string()}};
-  j["window_s"] = {a.from, a.to};
-  j["pressure_drop_pa"] = statisticsJson(a.pressure_drop);
-  j["particle_count"] = statisticsJson(a.particle_count);
-  j["snapshots"] = a.snapshots;
-  j["bed_height_median_m"] = statisticsJson(a.height_median);
-  j["bed_height_p90_m"] = statisticsJson(a.height_p90);
-  j["parcel_speed_median_m_s"] = statisticsJson(a.speed_median);
-  Json obs = Json::array();
-  if (a.summary) {
-    j["status"] = a.summary->status;
+  Json observables = Json::array();
+  if (a.summary)
     for (const auto& o : a.summary->observables) {
       Json e{{"name", o.name}, {"value", o.undefined.empty() ? Json(o.value) : Json(nullptr)}};
-      if (!o.undefined.empty()) e["undefined"] = o.undefined;
-      if (o.reference) e["reference"] = *o.reference;
-      if (o.relative_error) e["relative_error"] = *o.relative_error;
-      obs.push_back(e);
+      if (!o.undefined.empty()) e.emplace("undefined", o.undefined);
+      if (o.reference) e.emplace("reference", *o.reference);
+      if (o.relative_error) e.emplace("relative_error", *o.relative_error);
+      observables.push_back(std::move(e));
     }
-  }
-  j["observables"] = obs;
-  j["notes"] = a.notes;
+  Json j{{"format", "cosim-report"},
+         {"kind", "bed"},
+         {"run", a.run.string()},
+         {"window_s", {a.from, a.to}},
+         {"pressure_drop_pa", a.pressure_drop},
+         {"particle_count", a.particle_count},
+         {"snapshots", a.snapshots},
+         {"bed_height_median_m", a.height_median},
+         {"bed_height_p90_m", a.height_p90},
+         {"parcel_speed_median_m_s", a.speed_median}};
+  if (a.summary) j.emplace("status", a.summary->status);
+  j.emplace("observables", std::move(observables));
+  j.emplace("notes", a.notes);
   return j;
 }
 

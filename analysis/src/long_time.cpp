@@ -151,12 +151,18 @@ Matrix multiply(const Matrix& a, const Matrix& b, int k) {
   return c;
 }
 
-// Intervals until every visited state's row of P^n is within 0.25 (total variation) of its own
-// limit (P^(2^40), by repeated squaring: each row's limit, the chain reducible or not); infinity
-// when it is not within 2^40.
-double mixingIntervals(const Matrix& p, int k, const std::vector<std::size_t>& departures) {
+// P^(2^i) for i = 0..40, by repeated squaring; the last is each row's limit (the chain reducible
+// or not).
+std::vector<Matrix> squarings(const Matrix& p, int k) {
   std::vector<Matrix> powers = {p};
   for (int i = 0; i < 40; ++i) powers.push_back(multiply(powers.back(), powers.back(), k));
+  return powers;
+}
+
+// Intervals until every visited state's row of P^n is within 0.25 (total variation) of its own
+// limit; infinity when it is not within 2^40.
+double mixingIntervals(const std::vector<Matrix>& powers, int k,
+                       const std::vector<std::size_t>& departures) {
   const Matrix& limit = powers.back();
   for (std::size_t i = 0; i < powers.size(); ++i) {
     double worst = 0;
@@ -220,10 +226,11 @@ std::vector<double> intervalsToTheZone(const Matrix& p, int k, const std::vector
 }
 
 // The coating a parcel gains per interval, on average over the population: in the record over
-// its second half, and in the chain settled from the record's last occupancy (P^(2^20)). They
+// its second half, and in the chain settled from the record's last occupancy (`settled`: P's
+// limit, P^(2^40)). They
 // differ when the record's bed had not settled yet, or when a compartment lumps parcels that coat
 // differently: the model then carries the batch on at a rate the record did not show.
-void checkSettledRate(const CoatingDatabase& db, LongTimeModel& m) {
+void checkSettledRate(const CoatingDatabase& db, const Matrix& settled, LongTimeModel& m) {
   const int k = m.states;
   const std::size_t last = db.coating.size() - 1, mid = last / 2;
   if (last == mid || db.ids.empty()) return;
@@ -234,8 +241,6 @@ void checkSettledRate(const CoatingDatabase& db, LongTimeModel& m) {
   }
   const auto n = static_cast<double>(db.ids.size());
   m.record_gain_per_interval = (sum_last - sum_mid) / n / static_cast<double>(last - mid);
-  Matrix settled = m.P;
-  for (int i = 0; i < 20; ++i) settled = multiply(settled, settled, k);
   std::vector<double> d(k, 0.0);
   for (int a = 0; a < k; ++a)
     for (int b = 0; b < k; ++b)
@@ -287,7 +292,8 @@ LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_depart
       if (m.departures[a] > 0) m.P[a * k + b] /= static_cast<double>(m.departures[a]);
   for (int s : db.state.back()) ++m.occupied_at_end[s];
 
-  m.mixing_seconds = mixingIntervals(m.P, k, m.departures) * m.interval;
+  const std::vector<Matrix> powers = squarings(m.P, k);
+  m.mixing_seconds = mixingIntervals(powers, k, m.departures) * m.interval;
   std::vector<char> coats(k, 0);  // states whose recorded departures gained coating
   for (int a = 0; a < k; ++a)
     for (int b = 0; b < k && !coats[a]; ++b)
@@ -358,7 +364,7 @@ LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_depart
         "{} parcels sit in {} compartments seen fewer than {} times in the record: their rates "
         "rest on few moves",
         thin, thin_states, min_departures));
-  checkSettledRate(db, m);
+  checkSettledRate(db, powers.back(), m);
   return m;
 }
 

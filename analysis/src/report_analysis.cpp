@@ -18,13 +18,11 @@
 
 namespace cosim::analysis {
 
-namespace {
 std::string runLabel(const std::filesystem::path& run) {
   auto p = run.lexically_normal();
   if (p.has_filename()) return p.filename().string();
   return p.parent_path().filename().string();
 }
-}  // namespace
 
 namespace {
 // The run's status and scenario parameters (a sweep's comparison shows what differs), and the cg

@@ -12,6 +12,9 @@
 
 namespace cosim::analysis {
 
+// A run's label in tables and plots: its folder's name.
+std::string runLabel(const std::filesystem::path& run);
+
 void writeRunTables(const RunAnalysis& a, const std::filesystem::path& dir);
 void writeRunHtml(const RunAnalysis& a, const ReportOptions& o, const std::filesystem::path& dir,
                   const std::vector<std::string>& pngs, const std::string& plot_message);

@@ -25,6 +25,7 @@ struct WindowStatistics {
   double mean = nan, sd = nan, min = nan, max = nan;
 };
 WindowStatistics statisticsOf(const std::vector<double>& values);
+void to_json(Json& j, const WindowStatistics& s);  // null when n = 0
 
 struct BedAnalysis {
   std::filesystem::path run;
