@@ -77,27 +77,9 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
   return judgeMixing(fit, last, last_values, c, NormalityHistory{});
 }
 
-MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
-                          const std::vector<double>& last_values, const MixingCriteria& c,
-                          const NormalityHistory& history) {
-  MixingVerdict v;
-  const MixingCriteria d;
-  for (const auto& k : kMixingCriteria) {
-    if (c.*k.value != d.*k.value) {
-      v.relaxed.push_back(std::string(k.name) + " " + fmt::format("{:g}", c.*k.value) +
-                          " (default " + fmt::format("{:g}", d.*k.value) + ")");
-    }
-  }
-  v.last_time = last.time;
-  v.uncoated_share = last.uncoated_share;
-  if (last.count > 0 && last.uncoated_share > c.max_uncoated_share) {
-    v.too_many_uncoated = true;
-    v.reasons.push_back(
-        fmt::format("{:.1f} %", 100 * last.uncoated_share) +
-        " of the parcels were never coated by t = " + fmt::format("{:g}", last.time) +
-        " s (limit " + fmt::format("{:.1f} %", 100 * c.max_uncoated_share) +
-        "): some particles do not reach the coating zone");
-  }
+namespace {
+// Eqs. 9-10's fit: are the mean and the variance linear in time, are their residuals random.
+void judgeFit(const GrowthFit& fit, const MixingCriteria& c, MixingVerdict& v) {
   if (!fit.ok) {
     v.no_fit = true;
     v.reasons.push_back("no fit of Eqs. 9-10: " + fit.problem);
@@ -131,6 +113,12 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
           " expected, p = " + fmt::format("{:.2g}", v.variance_runs.p_too_few) + ")");
     }
   }
+}
+
+// The coating distribution at the last snapshot: normal, or departing in a way that fades as in
+// a well-mixed bed, or lasting.
+void judgeNormality(const CoatingStatistics& last, const std::vector<double>& last_values,
+                    const MixingCriteria& c, const NormalityHistory& history, MixingVerdict& v) {
   v.normality = dagostinoPearson(last_values);
   if (!v.normality.valid) {
     v.warnings.push_back(v.normality.problem);
@@ -199,6 +187,32 @@ MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
           ", excess kurtosis " + fmt::format("{:.2f}", excess) + ")");
     }
   }
+}
+}  // namespace
+
+MixingVerdict judgeMixing(const GrowthFit& fit, const CoatingStatistics& last,
+                          const std::vector<double>& last_values, const MixingCriteria& c,
+                          const NormalityHistory& history) {
+  MixingVerdict v;
+  const MixingCriteria d;
+  for (const auto& k : kMixingCriteria) {
+    if (c.*k.value != d.*k.value) {
+      v.relaxed.push_back(std::string(k.name) + " " + fmt::format("{:g}", c.*k.value) +
+                          " (default " + fmt::format("{:g}", d.*k.value) + ")");
+    }
+  }
+  v.last_time = last.time;
+  v.uncoated_share = last.uncoated_share;
+  if (last.count > 0 && last.uncoated_share > c.max_uncoated_share) {
+    v.too_many_uncoated = true;
+    v.reasons.push_back(
+        fmt::format("{:.1f} %", 100 * last.uncoated_share) +
+        " of the parcels were never coated by t = " + fmt::format("{:g}", last.time) +
+        " s (limit " + fmt::format("{:.1f} %", 100 * c.max_uncoated_share) +
+        "): some particles do not reach the coating zone");
+  }
+  judgeFit(fit, c, v);
+  judgeNormality(last, last_values, c, history, v);
   v.well_mixed = v.reasons.empty();
   return v;
 }
