@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <unordered_map>
 
 #include "cosim/analysis/coating_statistics.h"
@@ -112,6 +113,26 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
     }
   }
   return check;
+}
+
+void to_json(Json& j, const LongTimeCheck& c) {
+  const auto point = [](const LongTimePoint& p) {
+    return Json{{"mean_kg", p.mean}, {"cv", p.cv}, {"never_coated_share", p.never_coated_share}};
+  };
+  Json rows = Json::array();
+  for (const auto& r : c.rows)
+    rows.push_back({{"time_s", r.time},
+                    {"model", point(r.predicted)},
+                    {"run", point(r.recorded)},
+                    {"mean_error", r.mean_error},
+                    {"cv_error", r.cv_error},
+                    {"never_coated_points", r.never_points}});
+  j = Json{{"rows", rows},
+           {"parcels", c.parcels},
+           {"ks_distance", c.ks_distance},
+           {"ks_critical_5pct", c.ks_critical},
+           {"model_deciles_kg", c.predicted_deciles},
+           {"run_deciles_kg", c.recorded_deciles}};
 }
 
 }  // namespace cosim::analysis

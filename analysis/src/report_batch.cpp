@@ -7,11 +7,31 @@
 
 #include "cosim/analysis/display_units.h"
 #include "cosim/analysis/long_time.h"
+#include "cosim/analysis/long_time_check.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/report.h"
 #include "report_internal.h"
 
 namespace cosim::analysis {
+
+namespace {
+// The model fitted on the record's first half, held against the run's snapshots of the second
+// (at a quarter, half, three quarters of the way and at the end); none for a record of fewer than
+// 6 snapshots.
+std::optional<LongTimeCheck> checkOnSecondHalf(const ParticleFile& file, const CoatingDatabase& db,
+                                               double& record_to) {
+  const std::size_t n = db.times.size();
+  if (n < 6) return std::nullopt;
+  const std::size_t mid = (n - 1) / 2;
+  record_to = db.times[mid];
+  const auto first = readCoatingDatabase(file, db.times.front(), record_to, db.grid);
+  std::vector<double> times;
+  for (const std::size_t k :
+       {mid + (n - 1 - mid) / 4, mid + (n - 1 - mid) / 2, mid + 3 * (n - 1 - mid) / 4, n - 1})
+    if (k > mid && (times.empty() || db.times[k] > times.back())) times.push_back(db.times[k]);
+  return checkLongTime(fitLongTimeModel(first), first, readRecordedCoating(file, times), 1);
+}
+}  // namespace
 
 std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const ReportOptions& o,
                                             std::string& problem) {
@@ -39,12 +59,52 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
       b.never_coated.push_back(p.never_coated_share);
     }
     b.wall_seconds = pr.wall_seconds;
+    b.check = checkOnSecondHalf(file, db, b.check_record_to);
     return b;
   } catch (const std::exception& e) {
     problem = e.what();
     return std::nullopt;
   }
 }
+
+namespace {
+Json checkJson(const BatchPrediction& b) {
+  if (!b.check) return nullptr;
+  Json j{{"record_to_s", b.check_record_to}};
+  j.update(Json(*b.check));
+  return j;
+}
+
+std::string checkHtml(const RunAnalysis& a) {
+  const auto& b = *a.batch;
+  if (!b.check || b.check->rows.empty()) return "";
+  std::ostringstream h;
+  h << "<p>How far to trust it on this bed: the same model fitted on the record up to "
+    << htmlNumber(b.check_record_to, 4)
+    << " s only, held against what the run itself recorded after that (model / run).</p>\n"
+       "<table>\n<tr><th>time [s]</th><th>mean ["
+    << a.mass_unit.name
+    << "]</th><th>mean error</th><th>CV</th><th>CV error</th><th>never coated [%]</th>"
+       "<th>difference [points]</th></tr>\n";
+  for (const auto& r : b.check->rows)
+    h << "<tr><td>" << htmlNumber(r.time, 6) << "</td><td>"
+      << htmlNumber(a.mass_unit.of(r.predicted.mean)) << " / "
+      << htmlNumber(a.mass_unit.of(r.recorded.mean)) << "</td><td>"
+      << fmt::format("{:+.1f} %", 100 * r.mean_error) << "</td><td>" << htmlNumber(r.predicted.cv)
+      << " / " << htmlNumber(r.recorded.cv) << "</td><td>"
+      << fmt::format("{:+.1f} %", 100 * r.cv_error) << "</td><td>"
+      << htmlNumber(100 * r.predicted.never_coated_share, 3) << " / "
+      << htmlNumber(100 * r.recorded.never_coated_share, 3) << "</td><td>"
+      << fmt::format("{:+.2f}", r.never_points) << "</td></tr>\n";
+  h << "</table>\n"
+    << fmt::format(
+           "<p>The parcels' coating at the last time: Kolmogorov-Smirnov distance {:.3g} between "
+           "the model's and the run's (two independent samples of this size exceed {:.3g} one "
+           "time in twenty).</p>\n",
+           b.check->ks_distance, b.check->ks_critical);
+  return h.str();
+}
+}  // namespace
 
 Json batchJson(const RunAnalysis& a) {
   if (!a.batch) return Json{{"computed", false}, {"problem", a.batch_problem}};
@@ -59,7 +119,8 @@ Json batchJson(const RunAnalysis& a) {
               {"mean_kg", b.mean},
               {"cv", b.cv},
               {"never_coated_share", b.never_coated},
-              {"wall_s", b.wall_seconds}};
+              {"wall_s", b.wall_seconds},
+              {"check_on_second_half", checkJson(b)}};
 }
 
 std::string batchHtml(const RunAnalysis& a) {
@@ -90,7 +151,7 @@ std::string batchHtml(const RunAnalysis& a) {
       << htmlNumber(a.mass_unit.of(b.mean[i])) << "</td><td>" << htmlNumber(b.cv[i]) << "</td><td>"
       << htmlNumber(100 * b.never_coated[i], 3) << "</td></tr>\n";
   }
-  h << "</table>\n";
+  h << "</table>\n" << checkHtml(a);
   return h.str();
 }
 

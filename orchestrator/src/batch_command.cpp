@@ -63,31 +63,17 @@ std::vector<double> checkTimes(const a::CoatingDatabase& db, const a::ParticleFi
   return t;
 }
 
-// The model against the rest of its run, printed and as JSON.
-a::Json printCheck(const a::LongTimeCheck& c, std::ostream& out) {
+// The model against the rest of its run, printed.
+void printCheck(const a::LongTimeCheck& c, std::ostream& out) {
   out << "  the model against the run's own snapshots after the record (--to):\n"
       << "  time [s]   mean: model / run      CV: model / run     never coated: model / run\n";
-  a::Json rows = a::Json::array();
-  for (const auto& r : c.rows) {
+  for (const auto& r : c.rows)
     out << fmt::format(
         "  {:>8.6g}  {:>10.4g} / {:<10.4g} {:+6.2f} %  {:>7.4f} / {:<7.4f} {:+6.2f} %  {:>6.2f} / "
         "{:<6.2f} % {:+6.2f} points\n",
         r.time, r.predicted.mean, r.recorded.mean, 100 * r.mean_error, r.predicted.cv,
         r.recorded.cv, 100 * r.cv_error, 100 * r.predicted.never_coated_share,
         100 * r.recorded.never_coated_share, r.never_points);
-    rows.push_back({{"time_s", r.time},
-                    {"model",
-                     {{"mean_kg", r.predicted.mean},
-                      {"cv", r.predicted.cv},
-                      {"never_coated_share", r.predicted.never_coated_share}}},
-                    {"run",
-                     {{"mean_kg", r.recorded.mean},
-                      {"cv", r.recorded.cv},
-                      {"never_coated_share", r.recorded.never_coated_share}}},
-                    {"mean_error", r.mean_error},
-                    {"cv_error", r.cv_error},
-                    {"never_coated_points", r.never_points}});
-  }
   out << fmt::format(
       "  the parcels' coating at t = {:g} s ({} parcels): Kolmogorov-Smirnov distance {:.4f} "
       "(two independent samples of this size exceed {:.4f} one time in twenty)\n",
@@ -96,12 +82,6 @@ a::Json printCheck(const a::LongTimeCheck& c, std::ostream& out) {
   for (std::size_t i = 0; i < c.predicted_deciles.size(); ++i)
     out << fmt::format(" {:.3g}/{:.3g}", c.predicted_deciles[i], c.recorded_deciles[i]);
   out << "\n";
-  return {{"rows", rows},
-          {"parcels", c.parcels},
-          {"ks_distance", c.ks_distance},
-          {"ks_critical_5pct", c.ks_critical},
-          {"model_deciles_kg", c.predicted_deciles},
-          {"run_deciles_kg", c.recorded_deciles}};
 }
 }  // namespace
 
@@ -198,8 +178,10 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
           model, db, a::readRecordedCoating(file, checkTimes(db, file, o.times)), o.seed);
       if (check.rows.empty())
         out << "  --to: the run has no snapshot after the record's end to check the model with\n";
-      else
-        j["check"] = printCheck(check, out);
+      else {
+        printCheck(check, out);
+        j["check"] = check;
+      }
     }
     j["long_time_model"] = {{"record_from_s", db.times.front()},
                             {"record_to_s", db.times.back()},

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/long_time.h"
 
 namespace cosim::analysis {
@@ -44,6 +45,11 @@ struct LongTimeCheck {
   double ks_critical = 0;
   std::vector<double> predicted_deciles, recorded_deciles;  // 10 %, 20 %, ... 90 % [kg]
 };
+
+// batch.json's and report.json's form: rows (time_s, model and run: mean_kg, cv,
+// never_coated_share; mean_error, cv_error, never_coated_points), parcels, ks_distance,
+// ks_critical_5pct, model_deciles_kg, run_deciles_kg.
+void to_json(Json& j, const LongTimeCheck& c);
 
 // Two-sample Kolmogorov-Smirnov distance of `a` and `b` (neither empty).
 double ksDistance(std::vector<double> a, std::vector<double> b);

@@ -21,6 +21,7 @@
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/growth_fit.h"
 #include "cosim/analysis/histogram.h"
+#include "cosim/analysis/long_time_check.h"
 #include "cosim/analysis/mass_balance.h"
 #include "cosim/analysis/mixing_verdict.h"
 #include "cosim/analysis/operating_conditions.h"
@@ -96,6 +97,10 @@ struct BatchPrediction {
   std::vector<std::string> warnings;
   std::vector<double> times, mean, cv, never_coated;  // at the record's end, then later
   double wall_seconds = 0;
+  // The same model fitted on the record's first half only (to check_record_to) and held against
+  // the run's own second half: how far the batch's answer may be from CFD-DEM on this bed.
+  std::optional<LongTimeCheck> check;
+  double check_record_to = 0;  // [s]
 };
 
 struct RunAnalysis {
