@@ -81,19 +81,20 @@ std::string checkHtml(const RunAnalysis& a) {
   std::ostringstream h;
   h << "<p>How far to trust it on this bed: the same model fitted on the record up to "
     << htmlNumber(b.check_record_to, 4)
-    << " s only, held against what the run itself recorded after that (model / run).</p>\n"
-       "<table>\n<tr><th>time [s]</th><th>mean ["
+    << " s only, held against what the run itself recorded after that.</p>\n"
+       "<table>\n<tr><th>time [s]</th><th>mean, model ["
     << a.mass_unit.name
-    << "]</th><th>mean error</th><th>CV</th><th>CV error</th><th>never coated [%]</th>"
+    << "]</th><th>mean, run</th><th>error [%]</th><th>CV, model</th><th>CV, run</th>"
+       "<th>error [%]</th><th>never coated, model [%]</th><th>never coated, run [%]</th>"
        "<th>difference [points]</th></tr>\n";
   for (const auto& r : b.check->rows)
     h << "<tr><td>" << htmlNumber(r.time, 6) << "</td><td>"
-      << htmlNumber(a.mass_unit.of(r.predicted.mean)) << " / "
+      << htmlNumber(a.mass_unit.of(r.predicted.mean)) << "</td><td>"
       << htmlNumber(a.mass_unit.of(r.recorded.mean)) << "</td><td>"
-      << fmt::format("{:+.1f} %", 100 * r.mean_error) << "</td><td>" << htmlNumber(r.predicted.cv)
-      << " / " << htmlNumber(r.recorded.cv) << "</td><td>"
-      << fmt::format("{:+.1f} %", 100 * r.cv_error) << "</td><td>"
-      << htmlNumber(100 * r.predicted.never_coated_share, 3) << " / "
+      << fmt::format("{:+.1f}", 100 * r.mean_error) << "</td><td>" << htmlNumber(r.predicted.cv)
+      << "</td><td>" << htmlNumber(r.recorded.cv) << "</td><td>"
+      << fmt::format("{:+.1f}", 100 * r.cv_error) << "</td><td>"
+      << htmlNumber(100 * r.predicted.never_coated_share, 3) << "</td><td>"
       << htmlNumber(100 * r.recorded.never_coated_share, 3) << "</td><td>"
       << fmt::format("{:+.2f}", r.never_points) << "</td></tr>\n";
   h << "</table>\n"
