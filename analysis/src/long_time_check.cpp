@@ -3,7 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
@@ -113,6 +115,52 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
     }
   }
   return check;
+}
+
+std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from, double until,
+                                           const Compartments& grid, std::uint64_t seed) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const auto whole = readCoatingDatabase(file, from, until, grid);
+  const std::size_t n = whole.times.size();
+  if (n < 6) return std::nullopt;
+  const std::size_t mid = (n - 1) / 2;
+  HalfCheck h;
+  h.record_to = whole.times[mid];
+  const auto first = readCoatingDatabase(file, whole.times.front(), h.record_to, grid);
+  std::vector<double> times;
+  for (const std::size_t k :
+       {mid + (n - 1 - mid) / 4, mid + (n - 1 - mid) / 2, mid + 3 * (n - 1 - mid) / 4, n - 1})
+    if (k > mid && (times.empty() || whole.times[k] > times.back()))
+      times.push_back(whole.times[k]);
+  const auto model = fitLongTimeModel(first);
+  const double record = model.record_gain_per_interval;
+  h.settles_off =
+      record > 0 && std::fabs(model.settled_gain_per_interval / record - 1) > kSettledRateTolerance;
+  h.check = checkLongTime(model, first, readRecordedCoating(file, times), seed);
+  h.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return h;
+}
+
+GridChoice chooseCompartments(const ParticleFile& file, double from, double until,
+                              const std::vector<Compartments>& candidates, std::uint64_t seed) {
+  GridChoice c;
+  if (candidates.empty()) return c;
+  c.chosen = candidates.front();
+  for (const auto& grid : candidates) {
+    auto half = checkOnSecondHalf(file, from, until, grid, seed);
+    if (half && !half->check.rows.empty()) c.trials.push_back({grid, std::move(*half)});
+  }
+  const bool any_settles = std::any_of(c.trials.begin(), c.trials.end(),
+                                       [](const GridTrial& t) { return !t.half.settles_off; });
+  double best = std::numeric_limits<double>::infinity();
+  for (const auto& t : c.trials) {
+    if (any_settles && t.half.settles_off) continue;
+    if (t.half.check.ks_distance < best) {
+      best = t.half.check.ks_distance;
+      c.chosen = t.grid;
+    }
+  }
+  return c;
 }
 
 void to_json(Json& j, const LongTimeCheck& c) {

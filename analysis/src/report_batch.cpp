@@ -14,25 +14,6 @@
 
 namespace cosim::analysis {
 
-namespace {
-// The model fitted on the record's first half, held against the run's snapshots of the second
-// (at a quarter, half, three quarters of the way and at the end); none for a record of fewer than
-// 6 snapshots.
-std::optional<LongTimeCheck> checkOnSecondHalf(const ParticleFile& file, const CoatingDatabase& db,
-                                               double& record_to) {
-  const std::size_t n = db.times.size();
-  if (n < 6) return std::nullopt;
-  const std::size_t mid = (n - 1) / 2;
-  record_to = db.times[mid];
-  const auto first = readCoatingDatabase(file, db.times.front(), record_to, db.grid);
-  std::vector<double> times;
-  for (const std::size_t k :
-       {mid + (n - 1 - mid) / 4, mid + (n - 1 - mid) / 2, mid + 3 * (n - 1 - mid) / 4, n - 1})
-    if (k > mid && (times.empty() || db.times[k] > times.back())) times.push_back(db.times[k]);
-  return checkLongTime(fitLongTimeModel(first), first, readRecordedCoating(file, times), 1);
-}
-}  // namespace
-
 std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const ReportOptions& o,
                                             std::string& problem) {
   if (!o.batch) {
@@ -40,7 +21,8 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
     return std::nullopt;
   }
   try {
-    const auto db = readCoatingDatabase(file, 0, -1, Compartments{});
+    auto choice = chooseCompartments(file, 0, -1);
+    const auto db = readCoatingDatabase(file, 0, -1, choice.chosen);
     const auto model = fitLongTimeModel(db);
     std::vector<double> times = {db.times.back()};
     for (double t : {20.0, 60.0, 300.0, 1200.0, 3600.0})
@@ -59,7 +41,12 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
       b.never_coated.push_back(p.never_coated_share);
     }
     b.wall_seconds = pr.wall_seconds;
-    b.check = checkOnSecondHalf(file, db, b.check_record_to);
+    b.grid = choice.chosen;
+    b.grid_trials = std::move(choice.trials);
+    for (std::size_t i = 0; i < b.grid_trials.size(); ++i)
+      if (b.grid_trials[i].grid.rings == b.grid.rings &&
+          b.grid_trials[i].grid.layers == b.grid.layers)
+        b.chosen = i;
     return b;
   } catch (const std::exception& e) {
     problem = e.what();
@@ -68,41 +55,48 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
 }
 
 namespace {
-Json checkJson(const BatchPrediction& b) {
-  if (!b.check) return nullptr;
-  Json j{{"record_to_s", b.check_record_to}};
-  j.update(Json(*b.check));
-  return j;
+Json gridsJson(const BatchPrediction& b) {
+  Json trials = Json::array();
+  for (const auto& t : b.grid_trials) {
+    Json j{{"rings", t.grid.rings},
+           {"layers", t.grid.layers},
+           {"record_to_s", t.half.record_to},
+           {"settles_off", t.half.settles_off},
+           {"wall_s", t.half.wall_seconds}};
+    j.update(Json(t.half.check));
+    trials.push_back(std::move(j));
+  }
+  return trials;
 }
 
 std::string checkHtml(const RunAnalysis& a) {
   const auto& b = *a.batch;
-  if (!b.check || b.check->rows.empty()) return "";
+  if (b.grid_trials.empty()) return "";
   std::ostringstream h;
-  h << "<p>How far to trust it on this bed: the same model fitted on the record up to "
-    << htmlNumber(b.check_record_to, 4)
-    << " s only, held against what the run itself recorded after that.</p>\n"
-       "<table>\n<tr><th>time [s]</th><th>mean, model ["
-    << a.mass_unit.name
-    << "]</th><th>mean, run</th><th>error [%]</th><th>CV, model</th><th>CV, run</th>"
-       "<th>error [%]</th><th>never coated, model [%]</th><th>never coated, run [%]</th>"
-       "<th>difference [points]</th></tr>\n";
-  for (const auto& r : b.check->rows)
-    h << "<tr><td>" << htmlNumber(r.time, 6) << "</td><td>"
-      << htmlNumber(a.mass_unit.of(r.predicted.mean)) << "</td><td>"
-      << htmlNumber(a.mass_unit.of(r.recorded.mean)) << "</td><td>"
-      << fmt::format("{:+.1f}", 100 * r.mean_error) << "</td><td>" << htmlNumber(r.predicted.cv)
-      << "</td><td>" << htmlNumber(r.recorded.cv) << "</td><td>"
+  h << "<p>How far to trust it on this bed, and the compartments it uses: each grid's model "
+       "fitted on the record's first half only (to "
+    << htmlNumber(b.grid_trials.front().half.record_to, 4)
+    << " s), held against what the run itself recorded at its end; the batch above uses the grid "
+       "whose parcels' coating is closest to the run's (least Kolmogorov-Smirnov distance) among "
+       "those "
+       "whose chain settles to the record's coating rate.</p>\n"
+       "<table>\n<tr><th>rings x layers</th><th>mean error [%]</th><th>CV error [%]</th>"
+       "<th>never coated, difference [points]</th><th>Kolmogorov-Smirnov</th>"
+       "<th>5 % of independent samples exceed</th><th>wall [s]</th></tr>\n";
+  for (std::size_t i = 0; i < b.grid_trials.size(); ++i) {
+    const auto& t = b.grid_trials[i];
+    const auto& r = t.half.check.rows.back();
+    const bool used = b.chosen && *b.chosen == i;
+    h << "<tr><td>" << t.grid.rings << "x" << t.grid.layers << (used ? "&nbsp;(used)" : "")
+      << (t.half.settles_off ? "&nbsp;(settles off the record's rate)" : "") << "</td><td>"
+      << fmt::format("{:+.1f}", 100 * r.mean_error) << "</td><td>"
       << fmt::format("{:+.1f}", 100 * r.cv_error) << "</td><td>"
-      << htmlNumber(100 * r.predicted.never_coated_share, 3) << "</td><td>"
-      << htmlNumber(100 * r.recorded.never_coated_share, 3) << "</td><td>"
-      << fmt::format("{:+.2f}", r.never_points) << "</td></tr>\n";
-  h << "</table>\n"
-    << fmt::format(
-           "<p>The parcels' coating at the last time: Kolmogorov-Smirnov distance {:.3g} between "
-           "the model's and the run's (two independent samples of this size exceed {:.3g} one "
-           "time in twenty).</p>\n",
-           b.check->ks_distance, b.check->ks_critical);
+      << fmt::format("{:+.2f}", r.never_points) << "</td><td>"
+      << htmlNumber(t.half.check.ks_distance, 3) << "</td><td>"
+      << htmlNumber(t.half.check.ks_critical, 3) << "</td><td>"
+      << htmlNumber(t.half.wall_seconds, 3) << "</td></tr>\n";
+  }
+  h << "</table>\n";
   return h.str();
 }
 }  // namespace
@@ -121,7 +115,9 @@ Json batchJson(const RunAnalysis& a) {
               {"cv", b.cv},
               {"never_coated_share", b.never_coated},
               {"wall_s", b.wall_seconds},
-              {"check_on_second_half", checkJson(b)}};
+              {"rings", b.grid.rings},
+              {"layers", b.grid.layers},
+              {"check_on_second_half", gridsJson(b)}};
 }
 
 std::string batchHtml(const RunAnalysis& a) {
@@ -136,9 +132,9 @@ std::string batchHtml(const RunAnalysis& a) {
        "the coating gains the record holds for each move (<code>cosim batch</code>; "
        "docs/physics.md, section 5b). Unlike Eqs. 9-10 it holds for a poorly mixed bed too. "
     << fmt::format(
-           "Record {:.3g}-{:.3g} s; the longest wait for the zone {:.3g} s. The first row "
-           "is the record's own end.",
-           b.record_from, b.record_to, b.longest_wait)
+           "Record {:.3g}-{:.3g} s; {} x {} compartments (rings x layers); the longest wait for "
+           "the zone {:.3g} s. The first row is the record's own end.",
+           b.record_from, b.record_to, b.grid.rings, b.grid.layers, b.longest_wait)
     << "</p>\n";
   if (!b.warnings.empty()) {
     h << "<ul>\n";

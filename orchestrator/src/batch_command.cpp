@@ -105,9 +105,13 @@ CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
                 "the record used ends here [s]; the run's snapshots after it check the model "
                 "(its prediction beside what the run recorded)")
       ->check(CLI::NonNegativeNumber);
-  b->add_option("--rings", o.rings, "compartments: rings about the vertical axis (default 6)")
+  b->add_option("--rings", o.rings,
+                "compartments: rings about the vertical axis (default: the grid the record holds "
+                "best of 6x8, 12x16, 16x24, 24x32; 6 when only --layers is given)")
       ->check(CLI::Range(1, 100));
-  b->add_option("--layers", o.layers, "compartments: layers of the bed (default 8)")
+  b->add_option("--layers", o.layers,
+                "compartments: layers of the bed (default: as --rings; 8 when only --rings is "
+                "given)")
       ->check(CLI::Range(1, 100));
   b->add_option("--seed", o.seed, "seed of the random moves (the same seed, the same answer)");
   b->add_option("-o,--output", o.output, "folder for batch.json and batch.csv (default RUN/batch)");
@@ -121,9 +125,37 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     const fs::path json = folder / "batch.json", csv = folder / "batch.csv";
     a::claimOutputFiles({json, csv}, "\"long_time_model\"", "-o");
     const a::ParticleFile file(run / "particles.h5");
-    a::Compartments grid;
-    grid.rings = o.rings;
-    grid.layers = o.layers;
+    a::Compartments grid{o.rings > 0 ? o.rings : 6, o.layers > 0 ? o.layers : 8, 0, 0};
+    a::Json trials = a::Json::array();
+    if (o.rings == 0 && o.layers == 0) {  // the record's own choice, from the record used only
+      const auto choice = a::chooseCompartments(file, o.from, o.to);
+      grid = choice.chosen;
+      if (!choice.trials.empty())
+        out << fmt::format(
+            "cosim batch: choosing the compartments: each grid's model fitted on the record to "
+            "t = {:g} s, held against the record's end at t = {:g} s\n"
+            "  rings x layers   mean     CV       never coated   Kolmogorov-Smirnov   wall\n",
+            choice.trials.front().half.record_to,
+            choice.trials.front().half.check.rows.back().time);
+      for (const auto& t : choice.trials) {
+        const auto& r = t.half.check.rows.back();
+        const bool used = t.grid.rings == grid.rings && t.grid.layers == grid.layers;
+        out << fmt::format(
+            "  {:>5} x {:<5}    {:+6.2f} %  {:+6.2f} %  {:+6.2f} points   {:.4f} (5 %: {:.4f})   "
+            "{:.3g} s{}{}\n",
+            t.grid.rings, t.grid.layers, 100 * r.mean_error, 100 * r.cv_error, r.never_points,
+            t.half.check.ks_distance, t.half.check.ks_critical, t.half.wall_seconds,
+            t.half.settles_off ? "   (settles off the record's coating rate)" : "",
+            used ? "   <- used" : "");
+        a::Json tj{{"rings", t.grid.rings},
+                   {"layers", t.grid.layers},
+                   {"record_to_s", t.half.record_to},
+                   {"settles_off", t.half.settles_off},
+                   {"wall_s", t.half.wall_seconds}};
+        tj.update(a::Json(t.half.check));
+        trials.push_back(std::move(tj));
+      }
+    }
     if (o.to >= 0 && o.to <= o.from)
       throw InputError(fmt::format(
           "command line: --to {:g} lies before --from {:g}: the record must have a length", o.to,
@@ -200,6 +232,7 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
                             {"warnings", model.warnings},
                             {"wall_s", pr.wall_seconds}};
     j["points"] = points;
+    j["compartment_trials"] = trials;
     fs::create_directories(folder);
     a::writeJsonFile(json, j, 1);
     a::writeFileAtomically(csv, text);

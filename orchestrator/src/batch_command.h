@@ -1,6 +1,6 @@
 // `cosim batch`: a whole coating batch (minutes to an hour) from a recorded run, by the long-time
 // model of analysis/long_time.h (docs/physics.md, "Coating over a whole batch").
-//   cosim batch RUN [--until 3600] [--times 20,60,1200] [--from T] [--rings 6] [--layers 8]
+//   cosim batch RUN [--until 3600] [--times 20,60,1200] [--from T] [--rings R] [--layers L]
 //                   [--seed 1] [--to T] [-o FOLDER]
 #pragma once
 
@@ -18,8 +18,10 @@ struct BatchOptions {
   std::vector<double> times;  // [s] more times to report (besides a grid up to `until`)
   double from = 0;            // [s] the record used starts here (skip the start-up)
   double to = -1;  // [s] the record used ends here; the run's later snapshots check the model
-  int rings = 6;
-  int layers = 8;
+  // The compartments; 0 for both: the grid the record holds best, each candidate checked on the
+  // record's second half (long_time_check.h). One given: the other 6 rings or 8 layers.
+  int rings = 0;
+  int layers = 0;
   std::uint64_t seed = 1;
   std::string output;  // folder for batch.json and batch.csv (default RUN/batch)
 };

@@ -294,3 +294,56 @@ TEST(LongTimeCheck, ReadsTheRecordedSnapshotAtOrBeforeEachTime) {
   EXPECT_DOUBLE_EQ(r[0].coating[0], 1e-12 * 0.2);
   EXPECT_THROW(readRecordedCoating(f, {-0.5}), cosim::InputError);
 }
+
+// The compartments chosen by the record itself: parcels that either sit in the zone (the inner
+// ring, gaining 1 per interval) or far from it (the outer ring), each staying for many intervals.
+// One compartment for the whole vessel lumps the two and spreads the coating evenly over the
+// parcels (a far narrower distribution than the record's); two rings hold the record's chain
+// exactly. The check on the record's second half says so, and the choice is the two rings.
+TEST(LongTimeCheck, ChoosesTheCompartmentsTheRecordHoldsBest) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("cosim-long-time-" + std::to_string(::getpid())) / "grids";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<double> stay = {0.95, 0.975};  // in the zone, far from it
+  const std::size_t n = 2000;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<int> s(n);
+  std::vector<double> c(n, 0.0);
+  for (std::size_t j = 0; j < n; ++j) s[j] = j % 3 == 0 ? 0 : 1;
+  {
+    ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass},
+                         RunIdentity{"grid-test", 1.0});
+    for (int k = 0; k <= 60; ++k) {
+      cosim::link::ParticleData p;
+      p.ids.resize(n);
+      auto& x = p.field(cosim::field::position);
+      auto& m = p.field(cosim::field::coating_mass);
+      x.assign(3 * n, 0.0);
+      m.assign(n, 0.0);
+      for (std::size_t j = 0; j < n; ++j) {
+        p.ids[j] = static_cast<std::int64_t>(j + 1);
+        x[3 * j] = s[j] == 0 ? 0.001 : 0.009;
+        x[3 * j + 2] = 0.01;
+        m[j] = c[j];
+      }
+      rec.write(0.1 * k, p);
+      for (std::size_t j = 0; j < n; ++j) {
+        if (s[j] == 0) c[j] += 1e-12;
+        if (u(rng) > stay[s[j]]) s[j] = 1 - s[j];
+      }
+    }
+  }
+  const ParticleFile f(dir / "particles.h5");
+  const GridChoice choice = chooseCompartments(f, 0, -1, {Compartments{1, 1}, Compartments{2, 1}});
+  ASSERT_EQ(choice.trials.size(), 2u);
+  EXPECT_EQ(choice.chosen.rings, 2);
+  const auto& lumped = choice.trials[0].half.check;
+  const auto& rings = choice.trials[1].half.check;
+  std::printf("Kolmogorov-Smirnov: one compartment %.4f, two rings %.4f (5 %%: %.4f)\n",
+              lumped.ks_distance, rings.ks_distance, rings.ks_critical);
+  EXPECT_GT(lumped.ks_distance, 3 * lumped.ks_critical);
+  EXPECT_LT(rings.ks_distance, 2 * rings.ks_critical);
+  EXPECT_NEAR(choice.trials[1].half.record_to, 3.0, 1e-9);
+}

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "cosim/analysis/files.h"
@@ -59,5 +60,39 @@ double ksDistance(std::vector<double> a, std::vector<double> b);
 // record has and the model does not (inserted later) is left out of both.
 LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& db,
                             const std::vector<RecordedCoating>& record, std::uint64_t seed = 1);
+
+// The model fitted on the record [from, until] (until < 0: to the end) cut at its middle
+// snapshot, held against the run's snapshots of the second half (at a quarter, half, three
+// quarters of the way and at the end). nullopt for a record of fewer than 6 snapshots.
+struct HalfCheck {
+  double record_to = 0;  // [s] the first half's end
+  LongTimeCheck check;
+  // The first half's model settles to a coating rate off the record's by more than
+  // kSettledRateTolerance (compartments it enters and never leaves, say): it may hold the next
+  // seconds and still carry a batch wrong.
+  bool settles_off = false;
+  double wall_seconds = 0;
+};
+std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from, double until,
+                                           const Compartments& grid, std::uint64_t seed = 1);
+
+// The compartments the record itself holds best: each candidate checked on the record's second
+// half (checkOnSecondHalf); the chosen one has the least Kolmogorov-Smirnov distance at the end
+// among those whose model settles to the record's coating rate (all, when none does).
+// Candidates the record cannot check (too short) are left out; none checkable: `chosen` is the
+// first candidate and `trials` empty.
+struct GridTrial {
+  Compartments grid;
+  HalfCheck half;
+};
+struct GridChoice {
+  std::vector<GridTrial> trials;
+  Compartments chosen;
+};
+inline const std::vector<Compartments> kCandidateGrids = {
+    {6, 8, 0, 0}, {12, 16, 0, 0}, {16, 24, 0, 0}, {24, 32, 0, 0}};
+GridChoice chooseCompartments(const ParticleFile& file, double from, double until,
+                              const std::vector<Compartments>& candidates = kCandidateGrids,
+                              std::uint64_t seed = 1);
 
 }  // namespace cosim::analysis

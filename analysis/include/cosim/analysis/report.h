@@ -97,10 +97,12 @@ struct BatchPrediction {
   std::vector<std::string> warnings;
   std::vector<double> times, mean, cv, never_coated;  // at the record's end, then later
   double wall_seconds = 0;
-  // The same model fitted on the record's first half only (to check_record_to) and held against
-  // the run's own second half: how far the batch's answer may be from CFD-DEM on this bed.
-  std::optional<LongTimeCheck> check;
-  double check_record_to = 0;  // [s]
+  // The compartments: each candidate's model fitted on the record's first half only and held
+  // against the run's own second half (how far the batch's answer may be from CFD-DEM on this
+  // bed); the batch uses the one that holds best (`grid`; `chosen` indexes grid_trials).
+  std::vector<GridTrial> grid_trials;
+  Compartments grid;
+  std::optional<std::size_t> chosen;
 };
 
 struct RunAnalysis {
