@@ -151,16 +151,23 @@ Matrix multiply(const Matrix& a, const Matrix& b, int k) {
   return c;
 }
 
-// P^(2^i) for i = 0..40, by repeated squaring; the last is each row's limit (the chain reducible
-// or not).
+// P^(2^i) for i = 0, 1, ... by repeated squaring, until a square changes no entry by more than
+// 1e-14 (the limit reached) or i = 40; the last is each row's limit (the chain reducible or not).
 std::vector<Matrix> squarings(const Matrix& p, int k) {
   std::vector<Matrix> powers = {p};
-  for (int i = 0; i < 40; ++i) powers.push_back(multiply(powers.back(), powers.back(), k));
+  for (int i = 0; i < 40; ++i) {
+    Matrix next = multiply(powers.back(), powers.back(), k);
+    double change = 0;
+    for (std::size_t e = 0; e < next.size(); ++e)
+      change = std::max(change, std::fabs(next[e] - powers.back()[e]));
+    powers.push_back(std::move(next));
+    if (change <= 1e-14) break;
+  }
   return powers;
 }
 
 // Intervals until every visited state's row of P^n is within 0.25 (total variation) of its own
-// limit; infinity when it is not within 2^40.
+// limit; infinity when it is not within the squarings.
 double mixingIntervals(const std::vector<Matrix>& powers, int k,
                        const std::vector<std::size_t>& departures) {
   const Matrix& limit = powers.back();
@@ -226,8 +233,8 @@ std::vector<double> intervalsToTheZone(const Matrix& p, int k, const std::vector
 }
 
 // The coating a parcel gains per interval, on average over the population: in the record over
-// its second half, and in the chain settled from the record's last occupancy (`settled`: P's
-// limit, P^(2^40)). They
+// its second half, and in the chain settled from the record's last occupancy (`settled`:
+// P^(2^20), or P's limit if reached sooner). They
 // differ when the record's bed had not settled yet, or when a compartment lumps parcels that coat
 // differently: the model then carries the batch on at a rate the record did not show.
 void checkSettledRate(const CoatingDatabase& db, const Matrix& settled, LongTimeModel& m) {
@@ -364,7 +371,8 @@ LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_depart
         "{} parcels sit in {} compartments seen fewer than {} times in the record: their rates "
         "rest on few moves",
         thin, thin_states, min_departures));
-  checkSettledRate(db, powers.back(), m);
+  // settled: 2^20 intervals on (a day at 0.1 s, longer than any batch), or the limit if sooner
+  checkSettledRate(db, powers[std::min<std::size_t>(20, powers.size() - 1)], m);
   return m;
 }
 
