@@ -48,6 +48,43 @@ double recordInterval(const std::vector<SnapshotInfo>& snaps, const std::vector<
 }
 }  // namespace
 
+RecordGrid recordGrid(const ParticleFile& file, double from, double until) {
+  const std::string where = file.path().string();
+  RecordGrid g;
+  const auto& snaps = file.snapshots();
+  for (std::size_t i = 0; i < snaps.size(); ++i) {
+    const double t = snaps[i].time;
+    if (t + 1e-9 >= from && (until < 0 || t <= until + 1e-9)) g.use.push_back(i);
+  }
+  auto tooFew = [&] {
+    return InputError(fmt::format(
+        "{}: {} snapshots between t = {:g} and {:g} s; the long-time model needs at least 3 "
+        "(a record of several seconds, output.interval 0.1 s)",
+        where, g.use.size(), from, until));
+  };
+  if (g.use.size() < 3) throw tooFew();
+  g.interval = recordInterval(snaps, g.use);
+  // A run stopped with Ctrl-C (or by a time limit) writes one more snapshot where it stopped,
+  // between two of the output interval: set aside, the record steps on without it.
+  const double t0 = snaps[g.use[0]].time;
+  std::erase_if(g.use, [&](std::size_t i) {
+    const double k = (snaps[i].time - t0) / g.interval;
+    const bool off = std::fabs(k - std::round(k)) > 1e-6 * std::max(1.0, k);
+    if (off) g.off_interval.push_back(snaps[i].time);
+    return off;
+  });
+  if (g.use.size() < 3) throw tooFew();
+  for (std::size_t k = 0; k < g.use.size(); ++k) {
+    g.times.push_back(snaps[g.use[k]].time);
+    if (k > 0 && std::fabs(g.times[k] - g.times[k - 1] - g.interval) > 1e-6 * g.interval)
+      throw InputError(fmt::format(
+          "{}: the snapshots are not evenly spaced (t = {:g} s after {:g} s, not {:g} s later): "
+          "the model steps by one interval; give --from after the uneven ones",
+          where, g.times[k], g.times[k - 1], g.interval));
+  }
+  return g;
+}
+
 CoatingDatabase readCoatingDatabase(const ParticleFile& file, double from, double until,
                                     Compartments grid) {
   const std::string where = file.path().string();
@@ -55,40 +92,13 @@ CoatingDatabase readCoatingDatabase(const ParticleFile& file, double from, doubl
     throw InputError("long-time model: at least one ring and one layer");
   if (!file.hasField(field::position) || !file.hasField(field::coating_mass))
     throw InputError(where + ": no positions or coating recorded (a scene with coating)");
-  std::vector<std::size_t> use;
-  const auto& snaps = file.snapshots();
-  for (std::size_t i = 0; i < snaps.size(); ++i) {
-    const double t = snaps[i].time;
-    if (t + 1e-9 >= from && (until < 0 || t <= until + 1e-9)) use.push_back(i);
-  }
-  auto tooFew = [&] {
-    return InputError(fmt::format(
-        "{}: {} snapshots between t = {:g} and {:g} s; the long-time model needs at least 3 "
-        "(a record of several seconds, output.interval 0.1 s)",
-        where, use.size(), from, until));
-  };
-  if (use.size() < 3) throw tooFew();
+  RecordGrid record = recordGrid(file, from, until);
+  const std::vector<std::size_t>& use = record.use;
   CoatingDatabase db;
   db.grid = grid;
-  db.interval = recordInterval(snaps, use);
-  // A run stopped with Ctrl-C (or by a time limit) writes one more snapshot where it stopped,
-  // between two of the output interval: set aside, the record steps on without it.
-  const double t0 = snaps[use[0]].time;
-  std::erase_if(use, [&](std::size_t i) {
-    const double k = (snaps[i].time - t0) / db.interval;
-    const bool off = std::fabs(k - std::round(k)) > 1e-6 * std::max(1.0, k);
-    if (off) db.off_interval.push_back(snaps[i].time);
-    return off;
-  });
-  if (use.size() < 3) throw tooFew();
-  for (std::size_t k = 0; k < use.size(); ++k) {
-    db.times.push_back(snaps[use[k]].time);
-    if (k > 0 && std::fabs(db.times[k] - db.times[k - 1] - db.interval) > 1e-6 * db.interval)
-      throw InputError(fmt::format(
-          "{}: the snapshots are not evenly spaced (t = {:g} s after {:g} s, not {:g} s later): "
-          "the model steps by one interval; give --from after the uneven ones",
-          where, db.times[k], db.times[k - 1], db.interval));
-  }
+  db.interval = record.interval;
+  db.times = record.times;
+  db.off_interval = record.off_interval;
   // parcels present in every snapshot used
   std::unordered_map<std::int64_t, std::size_t> seen;
   for (std::size_t k : use)

@@ -120,7 +120,7 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
 std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from, double until,
                                            const Compartments& grid, std::uint64_t seed) {
   const auto wall0 = std::chrono::steady_clock::now();
-  const auto whole = readCoatingDatabase(file, from, until, grid);
+  const auto whole = recordGrid(file, from, until);  // its times only: no field read
   const std::size_t n = whole.times.size();
   if (n < 6) return std::nullopt;
   const std::size_t mid = (n - 1) / 2;
@@ -181,6 +181,15 @@ void to_json(Json& j, const LongTimeCheck& c) {
            {"ks_critical_5pct", c.ks_critical},
            {"model_deciles_kg", c.predicted_deciles},
            {"run_deciles_kg", c.recorded_deciles}};
+}
+
+void to_json(Json& j, const GridTrial& t) {
+  j = Json{{"rings", t.grid.rings},
+           {"layers", t.grid.layers},
+           {"record_to_s", t.half.record_to},
+           {"settles_off", t.half.settles_off},
+           {"wall_s", t.half.wall_seconds}};
+  j.update(Json(t.half.check));
 }
 
 }  // namespace cosim::analysis

@@ -55,19 +55,6 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
 }
 
 namespace {
-Json gridsJson(const BatchPrediction& b) {
-  Json trials = Json::array();
-  for (const auto& t : b.grid_trials) {
-    Json j{{"rings", t.grid.rings},
-           {"layers", t.grid.layers},
-           {"record_to_s", t.half.record_to},
-           {"settles_off", t.half.settles_off},
-           {"wall_s", t.half.wall_seconds}};
-    j.update(Json(t.half.check));
-    trials.push_back(std::move(j));
-  }
-  return trials;
-}
 
 std::string checkHtml(const RunAnalysis& a) {
   const auto& b = *a.batch;
@@ -117,7 +104,7 @@ Json batchJson(const RunAnalysis& a) {
               {"wall_s", b.wall_seconds},
               {"rings", b.grid.rings},
               {"layers", b.grid.layers},
-              {"check_on_second_half", gridsJson(b)}};
+              {"check_on_second_half", b.grid_trials}};
 }
 
 std::string batchHtml(const RunAnalysis& a) {

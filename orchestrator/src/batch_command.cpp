@@ -147,13 +147,7 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
             t.half.check.ks_distance, t.half.check.ks_critical, t.half.wall_seconds,
             t.half.settles_off ? "   (settles off the record's coating rate)" : "",
             used ? "   <- used" : "");
-        a::Json tj{{"rings", t.grid.rings},
-                   {"layers", t.grid.layers},
-                   {"record_to_s", t.half.record_to},
-                   {"settles_off", t.half.settles_off},
-                   {"wall_s", t.half.wall_seconds}};
-        tj.update(a::Json(t.half.check));
-        trials.push_back(std::move(tj));
+        trials.push_back(t);
       }
     }
     if (o.to >= 0 && o.to <= o.from)

@@ -43,6 +43,15 @@ struct CoatingDatabase {
       off_interval;  // [s] snapshots set aside: between two of the interval (a stop's)
 };
 
+// The snapshots a record uses (below): their indices in the file, times and interval, and the
+// ones set aside. Reads no field.
+struct RecordGrid {
+  double interval = 0;  // [s]
+  std::vector<std::size_t> use;
+  std::vector<double> times, off_interval;  // [s]
+};
+RecordGrid recordGrid(const ParticleFile& file, double from, double until);
+
 // Snapshots with from <= t <= until (until < 0: to the end) at a constant interval (the most
 // frequent spacing); a snapshot between two of them (written where a run was stopped) is set
 // aside and listed in off_interval. Throws naming the file when fewer than 3 remain, when one is

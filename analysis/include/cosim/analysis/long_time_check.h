@@ -89,6 +89,8 @@ struct GridChoice {
   std::vector<GridTrial> trials;
   Compartments chosen;
 };
+// rings, layers, record_to_s, settles_off, wall_s and the check's fields (to_json above)
+void to_json(Json& j, const GridTrial& t);
 inline const std::vector<Compartments> kCandidateGrids = {
     {6, 8, 0, 0}, {12, 16, 0, 0}, {16, 24, 0, 0}, {24, 32, 0, 0}};
 GridChoice chooseCompartments(const ParticleFile& file, double from, double until,
