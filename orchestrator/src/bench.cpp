@@ -7,12 +7,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <optional>
 #include <ostream>
 
+#include "checkpoints.h"
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/summary.h"
 #include "cosim/util/format.h"
 #include "coupler.h"
+#include "run_pack.h"
 #include "scenario.h"
 
 namespace cosim::orchestrator {
@@ -57,19 +60,57 @@ BenchRatios benchRatios(const std::map<std::string, BenchStage>& stages) {
   return r;
 }
 
+namespace {
+
+// Where the stages start: the scene's initial state, or (--from RUN) the run's newest checkpoint.
+struct BenchStart {
+  Scenario scene;
+  double time = 0;
+};
+
+BenchStart benchStart(const BenchOptions& opt) {
+  if (opt.scenario.empty() && opt.from.empty())
+    throw std::invalid_argument("cosim bench: give a scenario (file or folder) or --from RUN");
+  if (opt.from.empty()) {
+    Scenario sc = loadScenario(opt.scenario, opt.sets, opt.unsets);
+    const double t = sc.coupling.start_time;
+    return {std::move(sc), t};
+  }
+  if (!opt.scenario.empty() || !opt.unsets.empty())
+    throw std::invalid_argument(
+        "cosim bench --from " + opt.from.string() +
+        ": the run's own scene is benched; give no scenario and no --unset (--set may change "
+        "only what cosim resume lets change)");
+  Scenario sc = loadRunScene(opt.from, opt.sets);
+  const auto newest = CheckpointStore(opt.from).newest();
+  if (!newest)
+    throw std::runtime_error("cosim bench --from " + opt.from.string() +
+                             ": the run has no complete checkpoint to start from (a run writes "
+                             "one every checkpoint.interval and when Ctrl-C stops it)");
+  return {std::move(sc), readCoupledState(*newest).time};
+}
+
+}  // namespace
+
 int runBench(const BenchOptions& opt, std::ostream& out) {
-  const Scenario probe = loadScenario(opt.scenario, opt.sets, opt.unsets);
+  const BenchStart start = benchStart(opt);
+  const Scenario& probe = start.scene;
+  const bool from_run = !opt.from.empty();
   const std::filesystem::path folder =
       opt.output.empty() ? std::filesystem::path("runs") / (probe.name + "-bench") : opt.output;
-  const double end =
-      probe.coupling.start_time + static_cast<double>(opt.steps + opt.warmup) * probe.coupling.dt;
+  const double end = start.time + static_cast<double>(opt.steps + opt.warmup) * probe.coupling.dt;
   std::vector<std::string> sets = opt.sets;
   sets.push_back(fmt::format("coupling.end_time={}", end));
+  // No checkpoints: a solver-alone stage's state is no coupled state to continue from (the idle
+  // solver stays where it began).
+  sets.emplace_back("checkpoint.interval=0");
 
   double load[3] = {0, 0, 0};
   const bool have_load = getloadavg(load, 3) == 3;
-  out << "cosim bench: " << probe.name << ", " << opt.steps << " steps of " << probe.coupling.dt
-      << " s per stage after " << opt.warmup << " untimed";
+  out << "cosim bench: " << probe.name;
+  if (from_run) out << " from " << opt.from.string() << " at t = " << start.time << " s";
+  out << ", " << opt.steps << " steps of " << probe.coupling.dt << " s per stage after "
+      << opt.warmup << " untimed";
   if (have_load) out << fmt::format("; load average {:.2f}", load[0]);
   out << "\n  run folders under " << folder.string() << std::endl;
 
@@ -89,16 +130,26 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
     RunOptions ro;
     ro.quiet = true;
     ro.stop = opt.stop;
-    ro.overwrite = true;
-    ro.output = folder / name;
     ro.scheme = schemeOf(name);
     ro.untimed_steps = opt.warmup;
     if (name == "coupled")
       ro.record_terms = recording;
     else if (recorded)
       ro.replay_terms = recording;
-    Coupler c(loadScenario(opt.scenario, sets, opt.unsets), ro);
-    const RunResult r = c.run();
+    const std::filesystem::path stage = folder / name;
+    std::optional<Coupler> c;
+    if (from_run) {
+      // A copy of the run as `cosim pack` makes it, resumed: the run itself is never written.
+      std::filesystem::remove_all(stage);
+      packRun(opt.from, stage, probe);
+      ro.resume = std::filesystem::absolute(stage);
+      c.emplace(loadRunScene(stage, sets), ro);
+    } else {
+      ro.overwrite = true;
+      ro.output = stage;
+      c.emplace(loadScenario(opt.scenario, sets, opt.unsets), ro);
+    }
+    const RunResult r = c->run();
     if (r.exit_code != 0) {
       out << "cosim bench: stage " << name << " failed\n" << r.message << std::endl;
       return r.exit_code;

@@ -5,9 +5,10 @@
 //            idles (FrozenScheme, particles alone)
 //   cfd      the fluid alone with the recorded particle terms; the particles never advance
 //            (FrozenScheme, fluid alone)
-// Each from the scene's initial state, timed per step after `warmup` untimed steps, with its
-// phases. Without the coupled stage the alone stages replay their first interval's terms. The
-// last line printed is `coupled/max(dem,cfd) = R; serial share = S %`.
+// Each from the scene's initial state, or with `from` each from a copy of that run's newest
+// checkpoint (cosim pack's copy, resumed; the run itself is not written), timed per step after
+// `warmup` untimed steps, with its phases. Without the coupled stage the alone stages replay their
+// first interval's terms. The last line printed is `coupled/max(dem,cfd) = R; serial share = S %`.
 #pragma once
 
 #include <cstdint>
@@ -22,7 +23,8 @@
 namespace cosim::orchestrator {
 
 struct BenchOptions {
-  std::filesystem::path scenario;
+  std::filesystem::path scenario;  // empty with `from`
+  std::filesystem::path from;      // a stopped run: the stages continue copies of it
   std::vector<std::string> sets, unsets;
   std::uint64_t steps = 50;      // timed coupling steps per stage
   std::uint64_t warmup = 5;      // untimed steps before them

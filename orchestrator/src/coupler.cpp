@@ -76,8 +76,8 @@ RunResult Coupler::run() {
   next_checkpoint_ = sc_.coupling.start_time + sc_.checkpoint.interval;
   std::optional<Progress> progress;
   std::string status = "completed";
+  std::uint64_t done = 0;  // steps of the run before this invocation (a resume's)
   try {
-    std::uint64_t done = 0;
     if (opt_.resume.empty()) {
       record_.startRecorders(run_id_);
       if (recordsZonePasses()) {
@@ -101,7 +101,7 @@ RunResult Coupler::run() {
     result.steps = done;
     bool interrupted = false;
     for (std::uint64_t k = done; k < nsteps_ && !interrupted; ++k) {
-      if (k == opt_.untimed_steps) resetTimings();
+      if (opt_.untimed_steps && k == done + *opt_.untimed_steps) resetTimings();
       beginStep(k);
       const CouplingTerms terms = termsOfStep();                     // gas at parcels, models
       const AdvanceReplies replies = advanceBoth(terms);             // both solvers over dt
@@ -156,7 +156,8 @@ RunResult Coupler::run() {
   result.compute_seconds = participants_.computeSeconds();
   for (const auto& [n, w] : participants_.advanceWireSeconds())
     result.compute_seconds["advance_" + n] = w;
-  result.timed_steps = result.steps > opt_.untimed_steps ? result.steps - opt_.untimed_steps : 0;
+  const std::uint64_t untimed = opt_.untimed_steps ? done + *opt_.untimed_steps : 0;
+  result.timed_steps = result.steps > untimed ? result.steps - untimed : 0;
   if (status == "completed") {
     try {
       result.observables = record_.observables(state_, totals_);

@@ -41,8 +41,10 @@ struct RunOptions {
   bool overwrite = false;        // reuse an existing run folder
   std::string
       scheme;  // makeCouplingScheme; empty: the scene's coupling.scheme (bench: frozen ones)
-  std::uint64_t untimed_steps = 0;  // phase and compute timings start after this many steps
-  std::filesystem::path resume;     // continue the run in this folder from its newest checkpoint
+  // cosim bench: the phase and compute timings start after this many steps of this invocation
+  // (after the resumed step for a resume). Unset: they cover the whole run, resumes included.
+  std::optional<std::uint64_t> untimed_steps;
+  std::filesystem::path resume;  // continue the run in this folder from its newest checkpoint
   // ... or from the one at this time (cosim resume --from); newer ones are set aside
   std::optional<double> resume_from;
   // cosim bench: the coupled stage appends every interval's terms to `record_terms` (outside the
@@ -65,7 +67,7 @@ struct RunResult {
   std::vector<ObservableValue> observables;
   std::map<std::string, double> phase_seconds;    // per phase of the step, after untimed_steps
   std::map<std::string, double> compute_seconds;  // per participant, after untimed_steps
-  std::uint64_t timed_steps = 0;
+  std::uint64_t timed_steps = 0;                  // steps the timings cover
 };
 
 class Coupler {

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -23,6 +26,25 @@ using namespace cosim;
 using namespace cosim::orchestrator;
 
 namespace {
+
+// Runs `cmd` (stderr with stdout), returns its output; `status` its exit status.
+std::string capture(const std::string& cmd, int& status) {
+  FILE* p = popen((cmd + " 2>&1").c_str(), "r");
+  std::string text;
+  if (p == nullptr) {
+    status = -1;
+    return text;
+  }
+  char buf[512];
+  while (std::fgets(buf, sizeof buf, p)) text += buf;
+  status = pclose(p);
+  return text;
+}
+
+std::string fileText(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
 
 std::string lastLine(const std::string& text) {
   std::istringstream in(text);
@@ -115,4 +137,54 @@ TEST(Bench, CommandLastLineOnTheSettlingSphere) {
   EXPECT_TRUE(std::isfinite(ratio) && ratio > 0) << last;
   EXPECT_TRUE(std::isfinite(serial) && serial > 0 && serial <= 100) << last;
   fs::remove_all(out);
+}
+
+// --from RUN: each stage continues a copy of the run's newest checkpoint for warmup + steps
+// coupling steps (the settling sphere at dt 1e-4 s from its checkpoint at 2 ms: 50 steps before,
+// 1 + 4 after); the run's own folder is not written.
+TEST(Bench, FromARunContinuesCopiesOfItsNewestCheckpoint) {
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-bench-from-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  const fs::path run = base / "run", out = base / "bench";
+  int status = 0;
+  const std::string scene = std::string(COSIM_SOURCE_DIR) + "/scenarios/settling-sphere";
+  std::string text = capture(std::string(COSIM_EXE) + " run " + scene + " -q -o " + run.string() +
+                                 " --set coupling.end_time=0.002 --set checkpoint.interval=0.001",
+                             status);
+  ASSERT_EQ(status, 0) << text;
+  const std::string summary_before = fileText(run / "summary.json");
+  const std::string series_before = fileText(run / "timeseries.csv");
+
+  text = capture(std::string(COSIM_EXE) + " bench --from " + run.string() +
+                     " --steps 4 --warmup 1 -o " + out.string(),
+                 status);
+  ASSERT_EQ(status, 0) << text;
+  EXPECT_NE(text.find("from " + run.string() + " at t = 0.002 s"), std::string::npos) << text;
+  for (const char* stage : {"dem", "cfd", "coupled"}) {
+    const auto summary = nlohmann::json::parse(fileText(out / stage / "summary.json"));
+    EXPECT_EQ(summary.at("steps").get<int>(), 25) << stage;
+    EXPECT_NEAR(summary.at("end_time_s").get<double>(), 0.0025, 1e-12) << stage;
+  }
+  std::smatch m;
+  const std::string last = lastLine(text);
+  EXPECT_TRUE(std::regex_match(
+      last, m, std::regex(R"(coupled/max\(dem,cfd\) = [0-9.]+; serial share = [0-9.]+ %)")))
+      << text;
+  EXPECT_EQ(fileText(run / "summary.json"), summary_before);
+  EXPECT_EQ(fileText(run / "timeseries.csv"), series_before);
+
+  // A scenario beside --from, or a run without a checkpoint: refused with the reason.
+  text = capture(std::string(COSIM_EXE) + " bench " + scene + " --from " + run.string(), status);
+  EXPECT_NE(status, 0) << text;
+  EXPECT_NE(text.find("excludes"), std::string::npos) << text;
+  const fs::path bare = base / "bare";
+  capture(std::string(COSIM_EXE) + " run " + scene + " -q -o " + bare.string() +
+              " --set coupling.end_time=0.001 --set checkpoint.interval=0",
+          status);
+  ASSERT_EQ(status, 0);
+  text = capture(std::string(COSIM_EXE) + " bench --from " + bare.string(), status);
+  EXPECT_NE(status, 0) << text;
+  EXPECT_NE(text.find("no complete checkpoint"), std::string::npos) << text;
+  fs::remove_all(base);
 }

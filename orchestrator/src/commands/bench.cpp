@@ -1,4 +1,4 @@
-// cosim bench SCENARIO [--steps N] [--warmup N] [--set K=V] [-o FOLDER]
+// cosim bench SCENARIO|--from RUN [--steps N] [--warmup N] [--set K=V] [-o FOLDER]
 #include "../bench.h"
 
 #include <iostream>
@@ -16,7 +16,13 @@ void addBenchCommand(CLI::App& app, Commands& commands) {
       "recorded), the particles alone under the recorded forcing and the fluid alone with the "
       "recorded particle terms, per step with phases; the last line reads "
       "'coupled/max(dem,cfd) = R; serial share = S %'");
-  bench->add_option("scenario", o->scenario, "scenario file or folder")->required();
+  auto* scene = bench->add_option("scenario", o->scenario, "scenario file or folder");
+  auto* from = bench->add_option(
+      "--from", o->from,
+      "instead of a scenario: a stopped run (its newest checkpoint), to time the steps of a bed "
+      "already fluidized; each stage continues a copy of it, the run is not written");
+  scene->excludes(from);
+  from->excludes(scene);
   bench->add_option("--steps", o->steps, "timed coupling steps per stage (default 50)")
       ->check(CLI::Range(1, 1000000000));
   bench->add_option("--warmup", o->warmup, "untimed steps before them (default 5)");
