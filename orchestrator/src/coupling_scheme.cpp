@@ -129,7 +129,7 @@ std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& stat
   // alone samples them once, at the first interval (the same terms as the recording's first).
   if (k == 0 && alone_ == Alone::fluid) return std::nullopt;
   if (recording_ && k < recording_->size()) {
-    const CouplingTerms& recorded = (*recording_)[k];
+    const CouplingTerms recorded = (*recording_)[k];
     CouplingTerms t;  // only what the solver alone is sent
     if (alone_ == Alone::particles)
       t.forcing = onIds(recorded.forcing, state.ids);

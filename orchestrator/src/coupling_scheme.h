@@ -12,6 +12,7 @@
 #include "participants.h"
 #include "plan.h"
 #include "scenario.h"
+#include "terms_recording.h"
 
 namespace cosim::orchestrator {
 

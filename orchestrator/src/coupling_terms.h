@@ -20,11 +20,6 @@ struct CouplingTerms {
   std::vector<char> in_zone;
 };
 
-// The terms of every coupling interval of a run, in order (cosim bench: the coupled stage
-// records them, the solver-alone stages replay them, so each solver alone does the work it did
-// coupled).
-using TermsRecording = std::vector<CouplingTerms>;
-
 // `lost` marks particles the fluid found in no cell: they get no fluid force and no coating.
 // `dt`: the coupling interval the terms are for [s]. With models.wake (a drag with
 // undisturbed_velocity 'self_disturbance_transient') every call advances each parcel's force
