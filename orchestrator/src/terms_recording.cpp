@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <cstring>
 #include <new>
-#include <utility>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "cosim/link/particle_wire.h"
 

@@ -17,6 +17,7 @@
 #include "cosim/analysis/report.h"
 #include "cosim/link/fields.h"
 #include "cosim/util/errors.h"
+#include "report_fixture.h"
 
 using namespace cosim::analysis;
 namespace fs = std::filesystem;
@@ -25,19 +26,11 @@ namespace {
 
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("cosim-bed-report-" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 // Five parcels at heights z0 + {0, 1, 2, 3, 4} mm, snapshots at t = 0, 1, 2, 3 with z0 = 10, 20,
 // 30, 40 mm; parcel i moves at (3, 4, 0) * i mm/s (speed 5 i mm/s). The pressure drop is 100 +
 // t Pa at t = 0, 0.5, ..., 3.
 fs::path makeBedRun(const std::string& name, bool coating) {
-  const fs::path dir = scratch(name);
+  const fs::path dir = test::scratchFolder("cosim-bed-report", name);
   {
     std::vector<std::string> fields = {cosim::field::position, cosim::field::velocity};
     if (coating) fields.emplace_back(cosim::field::coating_mass);
@@ -102,31 +95,23 @@ TEST(BedReport, WindowGivenAndRefusedWhenEmpty) {
 
 TEST(BedReport, CosimReportWritesItForARunWithoutCoating) {
   const fs::path run = makeBedRun("report", false);
-  ReportOptions o;
-  o.runs = {run};
-  o.plots = false;
-  std::ostringstream log;
-  o.log = &log;
-  ASSERT_EQ(runReport(o), 0) << log.str();
+  test::QuietReport report({run});
+  ASSERT_EQ(report.run(), 0) << report.log.str();
   const auto j = nlohmann::json::parse(std::ifstream(run / "report" / "report.json"));
   EXPECT_EQ(j.at("kind"), "bed");
   EXPECT_NEAR(j.at("pressure_drop_pa").at("mean").get<double>(), 102.25, 1e-12);
   EXPECT_TRUE(fs::exists(run / "report" / "report.md"));
-  EXPECT_NE(log.str().find("pressure drop 102.2"), std::string::npos) << log.str();
+  EXPECT_NE(report.log.str().find("pressure drop 102.2"), std::string::npos) << report.log.str();
   // again: its own earlier report is replaced
-  ASSERT_EQ(runReport(o), 0) << log.str();
+  ASSERT_EQ(report.run(), 0) << report.log.str();
 }
 
 TEST(BedReport, AComparisonWithARunWithoutCoatingIsRefusedNamingIt) {
   const fs::path bed = makeBedRun("cmp-bed", false);
   const fs::path coated = makeBedRun("cmp-coated", true);
-  ReportOptions o;
-  o.runs = {coated, bed};
-  o.plots = false;
-  std::ostringstream log;
-  o.log = &log;
+  test::QuietReport report({coated, bed});
   testing::internal::CaptureStderr();
-  EXPECT_EQ(runReport(o), 1);
+  EXPECT_EQ(report.run(), 1);
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find(bed.string() + " has no coating"), std::string::npos) << err;
 }

@@ -17,19 +17,13 @@
 #include "cosim/analysis/time_series.h"
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/fields.h"
+#include "report_fixture.h"
 #include "synthetic.h"
 
 namespace fs = std::filesystem;
 using namespace cosim::analysis;
 
 namespace {
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 constexpr double kParcelRadius =
     0.75e-3;  // [m] every synthetic parcel: 1.5 mm, as the coating bed's
 
@@ -204,9 +198,9 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
                         "prediction_check.csv", "window_study.csv", "mass_balance.csv"}) {
     EXPECT_TRUE(fs::exists(out / f)) << f;
   }
-  const std::string json = slurp(out / "report.json");
+  const std::string json = test::fileText(out / "report.json");
   EXPECT_NE(json.find("\"well_mixed\": true"), std::string::npos);
-  const std::string html = slurp(out / "report.html");
+  const std::string html = test::fileText(out / "report.html");
   EXPECT_NE(html.find("<b>Well mixed:</b>"), std::string::npos);
   EXPECT_NE(html.find("Mass balance (paper Table 3)"), std::string::npos);
   EXPECT_NE(html.find("Error against run time"), std::string::npos);
@@ -237,7 +231,7 @@ TEST(Report, SingleWellMixedRunEndToEnd) {
   for (const char* png :
        {"histograms.png", "statistics_time.png", "cv_mean.png", "fit.png", "cv_prediction.png",
         "distributions.png", "window_study.png", "mass_balance.png"}) {
-    ASSERT_TRUE(fs::exists(out / png)) << png << "\n" << slurp(out / "plot_report.log");
+    ASSERT_TRUE(fs::exists(out / png)) << png << "\n" << test::fileText(out / "plot_report.log");
     EXPECT_GT(fs::file_size(out / png), 1000u) << png;
     EXPECT_NE(html.find(std::string("src=\"") + png + "\""), std::string::npos) << png;
   }
@@ -259,7 +253,7 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   ASSERT_EQ(runReport(o), 0) << log.str();
   EXPECT_TRUE(fs::exists(out / "flow-1" / "report.html"));
   EXPECT_TRUE(fs::exists(out / "flow-100" / "report.html"));
-  const std::string html = slurp(out / "comparison.html");
+  const std::string html = test::fileText(out / "comparison.html");
   const auto poorRow = html.find(">flow-1<");
   const auto goodRow = html.find(">flow-100<");
   ASSERT_NE(poorRow, std::string::npos);
@@ -267,11 +261,12 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
   EXPECT_NE(html.find("poorly mixed", poorRow), std::string::npos);
   EXPECT_NE(html.find("never coated", poorRow), std::string::npos);
   EXPECT_NE(html.find("well mixed", goodRow), std::string::npos);
-  EXPECT_NE(slurp(out / "flow-1" / "report.html").find("<b>Poorly mixed:</b>"), std::string::npos);
+  EXPECT_NE(test::fileText(out / "flow-1" / "report.html").find("<b>Poorly mixed:</b>"),
+            std::string::npos);
   // The flow is a column of its own; a parameter that does not differ (cg) is not one.
   EXPECT_NE(html.find("<th>flow [L/min]</th>"), std::string::npos);
   EXPECT_EQ(html.find("<th>cg</th>"), std::string::npos);
-  EXPECT_NE(slurp(out / "comparison.json")
+  EXPECT_NE(test::fileText(out / "comparison.json")
                 .find("\"legend\": \"flow-1 flow_lpm=1 u_fluidization=0.002122\""),
             std::string::npos);
 
@@ -318,13 +313,13 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
     }
   }
   for (const auto& cell : numberCells(html)) EXPECT_EQ(cell.find(' '), std::string::npos) << cell;
-  const std::string csv = slurp(out / "comparison.csv");
+  const std::string csv = test::fileText(out / "comparison.csv");
   EXPECT_NE(csv.find("\"flow-1\""), std::string::npos);
   if (!matplotlibAvailable())
     GTEST_SKIP() << "python3 with matplotlib not available: PNGs not checked";
   for (const char* png : {"compare_side_by_side.png", "compare_cv_mean.png",
                           "compare_statistics_time.png", "compare_histograms.png"}) {
-    EXPECT_TRUE(fs::exists(out / png)) << png << "\n" << slurp(out / "plot_report.log");
+    EXPECT_TRUE(fs::exists(out / png)) << png << "\n" << test::fileText(out / "plot_report.log");
   }
   // A poorly mixed run gets the full set of figures, but no extrapolation in them.
   for (const char* png :
@@ -332,8 +327,9 @@ TEST(Report, SweepComparesRunsAndRefusesThePoorlyMixedOne) {
         "distributions.png", "window_study.png", "mass_balance.png"}) {
     EXPECT_TRUE(fs::exists(out / "flow-1" / png)) << png;
   }
-  EXPECT_NE(slurp(out / "flow-1" / "report.html").find("no prediction, the run is poorly mixed"),
-            std::string::npos);
+  EXPECT_NE(
+      test::fileText(out / "flow-1" / "report.html").find("no prediction, the run is poorly mixed"),
+      std::string::npos);
 }
 
 // The page opens with the operating conditions, then the verdict, then the evidence, with the
@@ -343,13 +339,9 @@ TEST(Report, OneMassUnitAndTheCoatingPerRealGrainAndAsALayerByHand) {
   const fs::path run = makeRun("units", 0.0, 43);
   CleanUp cleanup{run.parent_path()};
   writeBedSummary(run, 100, 2000);  // cg 5, coating density 2000 kg/m3 from the scene
-  ReportOptions o;
-  o.runs = {run};
-  o.plots = false;
-  o.bootstrap_resamples = 0;
-  std::ostringstream log;
-  o.log = &log;
-  ASSERT_EQ(runReport(o), 0) << log.str();
+  test::QuietReport report({run});
+  report.options.bootstrap_resamples = 0;
+  ASSERT_EQ(report.run(), 0) << report.log.str();
 
   // By hand from particles.h5: the mean coating of the last snapshot, shared by 5^3 = 125 real
   // grains of 1.5 mm / 5 = 0.3 mm, as a layer of 2000 kg/m3 over pi d^2 = 2.827e-7 m2.
@@ -375,7 +367,7 @@ TEST(Report, OneMassUnitAndTheCoatingPerRealGrainAndAsALayerByHand) {
   EXPECT_EQ(j.at("units").at("mass").get<std::string>(), "µg");
   EXPECT_EQ(j.at("units").at("thickness").get<std::string>(), "µm");  // 1.13 µm
 
-  const std::string html = slurp(run / "report" / "report.html");
+  const std::string html = test::fileText(run / "report" / "report.html");
   // Conditions, verdict, evidence, folded detail: in this order.
   const auto conditions = html.find("<h2>Operating conditions</h2>");
   const auto verdict = html.find("<h2>Verdict</h2>");
@@ -412,8 +404,8 @@ TEST(Report, OneMassUnitAndTheCoatingPerRealGrainAndAsALayerByHand) {
   }
 
   // The report option overrides the scene's density: half the density, twice the layer.
-  o.coating_density = 1000;
-  ASSERT_EQ(runReport(o), 0) << log.str();
+  report.options.coating_density = 1000;
+  ASSERT_EQ(report.run(), 0) << report.log.str();
   const auto j2 = readJsonFile(run / "report" / "report.json");
   EXPECT_NEAR(j2.at("end_of_run").at("layer_thickness_m").get<double>(), 2 * thickness,
               1e-12 * thickness);
@@ -426,18 +418,14 @@ TEST(Report, ARefusedRunShowsExtrapolatedNumbersOnlyAsLabelledHypotheticals) {
   const fs::path run = makeRun("refused", 0.2, 47, true);
   CleanUp cleanup{run.parent_path()};
   writeBedSummary(run, 1);
-  ReportOptions o;
-  o.runs = {run};
-  o.plots = false;
-  o.bootstrap_resamples = 0;
-  std::ostringstream log;
-  o.log = &log;
-  ASSERT_EQ(runReport(o), 0) << log.str();
-  const auto a = analyseRun(run, o);
+  test::QuietReport report({run});
+  report.options.bootstrap_resamples = 0;
+  ASSERT_EQ(report.run(), 0) << report.log.str();
+  const auto a = analyseRun(run, report.options);
   ASSERT_FALSE(a.verdict.well_mixed);
   ASSERT_TRUE(a.fit.ok);
   ASSERT_TRUE(a.zone_passes && a.zone_passes->stats.prediction_ok);
-  const std::string html = slurp(run / "report" / "report.html");
+  const std::string html = test::fileText(run / "report" / "report.html");
   const std::string labelled = withoutHypotheticals(html);
   ASSERT_NE(labelled.size(), html.size()) << "the page holds a hypothetical block";
   EXPECT_NE(html.find("<b>Hypothetical: if the bed were well mixed.</b>"), std::string::npos);
@@ -482,7 +470,7 @@ TEST(Report, WithoutMatplotlibTheNumbersAndHtmlStillComeOutAndSayWhatToInstall) 
   EXPECT_TRUE(fs::exists(out / "mass_balance.csv"));
   for (const auto& e : fs::directory_iterator(out))
     EXPECT_NE(e.path().extension(), ".png") << e.path();
-  const std::string html = slurp(out / "report.html");
+  const std::string html = test::fileText(out / "report.html");
   EXPECT_NE(html.find("Plots missing"), std::string::npos);
   EXPECT_NE(html.find("apt-get install python3-matplotlib"), std::string::npos);
   EXPECT_NE(html.find("<th class=l>precursor</th>"), std::string::npos);
@@ -497,13 +485,9 @@ TEST(Report, AFailedRunIsReportedAsFarAsItGot) {
   s.status = "failed";
   s.message = "participant 'fluid': timeout";
   writeSummary(run / kSummaryFile, s);
-  ReportOptions o;
-  o.runs = {run};
-  o.plots = false;
-  std::ostringstream log;
-  o.log = &log;
-  ASSERT_EQ(runReport(o), 0) << log.str();
-  const std::string html = slurp(run / "report" / "report.html");
+  test::QuietReport report({run});
+  ASSERT_EQ(report.run(), 0) << report.log.str();
+  const std::string html = test::fileText(run / "report" / "report.html");
   EXPECT_NE(html.find("The run did not complete (summary.json status: failed)"), std::string::npos);
 }
 
@@ -527,13 +511,9 @@ TEST(Report, BadOptionsAreClearErrors) {
 TEST(Report, MassBalanceCheckForCi) {
   const fs::path run = makeRun("check", 0.0, 41);
   CleanUp cleanup{run.parent_path()};
-  ReportOptions o;
-  o.runs = {run};
-  o.plots = false;
-  o.mass_balance_limit_percent = 0.01;
-  std::ostringstream log;
-  o.log = &log;
-  EXPECT_EQ(runReport(o), 0) << log.str();
+  test::QuietReport report({run});
+  report.options.mass_balance_limit_percent = 0.01;
+  EXPECT_EQ(report.run(), 0) << report.log.str();
   // Break the balance: the particles lose 1 % of their coating at the end.
   {
     cosim::link::ParticleData p;
@@ -557,7 +537,7 @@ TEST(Report, MassBalanceCheckForCi) {
     rec.write(time, p);  // replaces the last snapshot
   }
   testing::internal::CaptureStderr();
-  EXPECT_EQ(runReport(o), 3);
+  EXPECT_EQ(report.run(), 3);
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("exceeds the limit 0.01 %"), std::string::npos) << err;
 }
@@ -581,29 +561,25 @@ TEST(Report, NeverEmptiesAFolderItDidNotWrite) {
   const fs::path pictures = run.parent_path() / "pictures";
   fs::create_directories(pictures);
   std::ofstream(pictures / "holiday.png") << "\x89PNG";
-  ReportOptions o;
-  o.runs = {run};
-  o.output = pictures;
-  o.plots = false;
-  std::ostringstream log;
-  o.log = &log;
+  test::QuietReport report({run});
+  report.options.output = pictures;
   testing::internal::CaptureStderr();
-  EXPECT_EQ(runReport(o), 1);
+  EXPECT_EQ(report.run(), 1);
   const std::string err = testing::internal::GetCapturedStderr();
   EXPECT_NE(err.find("holds other files and no report.json"), std::string::npos) << err;
   EXPECT_TRUE(fs::exists(pictures / "holiday.png"));
   EXPECT_FALSE(fs::exists(pictures / "report.json"));
   // a comparison checks every folder first: nothing is written when one is refused
   const fs::path other = makeRun("folder-guard-2", 0.0, 59);
-  o.runs = {run, other};
+  report.options.runs = {run, other};
   testing::internal::CaptureStderr();
-  EXPECT_EQ(runReport(o), 1);
+  EXPECT_EQ(report.run(), 1);
   (void)testing::internal::GetCapturedStderr();
   EXPECT_FALSE(fs::exists(pictures / "folder-guard"));
   EXPECT_TRUE(fs::exists(pictures / "holiday.png"));
   // its own folder, twice
-  o.runs = {run};
-  o.output = run.parent_path() / "report-guard";
-  EXPECT_EQ(runReport(o), 0) << log.str();
-  EXPECT_EQ(runReport(o), 0) << log.str();
+  report.options.runs = {run};
+  report.options.output = run.parent_path() / "report-guard";
+  EXPECT_EQ(report.run(), 0) << report.log.str();
+  EXPECT_EQ(report.run(), 0) << report.log.str();
 }

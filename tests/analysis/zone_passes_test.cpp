@@ -18,6 +18,7 @@
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/analysis/zone_pass_statistics.h"
 #include "cosim/link/fields.h"
+#include "report_fixture.h"
 
 namespace fs = std::filesystem;
 using namespace cosim::analysis;
@@ -309,13 +310,9 @@ TEST(ParcelPlaces, GroupAveragesByHand) {
 
 TEST(ZonePassReport, TheReportShowsThePassesAndWhereTheMissingParcelsSit) {
   const fs::path dir = makeRunWithPasses();
-  ReportOptions o;
-  o.runs = {dir};
-  o.plots = false;
-  o.bootstrap_resamples = 0;
-  std::ostringstream log;
-  o.log = &log;
-  ASSERT_EQ(runReport(o), 0) << log.str();
+  test::QuietReport report({dir});
+  report.options.bootstrap_resamples = 0;
+  ASSERT_EQ(report.run(), 0) << report.log.str();
   const auto j = readJsonFile(dir / "report" / "report.json").at("zone_passes");
   ASSERT_TRUE(j.at("recorded").get<bool>());
   EXPECT_EQ(j.at("parcels").get<int>(), 4);
@@ -351,7 +348,7 @@ TEST(ZonePassReport, TheReportShowsThePassesAndWhereTheMissingParcelsSit) {
 
   // A run without the file says so and is reported as before.
   fs::remove(dir / kZonePassesFile);
-  ASSERT_EQ(runReport(o), 0) << log.str();
+  ASSERT_EQ(report.run(), 0) << report.log.str();
   EXPECT_FALSE(
       readJsonFile(dir / "report" / "report.json").at("zone_passes").at("recorded").get<bool>());
   EXPECT_NE(slurp(dir / "report" / "report.html").find("No pass statistics"), std::string::npos);

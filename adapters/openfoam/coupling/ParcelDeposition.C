@@ -39,16 +39,55 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
     Placement out;
     const label n = label(ids.size());
     const label nSat = satellites_.size();
+    out.n = n;
+
+    locateCentres(ids, position, out);
+
+    // 2. satellite points, seeded by the centre cell. Independent per parcel, so on one
+    //    processor they are split over threads: the DEM waits for these samples, its core is
+    //    free. Each point is located exactly as by one thread (same cells, same order of work
+    //    within a parcel).
+    labelList satCell(n*nSat, label(-1));
+    labelList satOwner(n*nSat, labelMax);
+    auto satellitesOf = [&](label begin, label end)
+    {
+        locateSatellites(position, radius, out, begin, end, satCell, satOwner);
+    };
+    const label nThreads = (Pstream::parRun() || n < 512) ? 1 : threads;
+    std::vector<std::thread> helpers;
+    for (label t = 1; t < nThreads; ++t)
+    {
+        helpers.emplace_back(satellitesOf, n*t/nThreads, n*(t + 1)/nThreads);
+    }
+    satellitesOf(0, n/nThreads);
+    for (std::thread& h : helpers)
+    {
+        h.join();
+    }
+    if (Pstream::parRun())
+    {
+        Pstream::listCombineGather(satOwner, minEqOp<label>());
+        Pstream::listCombineScatter(satOwner);
+    }
+
+    collectDeposits(satCell, satOwner, out);
+    return out;
+}
+
+
+void Foam::cosim::ParcelDeposition::locateCentres
+(
+    const std::vector<std::int64_t>& ids,
+    const std::vector<double>& position,
+    Placement& out
+) const
+{
+    const label n = out.n;
     const label me = Pstream::myProcNo();
     const label nobody = labelMax;
-    out.n = n;
     labelList& centreCell = out.centreCell;
     boolList& lost = out.lost;
-    labelList& start = out.start;
-    DynamicList<label>& depCell = out.depCell;
-    DynamicList<scalar>& depWeight = out.depWeight;
     std::vector<std::pair<std::int64_t, label>>& seeds = out.seeds;
-
     auto centreOf = [&](label i)
     {
         return point(position[3*i], position[3*i + 1], position[3*i + 2]);
@@ -102,98 +141,113 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
     {
         std::sort(seeds.begin(), seeds.end());
     }
+}
 
-    // 2. satellite points, seeded by the centre cell. Independent per parcel, so on one
-    //    processor they are split over threads: the DEM waits for these samples, its core is
-    //    free. Each point is located exactly as by one thread (same cells, same order of work
-    //    within a parcel).
-    labelList satCell(n*nSat, label(-1));
-    labelList satOwner(n*nSat, nobody);
-    auto satellitesOf = [&](label begin, label end)
+
+void Foam::cosim::ParcelDeposition::locateSatellites
+(
+    const std::vector<double>& position,
+    const std::vector<double>& radius,
+    const Placement& placed,
+    label begin,
+    label end,
+    labelList& satCell,
+    labelList& satOwner
+) const
+{
+    const label nSat = satellites_.size();
+    const label me = Pstream::myProcNo();
+    const labelList& centreCell = placed.centreCell;
+    const boolList& lost = placed.lost;
+    auto centreOf = [&](label i)
     {
-        for (label i = begin; i < end; ++i)
+        return point(position[3*i], position[3*i + 1], position[3*i + 2]);
+    };
+    for (label i = begin; i < end; ++i)
+    {
+        if (lost[i])
         {
-            if (lost[i])
-            {
-                continue;
-            }
-            const point c = centreOf(i);
-            const scalar r = radius[i];
-            const bool near = centreCell[i] >= 0 || locator_.inBounds(c, r);
-            if (!near)
-            {
-                continue;
-            }
-            // Only the faces of the centre cell whose planes the parcel reaches can
-            // put a satellite (all lie within its radius) outside that cell; none:
-            // the whole parcel is inside it, and each satellite's walk would end
-            // there at its first test
-            constexpr label room = 64;
-            label reached[room];
-            const label nReached = centreCell[i] >= 0
-              ? locator_.reachedFaces(c, r, centreCell[i], reached, room)
-              : -1;
-            if (nReached == 0)
-            {
-                for (label j = 0; j < nSat; ++j)
-                {
-                    satCell[i*nSat + j] = centreCell[i];
-                    satOwner[i*nSat + j] = me;
-                }
-                continue;
-            }
+            continue;
+        }
+        const point c = centreOf(i);
+        const scalar r = radius[i];
+        const bool near = centreCell[i] >= 0 || locator_.inBounds(c, r);
+        if (!near)
+        {
+            continue;
+        }
+        // Only the faces of the centre cell whose planes the parcel reaches can
+        // put a satellite (all lie within its radius) outside that cell; none:
+        // the whole parcel is inside it, and each satellite's walk would end
+        // there at its first test
+        constexpr label room = 64;
+        label reached[room];
+        const label nReached = centreCell[i] >= 0
+          ? locator_.reachedFaces(c, r, centreCell[i], reached, room)
+          : -1;
+        if (nReached == 0)
+        {
             for (label j = 0; j < nSat; ++j)
             {
-                const point x = c + r*satellites_.offsets()[j];
-                label celli = -1;
-                if (nReached > 0)
+                satCell[i*nSat + j] = centreCell[i];
+                satOwner[i*nSat + j] = me;
+            }
+            continue;
+        }
+        for (label j = 0; j < nSat; ++j)
+        {
+            const point x = c + r*satellites_.offsets()[j];
+            label celli = -1;
+            if (nReached > 0)
+            {
+                // Inside the centre cell by the reached faces, else walked from
+                // the cell across the face it lies beyond (a boundary face: from
+                // the centre cell, whose walk ends at the boundary it leaves by)
+                const label beyond = locator_.firstBeyond(x, reached, nReached);
+                if (beyond < 0)
                 {
-                    // Inside the centre cell by the reached faces, else walked from
-                    // the cell across the face it lies beyond (a boundary face: from
-                    // the centre cell, whose walk ends at the boundary it leaves by)
-                    const label beyond = locator_.firstBeyond(x, reached, nReached);
-                    if (beyond < 0)
-                    {
-                        celli = centreCell[i];
-                    }
-                    else
-                    {
-                        const label next = locator_.across(beyond);
-                        celli = locator_.walk(x, next >= 0 ? next : centreCell[i]);
-                    }
+                    celli = centreCell[i];
                 }
-                else if (centreCell[i] >= 0)
+                else
                 {
-                    celli = locator_.walk(x, centreCell[i]);
-                }
-                if (celli < 0)
-                {
-                    celli = locator_.search(x);
-                }
-                if (celli >= 0)
-                {
-                    satCell[i*nSat + j] = celli;
-                    satOwner[i*nSat + j] = me;
+                    const label next = locator_.across(beyond);
+                    celli = locator_.walk(x, next >= 0 ? next : centreCell[i]);
                 }
             }
+            else if (centreCell[i] >= 0)
+            {
+                celli = locator_.walk(x, centreCell[i]);
+            }
+            if (celli < 0)
+            {
+                celli = locator_.search(x);
+            }
+            if (celli >= 0)
+            {
+                satCell[i*nSat + j] = celli;
+                satOwner[i*nSat + j] = me;
+            }
         }
-    };
-    const label nThreads = (Pstream::parRun() || n < 512) ? 1 : threads;
-    std::vector<std::thread> helpers;
-    for (label t = 1; t < nThreads; ++t)
-    {
-        helpers.emplace_back(satellitesOf, n*t/nThreads, n*(t + 1)/nThreads);
     }
-    satellitesOf(0, n/nThreads);
-    for (std::thread& h : helpers)
-    {
-        h.join();
-    }
-    if (Pstream::parRun())
-    {
-        Pstream::listCombineGather(satOwner, minEqOp<label>());
-        Pstream::listCombineScatter(satOwner);
-    }
+}
+
+
+void Foam::cosim::ParcelDeposition::collectDeposits
+(
+    const labelList& satCell,
+    const labelList& satOwner,
+    Placement& out
+) const
+{
+    const label n = out.n;
+    const label nSat = satellites_.size();
+    const label me = Pstream::myProcNo();
+    const label nobody = labelMax;
+    const labelList& centreCell = out.centreCell;
+    const boolList& lost = out.lost;
+    labelList& start = out.start;
+    DynamicList<label>& depCell = out.depCell;
+    DynamicList<scalar>& depWeight = out.depWeight;
 
     // 3. deposits: owned satellites, plus orphans (outside the mesh) to the centre cell;
     //    one entry per cell of a parcel (its satellites' weights added in their order), so
@@ -242,7 +296,6 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
         }
     }
     start[n] = depCell.size();
-    return out;
 }
 
 

@@ -375,31 +375,16 @@ public:
         });
     }
 
+    // One gas step over dt with the parcels' exchange terms (drag K and transfer k per parcel,
+    // in the order the last Sample placed them): the terms into the cells, the PIMPLE loop of
+    // the gas, the precursor, then what the step did.
     StepResult step(double dt, const std::vector<double>& Kp, const std::vector<double>& kp)
     {
         Time& runTime = runTime_();
         fvMesh& mesh = mesh_();
         pimpleControl& pimple = pimple_();
-        const Foam::cosim::ParcelDeposition& parcels = parcels_();
-        const label n = parcels.size();
 
-        if (!(dt > 0))
-        {
-            FatalErrorInFunction << "Advance dt must be > 0, got " << dt << exit(FatalError);
-        }
-        if (!Kp.empty() && label(Kp.size()) != n)
-        {
-            FatalErrorInFunction
-                << "drag_coefficient has " << label(Kp.size()) << " values for " << n
-                << " particles placed by the last Sample" << exit(FatalError);
-        }
-        if (!kp.empty() && label(kp.size()) != n)
-        {
-            FatalErrorInFunction
-                << "transfer_coefficient has " << label(kp.size()) << " values for " << n
-                << " particles placed by the last Sample" << exit(FatalError);
-        }
-
+        checkTerms(dt, Kp, kp);
         runTime.setDeltaT(dt);
         ++runTime;
 
@@ -419,56 +404,10 @@ public:
         // Voidage of this step: the parcels as the last Sample placed them
         eps.primitiveFieldRef() = epsPlaced_();
         eps.correctBoundaryConditions();
-
-        // Exchange coefficients per cell volume
-        {
-            const scalarField& V = mesh.V().field();
-            scalarField Ksum(mesh.nCells(), 0.0);
-            vectorField KvSum(mesh.nCells(), Zero);
-            if (!Kp.empty())
-            {
-                List<scalar> K(n);
-                List<vector> Kv(n);
-                for (label i = 0; i < n; ++i)
-                {
-                    K[i] = Kp[i];
-                    Kv[i] = Kp[i]*particleVelocity_[i];
-                }
-                parcels.deposit(K, Ksum);
-                parcels.deposit(Kv, KvSum);
-            }
-            Kexchange.primitiveFieldRef() = Ksum/V;
-            KUp.primitiveFieldRef() = KvSum/V;
-            // Processor faces need the neighbour's values (face interpolation of A - K)
-            Kexchange.correctBoundaryConditions();
-            KUp.correctBoundaryConditions();
-            if (settings_.species)
-            {
-                scalarField kSum(mesh.nCells(), 0.0);
-                if (!kp.empty())
-                {
-                    List<scalar> kList(n);
-                    forAll(kList, i)
-                    {
-                        kList[i] = kp[i];
-                    }
-                    parcels.deposit(kList, kSum);
-                }
-                sinkCoeff_->primitiveFieldRef() = kSum/V;
-                sinkCoeff_->correctBoundaryConditions();
-            }
-        }
+        placeExchangeTerms(Kp, kp);
 
         const auto wall0 = std::chrono::steady_clock::now();
-
-        // The linear solvers' residual lines: every solver_log_every-th step only (a switch of
-        // OpenFOAM's own, as DebugSwitches { SolverPerformance 0; } sets it for a whole run)
-        if (settings_.solver_log_every > 1)
-        {
-            const int logged = runTime.timeIndex() % settings_.solver_log_every == 0 ? 1 : 0;
-            SolverPerformance<scalar>::debug = logged;
-            SolverPerformance<vector>::debug = logged;
-        }
+        logSolversThisStep();
 
         // --- PIMPLE
         while (pimple.loop())
@@ -490,101 +429,205 @@ public:
         #include "rhoEqn.H"
 
         StepResult result;
-        auto& s = result;
-
-        // Gas mass through the boundaries [kg over the step]
-        {
-            scalar in = 0, out = 0;
-            forAll(phi.boundaryField(), patchi)
-            {
-                if (mesh.boundary()[patchi].coupled())
-                {
-                    continue;
-                }
-                for (const scalar f : phi.boundaryField()[patchi])
-                {
-                    (f < 0 ? in : out) += mag(f)*dt;
-                }
-            }
-            s.gas_mass_in = returnReduce(in, sumOp<scalar>());
-            s.gas_mass_out = returnReduce(out, sumOp<scalar>());
-            s.gas_mass_held = gSum(epsRho.primitiveField()*mesh.V().field());
-        }
-
+        gasThroughBoundaries(dt, result);
         if (settings_.species)
         {
-            volScalarField& Y = Y_();
-            volScalarField& epsRhoY = epsRhoY_();
-            const volScalarField& sinkCoeff = sinkCoeff_();
-            const dimensionedScalar Gamma("Gamma", mu/settings_.schmidt);
-            const scalarField& V = mesh.V().field();
-
-            const scalar heldStart =
-                gSum(epsRhoY.oldTime().primitiveField()*Y.oldTime().primitiveField()*V);
-
-            #include "YEqn.H"
-
-            // Precursor through the boundaries, from the matrix's own face fluxes
-            const tmp<surfaceScalarField> tflux = YEqn.flux();
-            scalar in = 0, out = 0;
-            forAll(tflux().boundaryField(), patchi)
-            {
-                if (mesh.boundary()[patchi].coupled())
-                {
-                    continue;
-                }
-                for (const scalar f : tflux().boundaryField()[patchi])
-                {
-                    (f < 0 ? in : out) += mag(f)*dt;
-                }
-            }
-
-            // What each parcel removed: k_i dt sum_j w_ij Y(cell_j), the sink's own terms
-            List<scalar> Yavg;
-            parcels.gatherAverage(Y.primitiveField(), Yavg);
-            sumOverRanks(Yavg);
-            result.precursor_removed.assign(std::size_t(n), 0.0);
-            scalar removedTotal = 0;
-            if (!kp.empty())
-            {
-                for (label i = 0; i < n; ++i)
-                {
-                    result.precursor_removed[i] = kp[i]*dt*Yavg[i];
-                    removedTotal += result.precursor_removed[i];
-                }
-            }
-
-            s.species = true;
-            s.precursor_in = returnReduce(in, sumOp<scalar>());
-            s.precursor_out = returnReduce(out, sumOp<scalar>());
-            s.precursor_held = gSum(epsRhoY.primitiveField()*Y.primitiveField()*V);
-            s.precursor_held_start = heldStart;
-            s.precursor_removed_cells =
-                gSum(sinkCoeff.primitiveField()*Y.primitiveField()*V)*dt;
-            s.precursor_removed_total = removedTotal;
-            s.precursor_min = gMin(Y.primitiveField());
-            s.precursor_max = gMax(Y.primitiveField());
+            precursorStep(dt, kp, result);
         }
 
         rho = psi*p;
+        describeStep(dt, result);
+        result.solve_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
 
+        runTime.write();
+        advanced_ = true;
+        return result;
+    }
+
+    // The exchange terms hold one value per parcel placed by the last Sample, and dt > 0.
+    void checkTerms(double dt, const std::vector<double>& Kp, const std::vector<double>& kp) const
+    {
+        const label n = parcels_().size();
+        if (!(dt > 0))
+        {
+            FatalErrorInFunction << "Advance dt must be > 0, got " << dt << exit(FatalError);
+        }
+        if (!Kp.empty() && label(Kp.size()) != n)
+        {
+            FatalErrorInFunction
+                << "drag_coefficient has " << label(Kp.size()) << " values for " << n
+                << " particles placed by the last Sample" << exit(FatalError);
+        }
+        if (!kp.empty() && label(kp.size()) != n)
+        {
+            FatalErrorInFunction
+                << "transfer_coefficient has " << label(kp.size()) << " values for " << n
+                << " particles placed by the last Sample" << exit(FatalError);
+        }
+    }
+
+    // Exchange coefficients per cell volume: K and K u_p of the parcels into Kexchange and KUp,
+    // the transfer coefficients k into the precursor's sink.
+    void placeExchangeTerms(const std::vector<double>& Kp, const std::vector<double>& kp)
+    {
+        const fvMesh& mesh = mesh_();
+        const Foam::cosim::ParcelDeposition& parcels = parcels_();
+        const label n = parcels.size();
+        volScalarField& Kexchange = Kexchange_();
+        volVectorField& KUp = KUp_();
+        const scalarField& V = mesh.V().field();
+        scalarField Ksum(mesh.nCells(), 0.0);
+        vectorField KvSum(mesh.nCells(), Zero);
+        if (!Kp.empty())
+        {
+            List<scalar> K(n);
+            List<vector> Kv(n);
+            for (label i = 0; i < n; ++i)
+            {
+                K[i] = Kp[i];
+                Kv[i] = Kp[i]*particleVelocity_[i];
+            }
+            parcels.deposit(K, Ksum);
+            parcels.deposit(Kv, KvSum);
+        }
+        Kexchange.primitiveFieldRef() = Ksum/V;
+        KUp.primitiveFieldRef() = KvSum/V;
+        // Processor faces need the neighbour's values (face interpolation of A - K)
+        Kexchange.correctBoundaryConditions();
+        KUp.correctBoundaryConditions();
+        if (settings_.species)
+        {
+            scalarField kSum(mesh.nCells(), 0.0);
+            if (!kp.empty())
+            {
+                List<scalar> kList(n);
+                forAll(kList, i)
+                {
+                    kList[i] = kp[i];
+                }
+                parcels.deposit(kList, kSum);
+            }
+            sinkCoeff_->primitiveFieldRef() = kSum/V;
+            sinkCoeff_->correctBoundaryConditions();
+        }
+    }
+
+    // The linear solvers' residual lines: every solver_log_every-th step only (a switch of
+    // OpenFOAM's own, as DebugSwitches { SolverPerformance 0; } sets it for a whole run)
+    void logSolversThisStep() const
+    {
+        if (settings_.solver_log_every > 1)
+        {
+            const int logged =
+                runTime_().timeIndex() % settings_.solver_log_every == 0 ? 1 : 0;
+            SolverPerformance<scalar>::debug = logged;
+            SolverPerformance<vector>::debug = logged;
+        }
+    }
+
+    // Gas mass through the boundaries [kg over the step] and held in the domain at its end
+    void gasThroughBoundaries(double dt, StepResult& s) const
+    {
+        const fvMesh& mesh = mesh_();
+        const surfaceScalarField& phi = phi_();
+        scalar in = 0, out = 0;
+        forAll(phi.boundaryField(), patchi)
+        {
+            if (mesh.boundary()[patchi].coupled())
+            {
+                continue;
+            }
+            for (const scalar f : phi.boundaryField()[patchi])
+            {
+                (f < 0 ? in : out) += mag(f)*dt;
+            }
+        }
+        s.gas_mass_in = returnReduce(in, sumOp<scalar>());
+        s.gas_mass_out = returnReduce(out, sumOp<scalar>());
+        s.gas_mass_held = gSum(epsRho_().primitiveField()*mesh.V().field());
+    }
+
+    // The precursor over the step (YEqn.H) and its balance: what came in and left through the
+    // boundaries, what the cells' sink took and what each parcel removed.
+    void precursorStep(double dt, const std::vector<double>& kp, StepResult& result)
+    {
+        const fvMesh& mesh = mesh_();
+        const Foam::cosim::ParcelDeposition& parcels = parcels_();
+        const label n = parcels.size();
+        const surfaceScalarField& phi = phi_();
+        const volScalarField& epsRho = epsRho_();
+        volScalarField& Y = Y_();
+        volScalarField& epsRhoY = epsRhoY_();
+        const volScalarField& sinkCoeff = sinkCoeff_();
+        const dimensionedScalar Gamma("Gamma", mu_()/settings_.schmidt);
+        const scalarField& V = mesh.V().field();
+
+        const scalar heldStart =
+            gSum(epsRhoY.oldTime().primitiveField()*Y.oldTime().primitiveField()*V);
+
+        #include "YEqn.H"
+
+        // Precursor through the boundaries, from the matrix's own face fluxes
+        const tmp<surfaceScalarField> tflux = YEqn.flux();
+        scalar in = 0, out = 0;
+        forAll(tflux().boundaryField(), patchi)
+        {
+            if (mesh.boundary()[patchi].coupled())
+            {
+                continue;
+            }
+            for (const scalar f : tflux().boundaryField()[patchi])
+            {
+                (f < 0 ? in : out) += mag(f)*dt;
+            }
+        }
+
+        // What each parcel removed: k_i dt sum_j w_ij Y(cell_j), the sink's own terms
+        List<scalar> Yavg;
+        parcels.gatherAverage(Y.primitiveField(), Yavg);
+        sumOverRanks(Yavg);
+        result.precursor_removed.assign(std::size_t(n), 0.0);
+        scalar removedTotal = 0;
+        if (!kp.empty())
+        {
+            for (label i = 0; i < n; ++i)
+            {
+                result.precursor_removed[i] = kp[i]*dt*Yavg[i];
+                removedTotal += result.precursor_removed[i];
+            }
+        }
+
+        StepResult& s = result;
+        s.species = true;
+        s.precursor_in = returnReduce(in, sumOp<scalar>());
+        s.precursor_out = returnReduce(out, sumOp<scalar>());
+        s.precursor_held = gSum(epsRhoY.primitiveField()*Y.primitiveField()*V);
+        s.precursor_held_start = heldStart;
+        s.precursor_removed_cells =
+            gSum(sinkCoeff.primitiveField()*Y.primitiveField()*V)*dt;
+        s.precursor_removed_total = removedTotal;
+        s.precursor_min = gMin(Y.primitiveField());
+        s.precursor_max = gMax(Y.primitiveField());
+    }
+
+    // The step's pressure drop, Courant number and least voidage
+    void describeStep(double dt, StepResult& s) const
+    {
+        const volScalarField& p = p_();
+        const surfaceScalarField& phi = phi_();
+        const volScalarField& epsRho = epsRho_();
         s.pressure_drop = patchAverage(p, settings_.inlet_patches)
                            - patchAverage(p, settings_.outlet_patches);
         {
             const scalarField sumPhi
             (
                 fvc::surfaceSum(mag(phi))().primitiveField()
-               /(epsRho.primitiveField()*mesh.V().field())
+               /(epsRho.primitiveField()*mesh_().V().field())
             );
             s.max_courant = 0.5*gMax(sumPhi)*dt;
         }
-        s.voidage_min = gMin(eps.primitiveField());
-        s.solve_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-
-        runTime.write();
-        advanced_ = true;
-        return result;
+        s.voidage_min = gMin(eps_().primitiveField());
     }
 
     // Area-weighted average of p over the named patches (NaN-free: 0 when none found)
