@@ -257,7 +257,8 @@ void checkSettledRate(const CoatingDatabase& db, const Matrix& settled, LongTime
     sum_mid += db.coating[mid][j];
   }
   const auto n = static_cast<double>(db.ids.size());
-  m.record_gain_per_interval = (sum_last - sum_mid) / n / static_cast<double>(last - mid);
+  m.record_gain_per_interval =
+      (sum_last - sum_mid) / n / static_cast<double>(last - mid) * static_cast<double>(m.lag);
   std::vector<double> d(k, 0.0);
   for (int a = 0; a < k; ++a)
     for (int b = 0; b < k; ++b)
@@ -265,11 +266,7 @@ void checkSettledRate(const CoatingDatabase& db, const Matrix& settled, LongTime
   double mass = 0, gain = 0;
   for (int a = 0; a < k; ++a) {
     mass += d[a];
-    if (m.departures[a] == 0) continue;
-    double from_a = 0;
-    for (int b = 0; b < k; ++b)
-      for (const double g : m.gains[a * k + b]) from_a += g;
-    gain += d[a] * from_a / static_cast<double>(m.departures[a]);
+    gain += d[a] * m.expected_gain[a];
   }
   if (mass <= 0) return;
   m.settled_gain_per_interval = gain / mass;
@@ -286,50 +283,103 @@ void checkSettledRate(const CoatingDatabase& db, const Matrix& settled, LongTime
 
 }  // namespace
 
-LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_departures) {
-  LongTimeModel m;
-  const int k = db.grid.count();
-  m.states = k;
-  m.interval = db.interval;
-  m.record_seconds = db.times.back() - db.times.front();
-  m.P.assign(static_cast<std::size_t>(k) * k, 0.0);
-  m.gains.assign(static_cast<std::size_t>(k) * k, {});
-  m.departures.assign(k, 0);
-  m.occupied_at_end.assign(k, 0);
-  for (std::size_t t = 0; t + 1 < db.state.size(); ++t) {
+namespace {
+// The moves the record holds over `lag` of its intervals, from every snapshot: counts turned into
+// probabilities, the gains of each (from, to), the departures from each state.
+void countMoves(const CoatingDatabase& db, std::size_t lag, int k, Matrix& P,
+                std::vector<std::vector<double>>& gains, std::vector<std::size_t>& departures) {
+  P.assign(static_cast<std::size_t>(k) * k, 0.0);
+  gains.assign(static_cast<std::size_t>(k) * k, {});
+  departures.assign(k, 0);
+  for (std::size_t t = 0; t + lag < db.state.size(); ++t) {
     for (std::size_t j = 0; j < db.ids.size(); ++j) {
-      const int a = db.state[t][j], b = db.state[t + 1][j];
-      m.P[a * k + b] += 1;
-      m.gains[a * k + b].push_back(db.coating[t + 1][j] - db.coating[t][j]);
-      ++m.departures[a];
+      const int a = db.state[t][j], b = db.state[t + lag][j];
+      P[a * k + b] += 1;
+      gains[a * k + b].push_back(db.coating[t + lag][j] - db.coating[t][j]);
+      ++departures[a];
     }
   }
   for (int a = 0; a < k; ++a)
     for (int b = 0; b < k; ++b)
-      if (m.departures[a] > 0) m.P[a * k + b] /= static_cast<double>(m.departures[a]);
-  for (int s : db.state.back()) ++m.occupied_at_end[s];
+      if (departures[a] > 0) P[a * k + b] /= static_cast<double>(departures[a]);
+}
 
-  const std::vector<Matrix> powers = squarings(m.P, k);
-  m.mixing_seconds = mixingIntervals(powers, k, m.departures) * m.interval;
-  std::vector<char> coats(k, 0);  // states whose recorded departures gained coating
+// Mean recorded gain of a move from each state (0 where none is recorded)
+std::vector<double> meanGains(const std::vector<std::vector<double>>& gains,
+                              const std::vector<std::size_t>& departures, int k) {
+  std::vector<double> g(k, 0.0);
+  for (int a = 0; a < k; ++a) {
+    if (departures[a] == 0) continue;
+    for (int b = 0; b < k; ++b)
+      for (const double x : gains[a * k + b]) g[a] += x;
+    g[a] /= static_cast<double>(departures[a]);
+  }
+  return g;
+}
+}  // namespace
+
+LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t lag,
+                               std::size_t min_departures) {
+  if (lag < 1 || lag >= db.state.size())
+    throw InputError(fmt::format(
+        "long-time model: a step of {} intervals of {:g} s does not fit a record of {} snapshots",
+        lag, db.interval, db.state.size()));
+  LongTimeModel m;
+  const int k = db.grid.count();
+  m.states = k;
+  m.lag = lag;
+  m.interval = db.interval * static_cast<double>(lag);
+  m.record_seconds = db.times.back() - db.times.front();
+  countMoves(db, lag, k, m.P, m.gains, m.departures);
+  m.occupied_at_end.assign(k, 0);
+  for (int s : db.state.back()) ++m.occupied_at_end[s];
+  m.expected_gain = meanGains(m.gains, m.departures, k);
+  m.by_single.assign(k, 0);
+  // The chain the warnings and the settled rate are computed on: each state's row of moves over
+  // a step, or for a state that goes by single intervals, the row of P1^lag.
+  Matrix step = m.P;
+  if (lag > 1) {
+    countMoves(db, 1, k, m.P1, m.gains1, m.departures1);
+    bool any = false;
+    for (int a = 0; a < k; ++a) {
+      m.by_single[a] = m.departures[a] < min_departures && m.departures1[a] > 0 ? 1 : 0;
+      any = any || m.by_single[a];
+    }
+    if (any) {
+      Matrix power = m.P1;  // P1^i, and the gain over i single intervals from each state
+      const std::vector<double> g1 = meanGains(m.gains1, m.departures1, k);
+      std::vector<double> over = g1;
+      for (std::size_t i = 1; i < lag; ++i) {
+        for (int a = 0; a < k; ++a)
+          for (int b = 0; b < k; ++b) over[a] += power[a * k + b] * g1[b];
+        power = multiply(power, m.P1, k);
+      }
+      for (int a = 0; a < k; ++a) {
+        if (!m.by_single[a]) continue;
+        std::copy(power.begin() + a * k, power.begin() + (a + 1) * k, step.begin() + a * k);
+        m.expected_gain[a] = over[a];
+      }
+    }
+  }
+  std::vector<std::size_t> seen = m.departures;  // states the chain knows a move out of
   for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k && !coats[a]; ++b)
-      for (const double g : m.gains[a * k + b])
-        if (g > 0) {
-          coats[a] = 1;
-          break;
-        }
-  const auto h = intervalsToTheZone(m.P, k, coats);
+    if (m.by_single[a]) seen[a] = m.departures1[a];
+
+  const std::vector<Matrix> powers = squarings(step, k);
+  m.mixing_seconds = mixingIntervals(powers, k, seen) * m.interval;
+  std::vector<char> coats(k, 0);  // states whose moves gain coating
+  for (int a = 0; a < k; ++a) coats[a] = m.expected_gain[a] > 0 ? 1 : 0;
+  const auto h = intervalsToTheZone(step, k, coats);
   m.zone_return_seconds.assign(k, 0.0);
   m.longest_wait_seconds = 0;
   for (int a = 0; a < k; ++a) {
     m.zone_return_seconds[a] = h[a] * m.interval;
-    if (m.occupied_at_end[a] > 0 && m.departures[a] > 0)
+    if (m.occupied_at_end[a] > 0 && seen[a] > 0)
       m.longest_wait_seconds = std::max(m.longest_wait_seconds, m.zone_return_seconds[a]);
   }
   std::size_t unreachable = 0;
   for (int a = 0; a < k; ++a)
-    if (m.occupied_at_end[a] > 0 && m.departures[a] > 0 && !std::isfinite(h[a]))
+    if (m.occupied_at_end[a] > 0 && seen[a] > 0 && !std::isfinite(h[a]))
       unreachable += m.occupied_at_end[a];
   if (unreachable > 0)
     m.warnings.push_back(fmt::format(
@@ -362,11 +412,13 @@ LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_depart
   int stuck_states = 0, thin_states = 0;
   for (int s = 0; s < k; ++s) {
     if (m.occupied_at_end[s] == 0) continue;
-    const std::size_t leave = m.departures[s] - m.gains[s * k + s].size();  // moves elsewhere
-    if (leave == 0) {
+    const bool single = m.by_single[s] != 0;
+    const std::size_t departures = single ? m.departures1[s] : m.departures[s];
+    const std::size_t stays = single ? m.gains1[s * k + s].size() : m.gains[s * k + s].size();
+    if (departures == stays) {  // no move elsewhere
       stuck += m.occupied_at_end[s];
       ++stuck_states;
-    } else if (m.departures[s] < min_departures) {
+    } else if (departures < min_departures) {
       thin += m.occupied_at_end[s];
       ++thin_states;
     }
@@ -395,12 +447,16 @@ LongTimePrediction predictLongTime(const LongTimeModel& model, const CoatingData
   const int k = model.states;
   const std::size_t n = db.ids.size();
   const double end = db.times.back();
-  // cumulative rows for drawing the next compartment
-  std::vector<double> cum(model.P.size());
-  for (int a = 0; a < k; ++a) {
-    double c = 0;
-    for (int b = 0; b < k; ++b) cum[a * k + b] = (c += model.P[a * k + b]);
-  }
+  // cumulative rows for drawing the next compartment, over a step and over one interval
+  const auto cumulative = [k](const std::vector<double>& P) {
+    std::vector<double> cum(P.size());
+    for (int a = 0; a < k && !P.empty(); ++a) {
+      double c = 0;
+      for (int b = 0; b < k; ++b) cum[a * k + b] = (c += P[a * k + b]);
+    }
+    return cum;
+  };
+  const std::vector<double> cum = cumulative(model.P), cum1 = cumulative(model.P1);
   std::vector<int> state = db.state.back();
   std::vector<double> coating = db.coating.back();
   std::mt19937_64 rng(seed);
@@ -423,22 +479,34 @@ LongTimePrediction predictLongTime(const LongTimeModel& model, const CoatingData
     const auto steps = static_cast<long long>(std::llround((t - now) / model.interval));
     for (long long step = 0; step < steps; ++step) {
       for (std::size_t j = 0; j < n; ++j) {
+        // a move drawn from the recorded ones from `a`, with a gain recorded for that move
+        const auto move = [&](const std::vector<double>& c,
+                              const std::vector<std::vector<double>>& gains, int a) {
+          const double* row = &c[static_cast<std::size_t>(a) * k];
+          int b = static_cast<int>(std::upper_bound(row, row + k, uniform(rng) * row[k - 1]) - row);
+          b = std::min(b, k - 1);
+          const auto& g = gains[static_cast<std::size_t>(a) * k + b];
+          if (!g.empty()) {
+            const auto pick =
+                static_cast<std::size_t>(uniform(rng) * static_cast<double>(g.size()));
+            coating[j] += g[std::min(pick, g.size() - 1)];
+          }
+          state[j] = b;
+        };
         const int a = state[j];
-        if (model.departures[a] == 0) continue;  // never seen to move: stays, gains nothing
-        const double u = uniform(rng);
-        const double* row = &cum[static_cast<std::size_t>(a) * k];
-        int b = static_cast<int>(std::upper_bound(row, row + k, u * row[k - 1]) - row);
-        b = std::min(b, k - 1);
-        const auto& g = model.gains[static_cast<std::size_t>(a) * k + b];
-        if (!g.empty()) {
-          const auto pick = static_cast<std::size_t>(uniform(rng) * static_cast<double>(g.size()));
-          coating[j] += g[std::min(pick, g.size() - 1)];
+        if (model.by_single[a]) {  // too few moves over a step recorded: single intervals
+          for (std::size_t i = 0; i < model.lag; ++i)
+            if (model.departures1[state[j]] > 0) move(cum1, model.gains1, state[j]);
+          continue;
         }
-        state[j] = b;
+        if (model.departures[a] == 0) continue;  // never seen to move: stays, gains nothing
+        move(cum, model.gains, a);
       }
     }
     now += static_cast<double>(steps) * model.interval;
-    out.points.push_back(point(t, coating));
+    // the time asked, when the steps reach it; else the step's own time
+    const bool reached = std::fabs(now - t) <= 1e-6 * std::max(1.0, t);
+    out.points.push_back(point(reached ? t : now, coating));
   }
   out.final_coating = coating;
   out.wall_seconds =

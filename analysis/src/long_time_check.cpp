@@ -70,9 +70,13 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
                             const std::vector<RecordedCoating>& record, std::uint64_t seed) {
   LongTimeCheck check;
   const double end = db.times.back();
+  // the recorded times after the record's end that the model's steps reach
   std::vector<const RecordedCoating*> after;
-  for (const auto& r : record)
-    if (r.time > end + 1e-9 * std::max(1.0, end)) after.push_back(&r);
+  for (const auto& r : record) {
+    const double steps = (r.time - end) / model.interval;
+    if (r.time > end + 1e-9 * std::max(1.0, end) && std::fabs(steps - std::round(steps)) < 1e-3)
+      after.push_back(&r);
+  }
   if (after.empty()) return check;
   std::sort(after.begin(), after.end(),
             [](const auto* x, const auto* y) { return x->time < y->time; });
@@ -118,38 +122,57 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
 }
 
 std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from, double until,
-                                           const Compartments& grid, std::uint64_t seed) {
+                                           const Compartments& grid, std::size_t lag,
+                                           std::uint64_t seed) {
   const auto wall0 = std::chrono::steady_clock::now();
   const auto whole = recordGrid(file, from, until);  // its times only: no field read
   const std::size_t n = whole.times.size();
   if (n < 6) return std::nullopt;
   const std::size_t mid = (n - 1) / 2;
+  // the model's steps: at least two in each half
+  const std::size_t steps = (n - 1 - mid) / lag;
+  if (lag < 1 || mid < 2 * lag || steps < 2) return std::nullopt;
   HalfCheck h;
   h.record_to = whole.times[mid];
   const auto first = readCoatingDatabase(file, whole.times.front(), h.record_to, grid);
-  std::vector<double> times;
-  for (const std::size_t k :
-       {mid + (n - 1 - mid) / 4, mid + (n - 1 - mid) / 2, mid + 3 * (n - 1 - mid) / 4, n - 1})
-    if (k > mid && (times.empty() || whole.times[k] > times.back()))
-      times.push_back(whole.times[k]);
-  const auto model = fitLongTimeModel(first);
+  std::vector<double> times;  // a quarter, half, three quarters of the second half and its end
+  for (const std::size_t q : {steps / 4, steps / 2, 3 * steps / 4, steps})
+    if (q > 0 && (times.empty() || whole.times[mid + q * lag] > times.back()))
+      times.push_back(whole.times[mid + q * lag]);
+  const auto model = fitLongTimeModel(first, lag);
   const double record = model.record_gain_per_interval;
   h.settles_off =
       record > 0 && std::fabs(model.settled_gain_per_interval / record - 1) > kSettledRateTolerance;
+  h.step = model.interval;
   h.check = checkLongTime(model, first, readRecordedCoating(file, times), seed);
   h.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return h;
 }
 
-GridChoice chooseCompartments(const ParticleFile& file, double from, double until,
-                              const std::vector<Compartments>& candidates, std::uint64_t seed) {
-  GridChoice c;
-  if (candidates.empty()) return c;
-  c.chosen = candidates.front();
-  for (const auto& grid : candidates) {
-    auto half = checkOnSecondHalf(file, from, until, grid, seed);
-    if (half && !half->check.rows.empty()) c.trials.push_back({grid, std::move(*half)});
+std::vector<std::size_t> candidateLags(double interval, const std::vector<double>& steps) {
+  std::vector<std::size_t> lags;
+  for (const double step : steps) {
+    const auto lag = std::max<std::size_t>(
+        1, static_cast<std::size_t>(std::llround(step / std::max(interval, 1e-300))));
+    if (std::find(lags.begin(), lags.end(), lag) == lags.end()) lags.push_back(lag);
   }
+  return lags;
+}
+
+GridChoice chooseCompartments(const ParticleFile& file, double from, double until,
+                              const std::vector<Compartments>& candidates,
+                              const std::vector<double>& steps, std::uint64_t seed) {
+  GridChoice c;
+  if (candidates.empty() || steps.empty()) return c;
+  const double interval = recordGrid(file, from, until).interval;
+  const auto lags = candidateLags(interval, steps);
+  c.chosen = candidates.front();
+  c.lag = lags.front();
+  for (const auto& grid : candidates)
+    for (const std::size_t lag : lags) {
+      auto half = checkOnSecondHalf(file, from, until, grid, lag, seed);
+      if (half && !half->check.rows.empty()) c.trials.push_back({grid, lag, std::move(*half)});
+    }
   const bool any_settles = std::any_of(c.trials.begin(), c.trials.end(),
                                        [](const GridTrial& t) { return !t.half.settles_off; });
   double best = std::numeric_limits<double>::infinity();
@@ -158,6 +181,7 @@ GridChoice chooseCompartments(const ParticleFile& file, double from, double unti
     if (t.half.check.ks_distance < best) {
       best = t.half.check.ks_distance;
       c.chosen = t.grid;
+      c.lag = t.lag;
     }
   }
   return c;
@@ -186,6 +210,7 @@ void to_json(Json& j, const LongTimeCheck& c) {
 void to_json(Json& j, const GridTrial& t) {
   j = Json{{"rings", t.grid.rings},
            {"layers", t.grid.layers},
+           {"step_s", t.half.step},
            {"record_to_s", t.half.record_to},
            {"settles_off", t.half.settles_off},
            {"wall_s", t.half.wall_seconds}};

@@ -23,7 +23,7 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
   try {
     auto choice = chooseCompartments(file, 0, -1);
     const auto db = readCoatingDatabase(file, 0, -1, choice.chosen);
-    const auto model = fitLongTimeModel(db);
+    const auto model = fitLongTimeModel(db, choice.lag);
     std::vector<double> times = {db.times.back()};
     for (double t : {20.0, 60.0, 300.0, 1200.0, 3600.0})
       if (t > db.times.back() && t <= o.predict_until) times.push_back(t);
@@ -42,10 +42,11 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
     }
     b.wall_seconds = pr.wall_seconds;
     b.grid = choice.chosen;
+    b.step = model.interval;
     b.grid_trials = std::move(choice.trials);
     for (std::size_t i = 0; i < b.grid_trials.size(); ++i)
       if (b.grid_trials[i].grid.rings == b.grid.rings &&
-          b.grid_trials[i].grid.layers == b.grid.layers)
+          b.grid_trials[i].grid.layers == b.grid.layers && b.grid_trials[i].lag == choice.lag)
         b.chosen = i;
     return b;
   } catch (const std::exception& e) {
@@ -60,14 +61,15 @@ std::string checkHtml(const RunAnalysis& a) {
   const auto& b = *a.batch;
   if (b.grid_trials.empty()) return "";
   std::ostringstream h;
-  h << "<p>How far to trust it on this bed, and the compartments it uses: each grid's model "
-       "fitted on the record's first half only (to "
+  h << "<p>How far to trust it on this bed, and the compartments and step it uses: each grid's "
+       "model, at each step, fitted on the record's first half only (to "
     << htmlNumber(b.grid_trials.front().half.record_to, 4)
     << " s), held against what the run itself recorded at its end; the batch above uses the grid "
        "whose parcels' coating is closest to the run's (least Kolmogorov-Smirnov distance) among "
        "those "
        "whose chain settles to the record's coating rate.</p>\n"
-       "<table>\n<tr><th>rings x layers</th><th>mean error [%]</th><th>CV error [%]</th>"
+       "<table>\n<tr><th>rings x layers</th><th>step [s]</th><th>mean error [%]</th><th>CV error "
+       "[%]</th>"
        "<th>never coated, difference [points]</th><th>Kolmogorov-Smirnov</th>"
        "<th>5 % of independent samples exceed</th><th>wall [s]</th></tr>\n";
   for (std::size_t i = 0; i < b.grid_trials.size(); ++i) {
@@ -76,8 +78,8 @@ std::string checkHtml(const RunAnalysis& a) {
     const bool used = b.chosen && *b.chosen == i;
     h << "<tr><td>" << t.grid.rings << "x" << t.grid.layers << (used ? "&nbsp;(used)" : "")
       << (t.half.settles_off ? "&nbsp;(settles off the record's rate)" : "") << "</td><td>"
-      << fmt::format("{:+.1f}", 100 * r.mean_error) << "</td><td>"
-      << fmt::format("{:+.1f}", 100 * r.cv_error) << "</td><td>"
+      << htmlNumber(t.half.step, 3) << "</td><td>" << fmt::format("{:+.1f}", 100 * r.mean_error)
+      << "</td><td>" << fmt::format("{:+.1f}", 100 * r.cv_error) << "</td><td>"
       << fmt::format("{:+.2f}", r.never_points) << "</td><td>"
       << htmlNumber(t.half.check.ks_distance, 3) << "</td><td>"
       << htmlNumber(t.half.check.ks_critical, 3) << "</td><td>"
@@ -104,6 +106,7 @@ Json batchJson(const RunAnalysis& a) {
               {"wall_s", b.wall_seconds},
               {"rings", b.grid.rings},
               {"layers", b.grid.layers},
+              {"step_s", b.step},
               {"check_on_second_half", b.grid_trials}};
 }
 
@@ -119,9 +122,9 @@ std::string batchHtml(const RunAnalysis& a) {
        "the coating gains the record holds for each move (<code>cosim batch</code>; "
        "docs/physics.md, section 5b). Unlike Eqs. 9-10 it holds for a poorly mixed bed too. "
     << fmt::format(
-           "Record {:.3g}-{:.3g} s; {} x {} compartments (rings x layers); the longest wait for "
-           "the zone {:.3g} s. The first row is the record's own end.",
-           b.record_from, b.record_to, b.grid.rings, b.grid.layers, b.longest_wait)
+           "Record {:.3g}-{:.3g} s; {} x {} compartments (rings x layers), steps of {:.3g} s; the "
+           "longest wait for the zone {:.3g} s. The first row is the record's own end.",
+           b.record_from, b.record_to, b.grid.rings, b.grid.layers, b.step, b.longest_wait)
     << "</p>\n";
   if (!b.warnings.empty()) {
     h << "<ul>\n";

@@ -39,12 +39,12 @@ std::vector<double> reportTimes(double end, double until, const std::vector<doub
 // The check's times (--to): the run's snapshots on the record's grid after its end, nearest below
 // a quarter, half and three quarters of the way, the batch report's times and `extra`, and the
 // last.
-std::vector<double> checkTimes(const a::CoatingDatabase& db, const a::ParticleFile& file,
-                               const std::vector<double>& extra) {
+std::vector<double> checkTimes(const a::CoatingDatabase& db, double step,
+                               const a::ParticleFile& file, const std::vector<double>& extra) {
   const double end = db.times.back();
-  std::vector<double> grid;
+  std::vector<double> grid;  // the snapshots at whole steps of the model after the record
   for (const auto& s : file.snapshots()) {
-    const double k = (s.time - end) / db.interval;
+    const double k = (s.time - end) / step;
     if (s.time > end + 1e-9 && std::fabs(k - std::round(k)) <= 1e-6 * std::max(1.0, k))
       grid.push_back(s.time);
   }
@@ -113,6 +113,10 @@ CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
                 "compartments: layers of the bed (default: as --rings; 8 when only --rings is "
                 "given)")
       ->check(CLI::Range(1, 100));
+  b->add_option("--step", o.step,
+                "the model's step [s], a whole number of the record's intervals (default: the "
+                "step the record holds best of its interval, 0.2, 0.5 and 1 s)")
+      ->check(CLI::PositiveNumber);
   b->add_option("--seed", o.seed, "seed of the random moves (the same seed, the same answer)");
   b->add_option("-o,--output", o.output, "folder for batch.json and batch.csv (default RUN/batch)");
   return b;
@@ -126,25 +130,32 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     a::claimOutputFiles({json, csv}, "\"long_time_model\"", "-o");
     const a::ParticleFile file(run / "particles.h5");
     a::Compartments grid{o.rings > 0 ? o.rings : 6, o.layers > 0 ? o.layers : 8, 0, 0};
+    const bool fixed_grid = o.rings > 0 || o.layers > 0, fixed_step = o.step > 0;
+    std::size_t lag = 0;  // the model's step in the record's intervals; 0: --step as given
     a::Json trials = a::Json::array();
-    if (o.rings == 0 && o.layers == 0) {  // the record's own choice, from the record used only
-      const auto choice = a::chooseCompartments(file, o.from, o.to);
+    if (!fixed_grid || !fixed_step) {  // the record's own choice, from the record used only
+      const auto choice = a::chooseCompartments(
+          file, o.from, o.to, fixed_grid ? std::vector<a::Compartments>{grid} : a::kCandidateGrids,
+          fixed_step ? std::vector<double>{o.step} : a::kCandidateSteps);
       grid = choice.chosen;
+      lag = choice.lag;
       if (!choice.trials.empty())
         out << fmt::format(
-            "cosim batch: choosing the compartments: each grid's model fitted on the record to "
-            "t = {:g} s, held against the record's end at t = {:g} s\n"
-            "  rings x layers   mean     CV       never coated   Kolmogorov-Smirnov   wall\n",
+            "cosim batch: choosing the compartments and the model's step: each model fitted on "
+            "the record to t = {:g} s, held against the record's end at t = {:g} s\n"
+            "  rings x layers   step     mean     CV       never coated   Kolmogorov-Smirnov   "
+            "wall\n",
             choice.trials.front().half.record_to,
             choice.trials.front().half.check.rows.back().time);
       for (const auto& t : choice.trials) {
         const auto& r = t.half.check.rows.back();
-        const bool used = t.grid.rings == grid.rings && t.grid.layers == grid.layers;
+        const bool used =
+            t.grid.rings == grid.rings && t.grid.layers == grid.layers && t.lag == lag;
         out << fmt::format(
-            "  {:>5} x {:<5}    {:+6.2f} %  {:+6.2f} %  {:+6.2f} points   {:.4f} (5 %: {:.4f})   "
-            "{:.3g} s{}{}\n",
-            t.grid.rings, t.grid.layers, 100 * r.mean_error, 100 * r.cv_error, r.never_points,
-            t.half.check.ks_distance, t.half.check.ks_critical, t.half.wall_seconds,
+            "  {:>5} x {:<5}  {:>5.3g} s  {:+6.2f} %  {:+6.2f} %  {:+6.2f} points   {:.4f} (5 %: "
+            "{:.4f})   {:.3g} s{}{}\n",
+            t.grid.rings, t.grid.layers, t.half.step, 100 * r.mean_error, 100 * r.cv_error,
+            r.never_points, t.half.check.ks_distance, t.half.check.ks_critical, t.half.wall_seconds,
             t.half.settles_off ? "   (settles off the record's coating rate)" : "",
             used ? "   <- used" : "");
         trials.push_back(t);
@@ -155,15 +166,16 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
           "command line: --to {:g} lies before --from {:g}: the record must have a length", o.to,
           o.from));
     const auto db = a::readCoatingDatabase(file, o.from, o.to, grid);
-    const auto model = a::fitLongTimeModel(db);
+    if (lag == 0) lag = a::candidateLags(db.interval, {fixed_step ? o.step : 0.0}).front();
+    const auto model = a::fitLongTimeModel(db, lag);
     const auto times = reportTimes(db.times.back(), o.until, o.times);
     const auto pr = a::predictLongTime(model, db, times, o.seed);
 
     out << fmt::format(
         "cosim batch: {} parcels, record t = {:g} .. {:g} s ({} snapshots, every {:g} s), {} x {} "
-        "compartments ({} rings to r = {:.4g} m, {} layers to z = {:.4g} m)\n",
+        "compartments ({} rings to r = {:.4g} m, {} layers to z = {:.4g} m), steps of {:g} s\n",
         db.ids.size(), db.times.front(), db.times.back(), db.times.size(), db.interval, grid.rings,
-        grid.layers, grid.rings, db.grid.r_max, grid.layers, db.grid.z_max);
+        grid.layers, grid.rings, db.grid.r_max, grid.layers, db.grid.z_max, model.interval);
     if (db.left_out > 0)
       out << fmt::format("  {} parcels not in every snapshot (inserted or deleted) left out\n",
                          db.left_out);
@@ -178,8 +190,8 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     out << fmt::format(
         "  coating per parcel and second: {:.4g} kg in the record's second half, {:.4g} kg in the "
         "model once settled\n",
-        model.record_gain_per_interval / db.interval,
-        model.settled_gain_per_interval / db.interval);
+        model.record_gain_per_interval / model.interval,
+        model.settled_gain_per_interval / model.interval);
     for (const auto& w : model.warnings) out << "  warning: " << w << "\n";
     out << "  time [s]     mean [kg]      CV       never coated\n";
     std::string text = std::string(kCsvHeader) + "\n";
@@ -201,7 +213,8 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     a::Json j;
     if (o.to >= 0) {
       const auto check = a::checkLongTime(
-          model, db, a::readRecordedCoating(file, checkTimes(db, file, o.times)), o.seed);
+          model, db, a::readRecordedCoating(file, checkTimes(db, model.interval, file, o.times)),
+          o.seed);
       if (check.rows.empty())
         out << "  --to: the run has no snapshot after the record's end to check the model with\n";
       else {
@@ -212,6 +225,7 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     j["long_time_model"] = {{"record_from_s", db.times.front()},
                             {"record_to_s", db.times.back()},
                             {"interval_s", db.interval},
+                            {"step_s", model.interval},
                             {"parcels", db.ids.size()},
                             {"left_out", db.left_out},
                             {"rings", grid.rings},
@@ -220,8 +234,8 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
                             {"z_max_m", db.grid.z_max},
                             {"longest_wait_s", model.longest_wait_seconds},
                             {"mixing_s", model.mixing_seconds},
-                            {"record_rate_kg_s", model.record_gain_per_interval / db.interval},
-                            {"settled_rate_kg_s", model.settled_gain_per_interval / db.interval},
+                            {"record_rate_kg_s", model.record_gain_per_interval / model.interval},
+                            {"settled_rate_kg_s", model.settled_gain_per_interval / model.interval},
                             {"seed", o.seed},
                             {"warnings", model.warnings},
                             {"wall_s", pr.wall_seconds}};

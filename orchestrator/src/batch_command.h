@@ -1,6 +1,7 @@
 // `cosim batch`: a whole coating batch (minutes to an hour) from a recorded run, by the long-time
 // model of analysis/long_time.h (docs/physics.md, "Coating over a whole batch").
-//   cosim batch RUN [--until 3600] [--times 20,60,1200] [--from T] [--rings R] [--layers L]
+//   cosim batch RUN [--until 3600] [--times 20,60,1200] [--from T] [--rings R] [--layers L] [--step
+//   S]
 //                   [--seed 1] [--to T] [-o FOLDER]
 #pragma once
 
@@ -22,6 +23,8 @@ struct BatchOptions {
   // record's second half (long_time_check.h). One given: the other 6 rings or 8 layers.
   int rings = 0;
   int layers = 0;
+  // The model's step [s]; 0: the step the record holds best (with the grid, chosen together).
+  double step = 0;
   std::uint64_t seed = 1;
   std::string output;  // folder for batch.json and batch.csv (default RUN/batch)
 };

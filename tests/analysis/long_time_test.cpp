@@ -336,7 +336,8 @@ TEST(LongTimeCheck, ChoosesTheCompartmentsTheRecordHoldsBest) {
     }
   }
   const ParticleFile f(dir / "particles.h5");
-  const GridChoice choice = chooseCompartments(f, 0, -1, {Compartments{1, 1}, Compartments{2, 1}});
+  const GridChoice choice =
+      chooseCompartments(f, 0, -1, {Compartments{1, 1}, Compartments{2, 1}}, {0.0});
   ASSERT_EQ(choice.trials.size(), 2u);
   EXPECT_EQ(choice.chosen.rings, 2);
   const auto& lumped = choice.trials[0].half.check;
@@ -346,4 +347,68 @@ TEST(LongTimeCheck, ChoosesTheCompartmentsTheRecordHoldsBest) {
   EXPECT_GT(lumped.ks_distance, 3 * lumped.ks_critical);
   EXPECT_LT(rings.ks_distance, 2 * rings.ks_critical);
   EXPECT_NEAR(choice.trials[1].half.record_to, 3.0, 1e-9);
+}
+
+// The model's step chosen by the record: every parcel cycles 3 intervals far from the zone (the
+// outer ring), 1 in it (the inner ring), gaining 1e-12 kg on leaving it, each at its own phase
+// and from its own coating before the record.
+// A chain of single intervals forgets how long a parcel has waited (it leaves the outer ring
+// with probability 1/3 at every step, so some wait far longer than 3 intervals and others pass
+// twice): the parcels' coating spreads where the record's does not. Over a step of 4 intervals
+// every parcel passes exactly once, as recorded. Counted by hand: at one interval the outer ring
+// moves to the zone 1/3 of the time; at four, every move gains exactly 1e-12 kg.
+TEST(LongTimeCheck, ChoosesTheStepTheRecordHoldsBest) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("cosim-long-time-" + std::to_string(::getpid())) / "steps";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::size_t n = 2000;
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<double> start(n);  // each parcel's coating before the record: all different
+  for (auto& c : start) c = 1e-12 * u(rng);
+  {
+    ParticleRecorder rec(dir, {cosim::field::position, cosim::field::coating_mass},
+                         RunIdentity{"step-test", 1.0});
+    for (int k = 0; k <= 40; ++k) {
+      cosim::link::ParticleData p;
+      p.ids.resize(n);
+      auto& x = p.field(cosim::field::position);
+      auto& m = p.field(cosim::field::coating_mass);
+      x.assign(3 * n, 0.0);
+      m.assign(n, 0.0);
+      for (std::size_t j = 0; j < n; ++j) {
+        const int phase = static_cast<int>(j % 4) + k;  // in the zone when phase % 4 == 3
+        p.ids[j] = static_cast<std::int64_t>(j + 1);
+        x[3 * j] = phase % 4 == 3 ? 0.001 : 0.009;
+        x[3 * j + 2] = 0.01;
+        m[j] = start[j] + 1e-12 * static_cast<double>(phase / 4);
+      }
+      rec.write(0.1 * k, p);
+    }
+  }
+  const ParticleFile f(dir / "particles.h5");
+  const CoatingDatabase db = readCoatingDatabase(f, 0, -1, Compartments{2, 1, 0.01, 0.02});
+  const LongTimeModel one = fitLongTimeModel(db, 1), four = fitLongTimeModel(db, 4);
+  EXPECT_NEAR(four.interval, 0.4, 1e-12);
+  const int outer = 1, zone = 0;
+  EXPECT_NEAR(one.P[outer * 2 + zone], 1.0 / 3.0, 0.01);
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b)
+      for (const double g : four.gains[a * 2 + b]) ASSERT_NEAR(g, 1e-12, 1e-26);
+  // a time between two steps is answered at the nearest step, and says so
+  const auto pr = predictLongTime(four, db, {4.5}, 1);
+  ASSERT_EQ(pr.points.size(), 1u);
+  EXPECT_NEAR(pr.points[0].time, 4.4, 1e-9);
+
+  const GridChoice choice = chooseCompartments(f, 0, -1, {Compartments{2, 1}}, {0.0, 0.4});
+  ASSERT_EQ(choice.trials.size(), 2u);
+  EXPECT_EQ(choice.lag, 4u);
+  const auto& short_steps = choice.trials[0].half.check;
+  const auto& cycle = choice.trials[1].half.check;
+  std::printf("Kolmogorov-Smirnov: steps of 0.1 s %.4f, of 0.4 s %.4f (5 %%: %.4f)\n",
+              short_steps.ks_distance, cycle.ks_distance, cycle.ks_critical);
+  EXPECT_GT(short_steps.ks_distance, 3 * short_steps.ks_critical);
+  EXPECT_LT(cycle.ks_distance, cycle.ks_critical);
+  EXPECT_NEAR(choice.trials[1].half.step, 0.4, 1e-12);
 }

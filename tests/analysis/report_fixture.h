@@ -18,8 +18,8 @@ namespace cosim::analysis::test {
 
 // An empty folder `name` in this test process's scratch folder for `suite`.
 inline std::filesystem::path scratchFolder(const std::string& suite, const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                    (suite + "-" + std::to_string(::getpid())) / name;
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / (suite + "-" + std::to_string(::getpid())) / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

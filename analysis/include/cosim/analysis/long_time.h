@@ -61,11 +61,23 @@ CoatingDatabase readCoatingDatabase(const ParticleFile& file, double from, doubl
 
 struct LongTimeModel {
   int states = 0;
-  double interval = 0;                     // [s]
+  std::size_t lag = 1;                     // the record's intervals per step of the model
+  double interval = 0;                     // [s] a step of the model: lag x the record's interval
   double record_seconds = 0;               // [s] the database's length
   std::vector<double> P;                   // [from * states + to], rows sum to 1 (or 0: never seen)
   std::vector<std::vector<double>> gains;  // [from * states + to]: the coating gains recorded
-  std::vector<std::size_t> departures;     // intervals recorded starting in each state
+  std::vector<std::size_t> departures;     // steps recorded starting in each state
+  // Mean coating gained over a step from each state (a state that goes by single intervals: over
+  // `lag` of them, by the single-interval chain).
+  std::vector<double> expected_gain;
+  // With lag > 1: the single-interval chain too (P1, gains1, departures1), and the states whose
+  // moves over a step the record holds too few of (fewer than min_departures): a parcel there
+  // goes by `lag` single intervals instead (the record's last steps hold no move of a step's
+  // length from where a parcel was near the record's end).
+  std::vector<char> by_single;
+  std::vector<double> P1;
+  std::vector<std::vector<double>> gains1;
+  std::vector<std::size_t> departures1;
   std::vector<std::size_t> occupied_at_end;  // parcels in each state at the record's end
   // The mixing time: intervals until the distribution started from any visited state is within
   // 0.25 (total variation) of the stationary one, in seconds; infinite when it never is.
@@ -84,9 +96,15 @@ struct LongTimeModel {
 };
 inline constexpr double kSettledRateTolerance = 0.05;
 
+// The model steps `lag` of the record's intervals at a time: its moves and gains are those the
+// record shows over that time, counted from every snapshot (overlapping). A step longer than the
+// record's interval keeps what a parcel does within it (a pass through the zone and back, a
+// stay in a dead zone) as the record shows it, where a chain of short steps forgets at every
+// step where a parcel came from and mixes the bed faster than it mixes (docs/physics.md 5b).
 // `min_departures`: a state the parcels occupy with fewer recorded departures than this is
 // named in the warnings (its rates rest on too few moves).
-LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t min_departures = 20);
+LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t lag = 1,
+                               std::size_t min_departures = 20);
 
 struct LongTimePoint {
   double time = 0;  // [s] since the start of the run
@@ -104,7 +122,8 @@ struct LongTimePrediction {
 
 // Carries every parcel of the database on from its last snapshot to each of `times` (s since the
 // run's start; those before the record's end are read from the record itself), with a seeded
-// generator: the same seed gives the same answer.
+// generator: the same seed gives the same answer. A time between two of the model's steps is
+// answered at the nearest step, and its point carries that step's time.
 LongTimePrediction predictLongTime(const LongTimeModel& model, const CoatingDatabase& db,
                                    std::vector<double> times, std::uint64_t seed = 1);
 

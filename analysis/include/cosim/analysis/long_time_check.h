@@ -66,6 +66,7 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
 // quarters of the way and at the end). nullopt for a record of fewer than 6 snapshots.
 struct HalfCheck {
   double record_to = 0;  // [s] the first half's end
+  double step = 0;       // [s] the model's step
   LongTimeCheck check;
   // The first half's model settles to a coating rate off the record's by more than
   // kSettledRateTolerance (compartments it enters and never leaves, say): it may hold the next
@@ -73,28 +74,40 @@ struct HalfCheck {
   bool settles_off = false;
   double wall_seconds = 0;
 };
+// `lag`: the model's step in the record's intervals (fitLongTimeModel); the check times are
+// whole steps after the first half's end. nullopt also when either half holds fewer than two
+// steps.
 std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from, double until,
-                                           const Compartments& grid, std::uint64_t seed = 1);
+                                           const Compartments& grid, std::size_t lag = 1,
+                                           std::uint64_t seed = 1);
 
 // The compartments the record itself holds best: each candidate checked on the record's second
 // half (checkOnSecondHalf); the chosen one has the least Kolmogorov-Smirnov distance at the end
 // among those whose model settles to the record's coating rate (all, when none does).
 // Candidates the record cannot check (too short) are left out; none checkable: `chosen` is the
 // first candidate and `trials` empty.
+// Each grid is tried with each of the model's steps in `steps` (seconds, each rounded to a whole
+// number of the record's intervals, at least one; 0: the record's interval).
 struct GridTrial {
   Compartments grid;
+  std::size_t lag = 1;  // the model's step, in the record's intervals
   HalfCheck half;
 };
 struct GridChoice {
   std::vector<GridTrial> trials;
   Compartments chosen;
+  std::size_t lag = 1;
 };
-// rings, layers, record_to_s, settles_off, wall_s and the check's fields (to_json above)
+// rings, layers, step_s, record_to_s, settles_off, wall_s and the check's fields (to_json above)
 void to_json(Json& j, const GridTrial& t);
 inline const std::vector<Compartments> kCandidateGrids = {
     {6, 8, 0, 0}, {12, 16, 0, 0}, {16, 24, 0, 0}, {24, 32, 0, 0}};
+inline const std::vector<double> kCandidateSteps = {0, 0.2, 0.5, 1.0};  // [s]
+// The steps in `steps` [s] as whole numbers of `interval`, each at least 1, without repeats.
+std::vector<std::size_t> candidateLags(double interval, const std::vector<double>& steps);
 GridChoice chooseCompartments(const ParticleFile& file, double from, double until,
                               const std::vector<Compartments>& candidates = kCandidateGrids,
+                              const std::vector<double>& steps = kCandidateSteps,
                               std::uint64_t seed = 1);
 
 }  // namespace cosim::analysis

@@ -102,6 +102,7 @@ struct BatchPrediction {
   // bed); the batch uses the one that holds best (`grid`; `chosen` indexes grid_trials).
   std::vector<GridTrial> grid_trials;
   Compartments grid;
+  double step = 0;  // [s] the model's step
   std::optional<std::size_t> chosen;
 };
 
