@@ -122,6 +122,44 @@ CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
   return b;
 }
 
+namespace {
+
+// The compartments and the model's step the record holds best (those --rings/--layers and
+// --step leave free), the table of trials printed and kept in `trials`. Returns the step in the
+// record's intervals, 0 when --step fixes it (and the grid) and nothing was chosen.
+std::size_t chooseModel(const a::ParticleFile& file, const BatchOptions& o, a::Compartments& grid,
+                        a::Json& trials, std::ostream& out) {
+  const bool fixed_grid = o.rings > 0 || o.layers > 0, fixed_step = o.step > 0;
+  if (fixed_grid && fixed_step) return 0;
+  const auto choice = a::chooseCompartments(
+      file, o.from, o.to, fixed_grid ? std::vector<a::Compartments>{grid} : a::kCandidateGrids,
+      fixed_step ? std::vector<double>{o.step} : a::kCandidateSteps);
+  grid = choice.chosen;
+  if (!choice.trials.empty())
+    out << fmt::format(
+        "cosim batch: choosing the compartments and the model's step: each model fitted on "
+        "the record to t = {:g} s, held against the record's end at t = {:g} s\n"
+        "  rings x layers   step     mean     CV       never coated   Kolmogorov-Smirnov   "
+        "wall\n",
+        choice.trials.front().half.record_to, choice.trials.front().half.check.rows.back().time);
+  for (const auto& t : choice.trials) {
+    const auto& r = t.half.check.rows.back();
+    const bool used =
+        t.grid.rings == grid.rings && t.grid.layers == grid.layers && t.lag == choice.lag;
+    out << fmt::format(
+        "  {:>5} x {:<5}  {:>5.3g} s  {:+6.2f} %  {:+6.2f} %  {:+6.2f} points   {:.4f} (5 %: "
+        "{:.4f})   {:.3g} s{}{}\n",
+        t.grid.rings, t.grid.layers, t.half.step, 100 * r.mean_error, 100 * r.cv_error,
+        r.never_points, t.half.check.ks_distance, t.half.check.ks_critical, t.half.wall_seconds,
+        t.half.settles_off ? "   (settles off the record's coating rate)" : "",
+        used ? "   <- used" : "");
+    trials.push_back(t);
+  }
+  return choice.lag;
+}
+
+}  // namespace
+
 int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err) {
   try {
     const fs::path run(o.run);
@@ -130,43 +168,14 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
     a::claimOutputFiles({json, csv}, "\"long_time_model\"", "-o");
     const a::ParticleFile file(run / "particles.h5");
     a::Compartments grid{o.rings > 0 ? o.rings : 6, o.layers > 0 ? o.layers : 8, 0, 0};
-    const bool fixed_grid = o.rings > 0 || o.layers > 0, fixed_step = o.step > 0;
-    std::size_t lag = 0;  // the model's step in the record's intervals; 0: --step as given
     a::Json trials = a::Json::array();
-    if (!fixed_grid || !fixed_step) {  // the record's own choice, from the record used only
-      const auto choice = a::chooseCompartments(
-          file, o.from, o.to, fixed_grid ? std::vector<a::Compartments>{grid} : a::kCandidateGrids,
-          fixed_step ? std::vector<double>{o.step} : a::kCandidateSteps);
-      grid = choice.chosen;
-      lag = choice.lag;
-      if (!choice.trials.empty())
-        out << fmt::format(
-            "cosim batch: choosing the compartments and the model's step: each model fitted on "
-            "the record to t = {:g} s, held against the record's end at t = {:g} s\n"
-            "  rings x layers   step     mean     CV       never coated   Kolmogorov-Smirnov   "
-            "wall\n",
-            choice.trials.front().half.record_to,
-            choice.trials.front().half.check.rows.back().time);
-      for (const auto& t : choice.trials) {
-        const auto& r = t.half.check.rows.back();
-        const bool used =
-            t.grid.rings == grid.rings && t.grid.layers == grid.layers && t.lag == lag;
-        out << fmt::format(
-            "  {:>5} x {:<5}  {:>5.3g} s  {:+6.2f} %  {:+6.2f} %  {:+6.2f} points   {:.4f} (5 %: "
-            "{:.4f})   {:.3g} s{}{}\n",
-            t.grid.rings, t.grid.layers, t.half.step, 100 * r.mean_error, 100 * r.cv_error,
-            r.never_points, t.half.check.ks_distance, t.half.check.ks_critical, t.half.wall_seconds,
-            t.half.settles_off ? "   (settles off the record's coating rate)" : "",
-            used ? "   <- used" : "");
-        trials.push_back(t);
-      }
-    }
+    std::size_t lag = chooseModel(file, o, grid, trials, out);  // 0: --step as given
     if (o.to >= 0 && o.to <= o.from)
       throw InputError(fmt::format(
           "command line: --to {:g} lies before --from {:g}: the record must have a length", o.to,
           o.from));
     const auto db = a::readCoatingDatabase(file, o.from, o.to, grid);
-    if (lag == 0) lag = a::candidateLags(db.interval, {fixed_step ? o.step : 0.0}).front();
+    if (lag == 0) lag = a::candidateLags(db.interval, {o.step}).front();
     const auto model = a::fitLongTimeModel(db, lag);
     const auto times = reportTimes(db.times.back(), o.until, o.times);
     const auto pr = a::predictLongTime(model, db, times, o.seed);
