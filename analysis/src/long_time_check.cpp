@@ -121,32 +121,61 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
   return check;
 }
 
-std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from, double until,
-                                           const Compartments& grid, std::size_t lag,
-                                           std::uint64_t seed) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  const auto whole = recordGrid(file, from, until);  // its times only: no field read
-  const std::size_t n = whole.times.size();
+namespace {
+// The record [from, until] cut at its middle snapshot: the snapshot times, the middle's index
+// and the first half's database on `grid`. nullopt for fewer than 6 snapshots.
+struct Halves {
+  RecordGrid whole;
+  std::size_t mid = 0;
+  CoatingDatabase first;
+};
+std::optional<Halves> halves(const ParticleFile& file, double from, double until,
+                             const Compartments& grid) {
+  Halves h;
+  h.whole = recordGrid(file, from, until);  // its times only: no field read
+  const std::size_t n = h.whole.times.size();
   if (n < 6) return std::nullopt;
-  const std::size_t mid = (n - 1) / 2;
+  h.mid = (n - 1) / 2;
+  h.first = readCoatingDatabase(file, h.whole.times.front(), h.whole.times[h.mid], grid);
+  return h;
+}
+
+// The first half's model stepping `lag` intervals, held against the second half
+std::optional<HalfCheck> holdOnSecondHalf(const ParticleFile& file, const Halves& halves,
+                                          std::size_t lag, std::uint64_t seed) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::size_t n = halves.whole.times.size(), mid = halves.mid;
   // the model's steps: at least two in each half
   const std::size_t steps = (n - 1 - mid) / lag;
   if (lag < 1 || mid < 2 * lag || steps < 2) return std::nullopt;
   HalfCheck h;
-  h.record_to = whole.times[mid];
-  const auto first = readCoatingDatabase(file, whole.times.front(), h.record_to, grid);
+  h.record_to = halves.whole.times[mid];
   std::vector<double> times;  // a quarter, half, three quarters of the second half and its end
   for (const std::size_t q : {steps / 4, steps / 2, 3 * steps / 4, steps})
-    if (q > 0 && (times.empty() || whole.times[mid + q * lag] > times.back()))
-      times.push_back(whole.times[mid + q * lag]);
-  const auto model = fitLongTimeModel(first, lag);
+    if (q > 0 && (times.empty() || halves.whole.times[mid + q * lag] > times.back()))
+      times.push_back(halves.whole.times[mid + q * lag]);
+  const auto model = fitLongTimeModel(halves.first, lag);
   const double record = model.record_gain_per_interval;
   h.settles_off =
       record > 0 && std::fabs(model.settled_gain_per_interval / record - 1) > kSettledRateTolerance;
   h.step = model.interval;
-  h.check = checkLongTime(model, first, readRecordedCoating(file, times), seed);
+  h.check = checkLongTime(model, halves.first, readRecordedCoating(file, times), seed);
   h.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return h;
+}
+}  // namespace
+
+std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from, double until,
+                                           const Compartments& grid, std::size_t lag,
+                                           std::uint64_t seed) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const auto h = halves(file, from, until, grid);
+  if (!h) return std::nullopt;
+  auto check = holdOnSecondHalf(file, *h, lag, seed);
+  if (check)
+    check->wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  return check;
 }
 
 std::vector<std::size_t> candidateLags(double interval, const std::vector<double>& steps) {
@@ -168,11 +197,20 @@ GridChoice chooseCompartments(const ParticleFile& file, double from, double unti
   const auto lags = candidateLags(interval, steps);
   c.chosen = candidates.front();
   c.lag = lags.front();
-  for (const auto& grid : candidates)
+  for (const auto& grid : candidates) {
+    const auto wall0 = std::chrono::steady_clock::now();
+    const auto h = halves(file, from, until, grid);  // the first half read once per grid
+    if (!h) continue;
+    const double read =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() /
+        static_cast<double>(lags.size());
     for (const std::size_t lag : lags) {
-      auto half = checkOnSecondHalf(file, from, until, grid, lag, seed);
-      if (half && !half->check.rows.empty()) c.trials.push_back({grid, lag, std::move(*half)});
+      auto half = holdOnSecondHalf(file, *h, lag, seed);
+      if (!half || half->check.rows.empty()) continue;
+      half->wall_seconds += read;  // each trial's share of reading the grid's first half
+      c.trials.push_back({grid, lag, std::move(*half)});
     }
+  }
   const bool any_settles = std::any_of(c.trials.begin(), c.trials.end(),
                                        [](const GridTrial& t) { return !t.half.settles_off; });
   double best = std::numeric_limits<double>::infinity();
