@@ -175,6 +175,16 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
           "command line: --to {:g} lies before --from {:g}: the record must have a length", o.to,
           o.from));
     const auto db = a::readCoatingDatabase(file, o.from, o.to, grid);
+    if (o.step > 0) {
+      const double intervals = o.step / db.interval;
+      if (std::fabs(intervals - std::round(intervals)) > 1e-6 * std::max(1.0, intervals) ||
+          intervals < 0.5)
+        throw InputError(fmt::format(
+            "command line: --step {:g} is not a whole number of the record's interval ({:g} s): "
+            "give {:g} or {:g}",
+            o.step, db.interval, db.interval * std::max(1.0, std::floor(intervals)),
+            db.interval * std::max(1.0, std::floor(intervals) + 1)));
+    }
     if (lag == 0) lag = a::candidateLags(db.interval, {o.step}).front();
     const auto model = a::fitLongTimeModel(db, lag);
     const auto times = reportTimes(db.times.back(), o.until, o.times);

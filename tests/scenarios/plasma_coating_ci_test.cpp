@@ -311,6 +311,17 @@ TEST(PlasmaCoatingCi, MassBalanceClosesAndReportIsProduced) {
   }
   EXPECT_FALSE(batch.at("long_time_model").at("warnings").empty());
   EXPECT_TRUE(fs::exists(r.folder / "batch" / "batch.csv"));
+  // --step must be a whole number of the record's interval: refused, naming the two nearest
+  {
+    BatchOptions odd = bo;
+    odd.step = 1.5 * batch.at("long_time_model").at("interval_s").get<double>();
+    odd.output = (out / "batch-odd-step").string();
+    std::ostringstream said_odd, errs_odd;
+    EXPECT_EQ(runBatchCommand(odd, said_odd, errs_odd), 1);
+    EXPECT_NE(errs_odd.str().find("--step"), std::string::npos) << errs_odd.str();
+    EXPECT_NE(errs_odd.str().find("whole number of the record's interval"), std::string::npos)
+        << errs_odd.str();
+  }
 
   // The model held against the rest of its own run (--to): fitted on the record's first half,
   // its prediction beside the run's later snapshots; the last of them is the record's end, whose
