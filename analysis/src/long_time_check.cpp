@@ -64,6 +64,28 @@ std::vector<double> deciles(std::vector<double> v) {
     q.push_back(v.empty() ? 0.0 : v[static_cast<std::size_t>(k * (v.size() - 1) / 10)]);
   return q;
 }
+
+// The parcels' predicted and recorded coating at time t as a row of the check; at the last check
+// time also the two distributions compared
+void addRow(LongTimeCheck& check, double t, const std::vector<double>& predicted,
+            const std::vector<double>& recorded, bool last) {
+  LongTimeCheckRow row;
+  row.time = t;
+  row.predicted = pointOf(t, predicted);
+  row.recorded = pointOf(t, recorded);
+  row.mean_error = row.predicted.mean / row.recorded.mean - 1;
+  row.cv_error = row.predicted.cv / row.recorded.cv - 1;
+  row.never_points = 100 * (row.predicted.never_coated_share - row.recorded.never_coated_share);
+  check.rows.push_back(row);
+  if (!last || predicted.empty() || recorded.empty()) return;
+  check.parcels = predicted.size();
+  check.ks_distance = ksDistance(predicted, recorded);
+  const double n = static_cast<double>(predicted.size());
+  const double m = static_cast<double>(recorded.size());
+  check.ks_critical = 1.358 * std::sqrt((n + m) / (n * m));
+  check.predicted_deciles = deciles(predicted);
+  check.recorded_deciles = deciles(recorded);
+}
 }  // namespace
 
 LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& db,
@@ -100,24 +122,55 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
     std::vector<double> predicted;
     for (std::size_t j = 0; j < db.ids.size(); ++j)
       if (held[k][j]) predicted.push_back(pr.final_coating[j]);
-    LongTimeCheckRow row;
-    row.time = t;
-    row.predicted = pointOf(t, predicted);
-    row.recorded = pointOf(after[k]->time, recorded[k]);
-    row.mean_error = row.predicted.mean / row.recorded.mean - 1;
-    row.cv_error = row.predicted.cv / row.recorded.cv - 1;
-    row.never_points = 100 * (row.predicted.never_coated_share - row.recorded.never_coated_share);
-    check.rows.push_back(row);
-    if (k + 1 == after.size() && !predicted.empty() && !recorded[k].empty()) {
-      check.parcels = predicted.size();
-      check.ks_distance = ksDistance(predicted, recorded[k]);
-      const double n = static_cast<double>(predicted.size());
-      const double m = static_cast<double>(recorded[k].size());
-      check.ks_critical = 1.358 * std::sqrt((n + m) / (n * m));
-      check.predicted_deciles = deciles(predicted);
-      check.recorded_deciles = deciles(recorded[k]);
+    addRow(check, t, predicted, recorded[k], k + 1 == after.size());
+  }
+  return check;
+}
+
+namespace {
+// The parcels of `db` in `fold` (0 or 1: alternate parcels in the record's order); with
+// `first_only`, only the record's first snapshot of them (where a prediction starts)
+CoatingDatabase parcelsOf(const CoatingDatabase& db, std::size_t fold, bool first_only) {
+  CoatingDatabase part;
+  part.interval = db.interval;
+  part.grid = db.grid;
+  const std::size_t snapshots = first_only ? 1 : db.times.size();
+  part.times.assign(db.times.begin(), db.times.begin() + static_cast<std::ptrdiff_t>(snapshots));
+  part.state.resize(snapshots);
+  part.coating.resize(snapshots);
+  for (std::size_t j = fold; j < db.ids.size(); j += 2) {
+    part.ids.push_back(db.ids[j]);
+    for (std::size_t t = 0; t < snapshots; ++t) {
+      part.state[t].push_back(db.state[t][j]);
+      part.coating[t].push_back(db.coating[t][j]);
     }
   }
+  return part;
+}
+}  // namespace
+
+std::optional<LongTimeCheck> checkOnHeldOutParcels(const CoatingDatabase& db, std::size_t lag,
+                                                   std::uint64_t seed) {
+  const std::size_t last = db.times.size() - 1;
+  const std::size_t steps = lag < 1 ? 0 : last / lag;
+  if (steps < 2 || db.ids.size() < 2) return std::nullopt;
+  std::vector<std::size_t> at;  // a quarter, half, three quarters of the record and its end
+  for (const std::size_t q : {steps / 4, steps / 2, 3 * steps / 4, steps})
+    if (q > 0 && (at.empty() || q * lag > at.back())) at.push_back(q * lag);
+  std::vector<std::vector<double>> predicted(at.size()), recorded(at.size());
+  for (std::size_t fold = 0; fold < 2; ++fold) {
+    const auto model = fitLongTimeModel(parcelsOf(db, 1 - fold, false), lag);
+    const auto start = parcelsOf(db, fold, true);
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      const auto pr = predictLongTime(model, start, {db.times[at[k]]}, seed + fold);
+      predicted[k].insert(predicted[k].end(), pr.final_coating.begin(), pr.final_coating.end());
+      for (std::size_t j = fold; j < db.ids.size(); j += 2)
+        recorded[k].push_back(db.coating[at[k]][j]);
+    }
+  }
+  LongTimeCheck check;
+  for (std::size_t k = 0; k < at.size(); ++k)
+    addRow(check, db.times[at[k]], predicted[k], recorded[k], k + 1 == at.size());
   return check;
 }
 
@@ -198,17 +251,22 @@ GridChoice chooseCompartments(const ParticleFile& file, double from, double unti
   c.chosen = candidates.front();
   c.lag = lags.front();
   for (const auto& grid : candidates) {
+    const auto since = [](auto t0) {
+      return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
     const auto wall0 = std::chrono::steady_clock::now();
-    const auto h = halves(file, from, until, grid);  // the first half read once per grid
+    const auto h = halves(file, from, until, grid);  // each half and the whole read once per grid
     if (!h) continue;
-    const double read =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count() /
-        static_cast<double>(lags.size());
+    const auto whole = readCoatingDatabase(file, from, until, grid);
+    const double read = since(wall0) / static_cast<double>(lags.size());
     for (const std::size_t lag : lags) {
       auto half = holdOnSecondHalf(file, *h, lag, seed);
       if (!half || half->check.rows.empty()) continue;
-      half->wall_seconds += read;  // each trial's share of reading the grid's first half
-      c.trials.push_back({grid, lag, std::move(*half)});
+      const auto held0 = std::chrono::steady_clock::now();
+      auto held_out = checkOnHeldOutParcels(whole, lag, seed);
+      // the trial's wall: both checks and its share of reading the grid's record
+      half->wall_seconds += since(held0) + read;
+      c.trials.push_back({grid, lag, std::move(*half), std::move(held_out)});
     }
   }
   const bool any_settles = std::any_of(c.trials.begin(), c.trials.end(),
@@ -216,13 +274,20 @@ GridChoice chooseCompartments(const ParticleFile& file, double from, double unti
   double best = std::numeric_limits<double>::infinity();
   for (const auto& t : c.trials) {
     if (any_settles && t.half.settles_off) continue;
-    if (t.half.check.ks_distance < best) {
-      best = t.half.check.ks_distance;
+    if (trialDistance(t) < best) {
+      best = trialDistance(t);
       c.chosen = t.grid;
       c.lag = t.lag;
     }
   }
   return c;
+}
+
+double trialDistance(const GridTrial& t) {
+  const auto scaled = [](const LongTimeCheck& c) {
+    return c.ks_critical > 0 ? c.ks_distance / c.ks_critical : c.ks_distance;
+  };
+  return std::max(scaled(t.half.check), t.held_out ? scaled(*t.held_out) : 0.0);
 }
 
 void to_json(Json& j, const LongTimeCheck& c) {
@@ -251,7 +316,9 @@ void to_json(Json& j, const GridTrial& t) {
            {"step_s", t.half.step},
            {"record_to_s", t.half.record_to},
            {"settles_off", t.half.settles_off},
-           {"wall_s", t.half.wall_seconds}};
+           {"wall_s", t.half.wall_seconds},
+           {"held_out_parcels", t.held_out ? Json(*t.held_out) : Json()},
+           {"distance", trialDistance(t)}};
   j.update(Json(t.half.check));
 }
 

@@ -138,20 +138,28 @@ std::size_t chooseModel(const a::ParticleFile& file, const BatchOptions& o, a::C
   if (!choice.trials.empty())
     out << fmt::format(
         "cosim batch: choosing the compartments and the model's step: each model fitted on "
-        "the record to t = {:g} s, held against the record's end at t = {:g} s\n"
+        "the record to t = {:g} s, held against the record's end at t = {:g} s; and fitted on "
+        "half the parcels over the whole record, holding the other half from its start to its "
+        "end (held out)\n"
         "  rings x layers   step     mean     CV       never coated   Kolmogorov-Smirnov   "
-        "wall\n",
+        "wall     held out: CV, never coated, Kolmogorov-Smirnov\n",
         choice.trials.front().half.record_to, choice.trials.front().half.check.rows.back().time);
   for (const auto& t : choice.trials) {
     const auto& r = t.half.check.rows.back();
     const bool used =
         t.grid.rings == grid.rings && t.grid.layers == grid.layers && t.lag == choice.lag;
+    const std::string held =
+        t.held_out && !t.held_out->rows.empty()
+            ? fmt::format("{:+6.2f} %, {:+6.2f} points, {:.4f}",
+                          100 * t.held_out->rows.back().cv_error,
+                          t.held_out->rows.back().never_points, t.held_out->ks_distance)
+            : std::string("-");
     out << fmt::format(
         "  {:>5} x {:<5}  {:>5.3g} s  {:+6.2f} %  {:+6.2f} %  {:+6.2f} points   {:.4f} (5 %: "
-        "{:.4f})   {:.3g} s{}{}\n",
+        "{:.4f})   {:.3g} s   {}{}{}\n",
         t.grid.rings, t.grid.layers, t.half.step, 100 * r.mean_error, 100 * r.cv_error,
         r.never_points, t.half.check.ks_distance, t.half.check.ks_critical, t.half.wall_seconds,
-        t.half.settles_off ? "   (settles off the record's coating rate)" : "",
+        held, t.half.settles_off ? "   (settles off the record's coating rate)" : "",
         used ? "   <- used" : "");
     trials.push_back(t);
   }

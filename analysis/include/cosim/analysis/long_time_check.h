@@ -61,6 +61,17 @@ double ksDistance(std::vector<double> a, std::vector<double> b);
 LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& db,
                             const std::vector<RecordedCoating>& record, std::uint64_t seed = 1);
 
+// The model held against parcels it was not fitted on: the record's parcels split in two
+// (alternately, in the record's order); each half's model, fitted on the whole record with a
+// step of `lag` intervals, carries the other half from the record's first snapshot, and the two
+// predictions together are held against the record at a quarter, half, three quarters of the
+// way and at its end. Where the half check below looks half the record ahead, this one looks
+// all of it ahead, so a model that brings the parcels to the zone too soon (a step shorter than
+// the bed's memory) shows it over twice the time. nullopt when the record holds fewer than two
+// of the model's steps.
+std::optional<LongTimeCheck> checkOnHeldOutParcels(const CoatingDatabase& db, std::size_t lag,
+                                                   std::uint64_t seed = 1);
+
 // The model fitted on the record [from, until] (until < 0: to the end) cut at its middle
 // snapshot, held against the run's snapshots of the second half (at a quarter, half, three
 // quarters of the way and at the end). nullopt for a record of fewer than 6 snapshots.
@@ -82,8 +93,9 @@ std::optional<HalfCheck> checkOnSecondHalf(const ParticleFile& file, double from
                                            std::uint64_t seed = 1);
 
 // The compartments the record itself holds best: each candidate checked on the record's second
-// half (checkOnSecondHalf); the chosen one has the least Kolmogorov-Smirnov distance at the end
-// among those whose model settles to the record's coating rate (all, when none does).
+// half (checkOnSecondHalf) and on held-out parcels over the whole record
+// (checkOnHeldOutParcels); the chosen one has the least trialDistance among those whose
+// first-half model settles to the record's coating rate (all, when none does).
 // Candidates the record cannot check (too short) are left out; none checkable: `chosen` is the
 // first candidate and `trials` empty.
 // Each grid is tried with each of the model's steps in `steps` (seconds, each rounded to a whole
@@ -92,13 +104,19 @@ struct GridTrial {
   Compartments grid;
   std::size_t lag = 1;  // the model's step, in the record's intervals
   HalfCheck half;
+  std::optional<LongTimeCheck> held_out;  // checkOnHeldOutParcels on the whole record
 };
 struct GridChoice {
   std::vector<GridTrial> trials;
   Compartments chosen;
   std::size_t lag = 1;
 };
-// rings, layers, step_s, record_to_s, settles_off, wall_s and the check's fields (to_json above)
+// How far a trial's model is from the record, in units of the 5 % distance of two independent
+// samples: the larger of the two checks' Kolmogorov-Smirnov distances (the second half, the
+// held-out parcels) each over its 5 % distance. The choice takes the least.
+double trialDistance(const GridTrial& t);
+// rings, layers, step_s, record_to_s, settles_off, wall_s, the check's fields (to_json above),
+// held_out_parcels (the same fields) and distance (trialDistance)
 void to_json(Json& j, const GridTrial& t);
 inline const std::vector<Compartments> kCandidateGrids = {
     {6, 8, 0, 0}, {12, 16, 0, 0}, {16, 24, 0, 0}, {24, 32, 0, 0}};
