@@ -284,24 +284,66 @@ void checkSettledRate(const CoatingDatabase& db, const Matrix& settled, LongTime
 }  // namespace
 
 namespace {
-// The moves the record holds over `lag` of its intervals, from every snapshot: counts turned into
-// probabilities, the gains of each (from, to), the departures from each state.
-void countMoves(const CoatingDatabase& db, std::size_t lag, int k, Matrix& P,
-                std::vector<std::vector<double>>& gains, std::vector<std::size_t>& departures) {
-  P.assign(static_cast<std::size_t>(k) * k, 0.0);
-  gains.assign(static_cast<std::size_t>(k) * k, {});
-  departures.assign(k, 0);
+// The moves the record holds over `lag` of its intervals, from every snapshot: their counts
+// (turned into probabilities by `toProbabilities`), the gains of each (from, to), the departures
+// from each state.
+struct Moves {
+  Matrix P;
+  std::vector<std::vector<double>> gains;
+  std::vector<std::size_t> departures;
+};
+Moves countMoves(const CoatingDatabase& db, std::size_t lag, int k) {
+  Moves m;
+  m.P.assign(static_cast<std::size_t>(k) * k, 0.0);
+  m.gains.assign(static_cast<std::size_t>(k) * k, {});
+  m.departures.assign(k, 0);
   for (std::size_t t = 0; t + lag < db.state.size(); ++t) {
     for (std::size_t j = 0; j < db.ids.size(); ++j) {
       const int a = db.state[t][j], b = db.state[t + lag][j];
-      P[a * k + b] += 1;
-      gains[a * k + b].push_back(db.coating[t + lag][j] - db.coating[t][j]);
-      ++departures[a];
+      m.P[a * k + b] += 1;
+      m.gains[a * k + b].push_back(db.coating[t + lag][j] - db.coating[t][j]);
+      ++m.departures[a];
     }
   }
+  return m;
+}
+
+void toProbabilities(Moves& m, int k) {
   for (int a = 0; a < k; ++a)
     for (int b = 0; b < k; ++b)
-      if (departures[a] > 0) P[a * k + b] /= static_cast<double>(departures[a]);
+      if (m.departures[a] > 0) m.P[a * k + b] /= static_cast<double>(m.departures[a]);
+}
+
+// A compartment the record enters but never shows a parcel leaving (seen only at its last
+// snapshots: no move out over a step, none over an interval) is a dead end of the record, not of
+// the bed: a chain that keeps the moves into it holds every parcel it sends there for the whole
+// batch, uncoated, and over an hour such parcels add up. The moves into dead ends are left out
+// (again while leaving them out makes new ones); returns how many. `single`: the moves over one
+// interval when the step is longer (else empty).
+std::size_t dropMovesIntoDeadEnds(Moves& step, Moves& single, int k) {
+  const bool has_single = !single.departures.empty();
+  const auto dead = [&](int b) {
+    return step.departures[b] == 0 && (!has_single || single.departures[b] == 0);
+  };
+  std::size_t dropped = 0;
+  for (bool again = true; again;) {
+    again = false;
+    for (int b = 0; b < k; ++b) {
+      if (!dead(b)) continue;
+      for (int a = 0; a < k; ++a) {
+        for (Moves* m : {&step, has_single ? &single : nullptr}) {
+          if (m == nullptr || m->P[a * k + b] == 0) continue;
+          const auto n = static_cast<std::size_t>(m->P[a * k + b]);
+          m->P[a * k + b] = 0;
+          m->gains[a * k + b].clear();
+          m->departures[a] -= n;
+          dropped += m == &step ? n : 0;
+          again = again || dead(a);
+        }
+      }
+    }
+  }
+  return dropped;
 }
 
 // Mean recorded gain of a move from each state (0 where none is recorded)
@@ -318,65 +360,14 @@ std::vector<double> meanGains(const std::vector<std::vector<double>>& gains,
 }
 }  // namespace
 
-LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t lag,
-                               std::size_t min_departures) {
-  if (lag < 1 || lag >= db.state.size())
-    throw InputError(fmt::format(
-        "long-time model: a step of {} intervals of {:g} s does not fit a record of {} snapshots",
-        lag, db.interval, db.state.size()));
-  LongTimeModel m;
-  const int k = db.grid.count();
-  m.states = k;
-  m.lag = lag;
-  m.interval = db.interval * static_cast<double>(lag);
-  m.record_seconds = db.times.back() - db.times.front();
-  countMoves(db, lag, k, m.P, m.gains, m.departures);
-  m.occupied_at_end.assign(k, 0);
-  for (int s : db.state.back()) ++m.occupied_at_end[s];
-  m.expected_gain = meanGains(m.gains, m.departures, k);
-  m.by_single.assign(k, 0);
-  // The chain the warnings and the settled rate are computed on: each state's row of moves over
-  // a step, or for a state that goes by single intervals, the row of P1^lag.
-  Matrix step = m.P;
-  if (lag > 1) {
-    countMoves(db, 1, k, m.P1, m.gains1, m.departures1);
-    bool any = false;
-    for (int a = 0; a < k; ++a) {
-      m.by_single[a] = m.departures[a] < min_departures && m.departures1[a] > 0 ? 1 : 0;
-      any = any || m.by_single[a];
-    }
-    if (any) {
-      Matrix power = m.P1;  // P1^i, and the gain over i single intervals from each state
-      const std::vector<double> g1 = meanGains(m.gains1, m.departures1, k);
-      std::vector<double> over = g1;
-      for (std::size_t i = 1; i < lag; ++i) {
-        for (int a = 0; a < k; ++a)
-          for (int b = 0; b < k; ++b) over[a] += power[a * k + b] * g1[b];
-        power = multiply(power, m.P1, k);
-      }
-      for (int a = 0; a < k; ++a) {
-        if (!m.by_single[a]) continue;
-        std::copy(power.begin() + a * k, power.begin() + (a + 1) * k, step.begin() + a * k);
-        m.expected_gain[a] = over[a];
-      }
-    }
-  }
-  std::vector<std::size_t> seen = m.departures;  // states the chain knows a move out of
-  for (int a = 0; a < k; ++a)
-    if (m.by_single[a]) seen[a] = m.departures1[a];
-
-  const std::vector<Matrix> powers = squarings(step, k);
-  m.mixing_seconds = mixingIntervals(powers, k, seen) * m.interval;
-  std::vector<char> coats(k, 0);  // states whose moves gain coating
-  for (int a = 0; a < k; ++a) coats[a] = m.expected_gain[a] > 0 ? 1 : 0;
-  const auto h = intervalsToTheZone(step, k, coats);
-  m.zone_return_seconds.assign(k, 0.0);
-  m.longest_wait_seconds = 0;
-  for (int a = 0; a < k; ++a) {
-    m.zone_return_seconds[a] = h[a] * m.interval;
-    if (m.occupied_at_end[a] > 0 && seen[a] > 0)
-      m.longest_wait_seconds = std::max(m.longest_wait_seconds, m.zone_return_seconds[a]);
-  }
+namespace {
+// The record's shortcomings the fitted chain shows, as plain-language warnings: parcels that
+// cannot reach the zone, a wait for the zone or a mixing time longer than the record, parcels
+// where no move out (or too few) is recorded. `h`: intervals to the zone from each state;
+// `seen`: departures the chain knows from each state.
+void warnAboutTheRecord(LongTimeModel& m, const std::vector<double>& h,
+                        const std::vector<std::size_t>& seen, std::size_t min_departures) {
+  const int k = m.states;
   std::size_t unreachable = 0;
   for (int a = 0; a < k; ++a)
     if (m.occupied_at_end[a] > 0 && seen[a] > 0 && !std::isfinite(h[a]))
@@ -433,6 +424,78 @@ LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t lag,
         "{} parcels sit in {} compartments seen fewer than {} times in the record: their rates "
         "rest on few moves",
         thin, thin_states, min_departures));
+}
+}  // namespace
+
+LongTimeModel fitLongTimeModel(const CoatingDatabase& db, std::size_t lag,
+                               std::size_t min_departures) {
+  if (lag < 1 || lag >= db.state.size())
+    throw InputError(fmt::format(
+        "long-time model: a step of {} intervals of {:g} s does not fit a record of {} snapshots",
+        lag, db.interval, db.state.size()));
+  LongTimeModel m;
+  const int k = db.grid.count();
+  m.states = k;
+  m.lag = lag;
+  m.interval = db.interval * static_cast<double>(lag);
+  m.record_seconds = db.times.back() - db.times.front();
+  Moves step_moves = countMoves(db, lag, k), single_moves;
+  if (lag > 1) single_moves = countMoves(db, 1, k);
+  m.dead_end_moves = dropMovesIntoDeadEnds(step_moves, single_moves, k);
+  toProbabilities(step_moves, k);
+  m.P = std::move(step_moves.P);
+  m.gains = std::move(step_moves.gains);
+  m.departures = std::move(step_moves.departures);
+  m.occupied_at_end.assign(k, 0);
+  for (int s : db.state.back()) ++m.occupied_at_end[s];
+  m.expected_gain = meanGains(m.gains, m.departures, k);
+  m.by_single.assign(k, 0);
+  // The chain the warnings and the settled rate are computed on: each state's row of moves over
+  // a step, or for a state that goes by single intervals, the row of P1^lag.
+  Matrix step = m.P;
+  if (lag > 1) {
+    toProbabilities(single_moves, k);
+    m.P1 = std::move(single_moves.P);
+    m.gains1 = std::move(single_moves.gains);
+    m.departures1 = std::move(single_moves.departures);
+    bool any = false;
+    for (int a = 0; a < k; ++a) {
+      m.by_single[a] = m.departures[a] < min_departures && m.departures1[a] > 0 ? 1 : 0;
+      any = any || m.by_single[a];
+    }
+    if (any) {
+      Matrix power = m.P1;  // P1^i, and the gain over i single intervals from each state
+      const std::vector<double> g1 = meanGains(m.gains1, m.departures1, k);
+      std::vector<double> over = g1;
+      for (std::size_t i = 1; i < lag; ++i) {
+        for (int a = 0; a < k; ++a)
+          for (int b = 0; b < k; ++b) over[a] += power[a * k + b] * g1[b];
+        power = multiply(power, m.P1, k);
+      }
+      for (int a = 0; a < k; ++a) {
+        if (!m.by_single[a]) continue;
+        std::copy(power.begin() + a * k, power.begin() + (a + 1) * k, step.begin() + a * k);
+        m.expected_gain[a] = over[a];
+      }
+    }
+  }
+  std::vector<std::size_t> seen = m.departures;  // states the chain knows a move out of
+  for (int a = 0; a < k; ++a)
+    if (m.by_single[a]) seen[a] = m.departures1[a];
+
+  const std::vector<Matrix> powers = squarings(step, k);
+  m.mixing_seconds = mixingIntervals(powers, k, seen) * m.interval;
+  std::vector<char> coats(k, 0);  // states whose moves gain coating
+  for (int a = 0; a < k; ++a) coats[a] = m.expected_gain[a] > 0 ? 1 : 0;
+  const auto h = intervalsToTheZone(step, k, coats);
+  m.zone_return_seconds.assign(k, 0.0);
+  m.longest_wait_seconds = 0;
+  for (int a = 0; a < k; ++a) {
+    m.zone_return_seconds[a] = h[a] * m.interval;
+    if (m.occupied_at_end[a] > 0 && seen[a] > 0)
+      m.longest_wait_seconds = std::max(m.longest_wait_seconds, m.zone_return_seconds[a]);
+  }
+  warnAboutTheRecord(m, h, seen, min_departures);
   // settled: 2^20 intervals on (a day at 0.1 s, longer than any batch), or the limit if sooner
   checkSettledRate(db, powers[std::min<std::size_t>(20, powers.size() - 1)], m);
   return m;

@@ -212,8 +212,10 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
           "the run was stopped): set aside\n",
           t);
     out << fmt::format(
-        "  longest wait for the coating zone {:.3g} s, mixing time {:.3g} s, record {:.3g} s\n",
-        model.longest_wait_seconds, model.mixing_seconds, model.record_seconds);
+        "  longest wait for the coating zone {:.3g} s, mixing time {:.3g} s, record {:.3g} s; "
+        "{} moves into compartments the record never shows a parcel leaving left out\n",
+        model.longest_wait_seconds, model.mixing_seconds, model.record_seconds,
+        model.dead_end_moves);
     out << fmt::format(
         "  coating per parcel and second: {:.4g} kg in the record's second half, {:.4g} kg in the "
         "model once settled\n",
@@ -261,6 +263,7 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
                             {"z_max_m", db.grid.z_max},
                             {"longest_wait_s", model.longest_wait_seconds},
                             {"mixing_s", model.mixing_seconds},
+                            {"dead_end_moves", model.dead_end_moves},
                             {"record_rate_kg_s", model.record_gain_per_interval / model.interval},
                             {"settled_rate_kg_s", model.settled_gain_per_interval / model.interval},
                             {"seed", o.seed},

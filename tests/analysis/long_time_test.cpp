@@ -270,6 +270,47 @@ TEST(LongTimeModel, SaysWhenItSettlesToAnotherRateThanTheRecordShows) {
   EXPECT_TRUE(said);
 }
 
+// A compartment the record's last snapshot alone holds (a parcel of the known chain moved there at
+// the end; the record never shows one leaving it) is a dead end of the record: the moves into it
+// are left out of the chain, so it sends no parcel there, and the rest of the chain is the known
+// one. Kept, the chain would absorb a parcel there now and then and keep its coating from then
+// on for the whole batch: one move of the origin's 40 x 20,000 x (its share) makes
+// 20,000 x 3,000 / 800,000 = 75 parcels in 3,000 intervals, each short of about half the mean:
+// the CV about 8 % higher.
+TEST(LongTimeModel, LeavesOutMovesIntoCompartmentsNeverSeenLeft) {
+  CoatingDatabase db = synthetic(kTrue, 20000, 40, 7);
+  db.grid.rings = 4;  // a fourth compartment, entered at the record's last snapshot only
+  const int origin = db.state[39][0];
+  db.state[40][0] = 3;
+  for (const std::size_t lag : {1u, 4u}) {
+    SCOPED_TRACE(lag);
+    const LongTimeModel m = fitLongTimeModel(db, lag);
+    EXPECT_EQ(m.dead_end_moves, 1u);  // parcel 0's last move over a step, from snapshot 40 - lag
+    for (int a = 0; a < 4; ++a) {
+      EXPECT_EQ(m.P[a * 4 + 3], 0.0) << "from " << a;
+      if (lag > 1) {
+        EXPECT_EQ(m.P1[a * 4 + 3], 0.0) << "from " << a;
+      }
+    }
+    EXPECT_NEAR(m.P[origin * 4 + 0] + m.P[origin * 4 + 1] + m.P[origin * 4 + 2], 1.0, 1e-12);
+    // the parcel that ended there is named, and stays where the record left it
+    bool said = false;
+    for (const auto& w : m.warnings) said = said || w.find("1 parcels sit in 1 compart") == 0;
+    EXPECT_TRUE(said);
+  }
+  // the mean, CV and never-coated share 3,000 intervals on: the known chain's, for the 19,999
+  // parcels that go on moving (the one in the dead end keeps its coating)
+  const LongTimeModel m = fitLongTimeModel(db, 1);
+  const auto pr = predictLongTime(m, db, {4.0 + 300.0}, 3);
+  ASSERT_EQ(pr.final_coating.size(), 20000u);
+  const Exact exact = exactAfter(kTrue, synthetic(kTrue, 20000, 40, 7), 3000);
+  const auto& p = pr.points[0];
+  std::printf("after 3000 intervals: mean %.4f (exact %.4f), CV %.5f (%.5f)\n", p.mean, exact.mean,
+              p.cv, exact.cv);
+  EXPECT_NEAR(p.mean, exact.mean, 0.01 * exact.mean);
+  EXPECT_NEAR(p.cv, exact.cv, 0.03 * exact.cv);
+}
+
 // The two-sample Kolmogorov-Smirnov distance by hand: {1,2,3} against {2,3,4}: at 1, 1/3 against
 // 0; at 2, 2/3 against 1/3; at 3, 1 against 2/3: 1/3. With ties ({0,0,1} against {0,1,1}): 1/3.
 TEST(LongTimeCheck, KolmogorovSmirnovDistanceByHand) {

@@ -79,6 +79,10 @@ struct LongTimeModel {
   std::vector<std::vector<double>> gains1;
   std::vector<std::size_t> departures1;
   std::vector<std::size_t> occupied_at_end;  // parcels in each state at the record's end
+  // Moves over a step left out of the chain because they end in a compartment the record never
+  // shows a parcel leaving (seen only at its last snapshots): kept, each would hold the parcels
+  // the chain sends there for the whole batch.
+  std::size_t dead_end_moves = 0;
   // The mixing time: intervals until the distribution started from any visited state is within
   // 0.25 (total variation) of the stationary one, in seconds; infinite when it never is.
   double mixing_seconds = 0;
