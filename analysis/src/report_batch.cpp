@@ -33,6 +33,7 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
     b.record_to = db.times.back();
     b.longest_wait = model.longest_wait_seconds;
     b.mixing = model.mixing_seconds;
+    b.dead_end_moves = model.dead_end_moves;
     b.warnings = model.warnings;
     for (const auto& p : pr.points) {
       b.times.push_back(p.time);
@@ -108,6 +109,7 @@ Json batchJson(const RunAnalysis& a) {
               {"record_to_s", b.record_to},
               {"longest_wait_s", b.longest_wait},
               {"mixing_s", b.mixing},
+              {"dead_end_moves", b.dead_end_moves},
               {"warnings", b.warnings},
               {"times_s", b.times},
               {"mean_kg", b.mean},

@@ -94,6 +94,7 @@ struct ZonePassReport {
 struct BatchPrediction {
   double record_from = 0, record_to = 0;  // [s]
   double longest_wait = 0, mixing = 0;    // [s]
+  std::size_t dead_end_moves = 0;         // LongTimeModel::dead_end_moves
   std::vector<std::string> warnings;
   std::vector<double> times, mean, cv, never_coated;  // at the record's end, then later
   double wall_seconds = 0;
