@@ -128,6 +128,15 @@ LongTimeCheck checkLongTime(const LongTimeModel& model, const CoatingDatabase& d
 }
 
 namespace {
+// The model's steps at which a check compares, of `steps` in all: a quarter, half and three
+// quarters of the way and the last, each once and none at 0
+std::vector<std::size_t> checkSteps(std::size_t steps) {
+  std::vector<std::size_t> q;
+  for (const std::size_t s : {steps / 4, steps / 2, 3 * steps / 4, steps})
+    if (s > 0 && (q.empty() || s > q.back())) q.push_back(s);
+  return q;
+}
+
 // The parcels of `db` in `fold` (0 or 1: alternate parcels in the record's order); with
 // `first_only`, only the record's first snapshot of them (where a prediction starts)
 CoatingDatabase parcelsOf(const CoatingDatabase& db, std::size_t fold, bool first_only) {
@@ -154,9 +163,8 @@ std::optional<LongTimeCheck> checkOnHeldOutParcels(const CoatingDatabase& db, st
   const std::size_t last = db.times.size() - 1;
   const std::size_t steps = lag < 1 ? 0 : last / lag;
   if (steps < 2 || db.ids.size() < 2) return std::nullopt;
-  std::vector<std::size_t> at;  // a quarter, half, three quarters of the record and its end
-  for (const std::size_t q : {steps / 4, steps / 2, 3 * steps / 4, steps})
-    if (q > 0 && (at.empty() || q * lag > at.back())) at.push_back(q * lag);
+  std::vector<std::size_t> at;  // snapshots a quarter, half, three quarters of the way and last
+  for (const std::size_t q : checkSteps(steps)) at.push_back(q * lag);
   std::vector<std::vector<double>> predicted(at.size()), recorded(at.size());
   for (std::size_t fold = 0; fold < 2; ++fold) {
     const auto model = fitLongTimeModel(parcelsOf(db, 1 - fold, false), lag);
@@ -204,9 +212,7 @@ std::optional<HalfCheck> holdOnSecondHalf(const ParticleFile& file, const Halves
   HalfCheck h;
   h.record_to = halves.whole.times[mid];
   std::vector<double> times;  // a quarter, half, three quarters of the second half and its end
-  for (const std::size_t q : {steps / 4, steps / 2, 3 * steps / 4, steps})
-    if (q > 0 && (times.empty() || halves.whole.times[mid + q * lag] > times.back()))
-      times.push_back(halves.whole.times[mid + q * lag]);
+  for (const std::size_t q : checkSteps(steps)) times.push_back(halves.whole.times[mid + q * lag]);
   const auto model = fitLongTimeModel(halves.first, lag);
   const double record = model.record_gain_per_interval;
   h.settles_off =
