@@ -577,4 +577,16 @@ LongTimePrediction predictLongTime(const LongTimeModel& model, const CoatingData
   return out;
 }
 
+void warnWhenTheBedOutlastsTheBatch(LongTimeModel& m, double record_end_s, double batch_end_s) {
+  const double batch = batch_end_s - record_end_s;
+  if (batch <= 0 || !std::isfinite(m.mixing_seconds) || m.mixing_seconds <= batch) return;
+  m.warnings.push_back(fmt::format(
+      "the bed mixes more slowly than the batch lasts: its compartments mix in about {:.3g} s, the "
+      "batch goes on {:.3g} s past the record; it will not be well mixed by its end, and a record "
+      "long enough for its slow motion would outlast the batch itself: the never-coated share at "
+      "the end is what this record shows reaching the coating zone, and a longer record lowers "
+      "it (compare two record lengths with --to)",
+      m.mixing_seconds, batch));
+}
+
 }  // namespace cosim::analysis

@@ -23,10 +23,11 @@ std::optional<BatchPrediction> analyseBatch(const ParticleFile& file, const Repo
   try {
     auto choice = chooseCompartments(file, 0, -1);
     const auto db = readCoatingDatabase(file, 0, -1, choice.chosen);
-    const auto model = fitLongTimeModel(db, choice.lag);
+    auto model = fitLongTimeModel(db, choice.lag);
     std::vector<double> times = {db.times.back()};
     for (double t : {20.0, 60.0, 300.0, 1200.0, 3600.0})
       if (t > db.times.back() && t <= o.predict_until) times.push_back(t);
+    warnWhenTheBedOutlastsTheBatch(model, db.times.back(), times.back());
     const auto pr = predictLongTime(model, db, times, 1);
     BatchPrediction b;
     b.record_from = db.times.front();

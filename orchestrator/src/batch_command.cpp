@@ -194,7 +194,8 @@ int runBatchCommand(const BatchOptions& o, std::ostream& out, std::ostream& err)
             db.interval * std::max(1.0, std::floor(intervals) + 1)));
     }
     if (lag == 0) lag = a::candidateLags(db.interval, {o.step}).front();
-    const auto model = a::fitLongTimeModel(db, lag);
+    auto model = a::fitLongTimeModel(db, lag);
+    a::warnWhenTheBedOutlastsTheBatch(model, db.times.back(), o.until);
     const auto times = reportTimes(db.times.back(), o.until, o.times);
     const auto pr = a::predictLongTime(model, db, times, o.seed);
 

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -160,6 +161,63 @@ TEST(LongTimeModel, SaysWhenTheRecordIsTooShortForTheSlowMotion) {
   EXPECT_TRUE(named);
   // all start far from the jet and never leave: none is ever coated
   EXPECT_EQ(predictLongTime(s, db, {3600.0}, 1).points[0].never_coated_share, 1.0);
+}
+
+// The exact chain's mixing time by hand: the first n at which every row of P^n lies within 0.25
+// (total variation) of the stationary distribution, P^n taken one interval at a time.
+int exactMixingIntervals(const std::vector<double>& p) {
+  std::vector<double> pn = p, limit = p;
+  for (int i = 0; i < 40; ++i) {  // the stationary rows: P^(2^40), squared up
+    std::vector<double> sq(9, 0.0);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        for (int c = 0; c < 3; ++c) sq[a * 3 + c] += limit[a * 3 + b] * limit[b * 3 + c];
+    limit = sq;
+  }
+  for (int n = 1; n < 100000; ++n) {
+    double worst = 0;
+    for (int a = 0; a < 3; ++a) {
+      double tv = 0;
+      for (int c = 0; c < 3; ++c) tv += std::fabs(pn[a * 3 + c] - limit[a * 3 + c]);
+      worst = std::max(worst, 0.5 * tv);
+    }
+    if (worst < 0.25) return n;
+    std::vector<double> next(9, 0.0);
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b)
+        for (int c = 0; c < 3; ++c) next[a * 3 + c] += pn[a * 3 + b] * p[b * 3 + c];
+    pn = next;
+  }
+  return 100000;
+}
+
+// A bed of two parts that exchange rarely (the far compartment left once in 500 intervals, the
+// jet's two left for it once in 250 from beside the jet) is named as such when the batch is
+// shorter than its mixing time, and not when the batch is several mixing times long: the
+// threshold against the exact chain's own mixing time.
+TEST(LongTimeModel, SaysWhenTheBedMixesMoreSlowlyThanTheBatchLasts) {
+  const std::vector<double> slow = {0.998, 0.002, 0.000,   // far from the jet
+                                    0.004, 0.596, 0.400,   // beside it
+                                    0.000, 0.600, 0.400};  // in the zone
+  const CoatingDatabase db = synthetic(slow, 20000, 100, 3);
+  const double exact = 0.1 * exactMixingIntervals(slow);  // [s]
+  ASSERT_GT(exact, 10.0);  // hundreds of intervals: longer than the 10 s record
+  const auto says = [](const LongTimeModel& m) {
+    for (const auto& w : m.warnings)
+      if (w.find("mixes more slowly than the batch lasts") != std::string::npos) return true;
+    return false;
+  };
+  LongTimeModel shortBatch = fitLongTimeModel(db);
+  warnWhenTheBedOutlastsTheBatch(shortBatch, 10.0, 10.0 + 0.4 * exact);
+  std::printf("mixing time: exact %.1f s, fitted %.1f s\n", exact, shortBatch.mixing_seconds);
+  EXPECT_TRUE(says(shortBatch)) << "mixing " << shortBatch.mixing_seconds << " s, exact " << exact;
+  LongTimeModel longBatch = fitLongTimeModel(db);
+  warnWhenTheBedOutlastsTheBatch(longBatch, 10.0, 10.0 + 3.0 * exact);
+  EXPECT_FALSE(says(longBatch)) << "mixing " << longBatch.mixing_seconds << " s, exact " << exact;
+  // a well-mixed chain is silent over any batch past a few seconds
+  LongTimeModel mixed = fitLongTimeModel(synthetic(kTrue, 20000, 40, 7));
+  warnWhenTheBedOutlastsTheBatch(mixed, 4.0, 60.0);
+  EXPECT_FALSE(says(mixed));
 }
 
 namespace {

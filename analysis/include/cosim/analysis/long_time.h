@@ -131,4 +131,11 @@ struct LongTimePrediction {
 LongTimePrediction predictLongTime(const LongTimeModel& model, const CoatingDatabase& db,
                                    std::vector<double> times, std::uint64_t seed = 1);
 
+// Adds a warning to `model` when its mixing time is longer than the batch goes on past the
+// record (from `record_end_s` to `batch_end_s`, both since the run's start): such a bed is not
+// well mixed by the batch's end, a record long enough for its slow motion would be longer than
+// the batch itself, and the never-coated share at the end rests on which parcels the record
+// shows reaching the zone (a longer record lowers it).
+void warnWhenTheBedOutlastsTheBatch(LongTimeModel& model, double record_end_s, double batch_end_s);
+
 }  // namespace cosim::analysis
