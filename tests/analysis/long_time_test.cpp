@@ -163,6 +163,7 @@ TEST(LongTimeModel, SaysWhenTheRecordIsTooShortForTheSlowMotion) {
   EXPECT_EQ(predictLongTime(s, db, {3600.0}, 1).points[0].never_coated_share, 1.0);
 }
 
+namespace {
 // The exact chain's mixing time by hand: the first n at which every row of P^n lies within 0.25
 // (total variation) of the stationary distribution, P^n taken one interval at a time.
 int exactMixingIntervals(const std::vector<double>& p) {
@@ -190,6 +191,7 @@ int exactMixingIntervals(const std::vector<double>& p) {
   }
   return 100000;
 }
+}  // namespace
 
 // A bed of two parts that exchange rarely (the far compartment left once in 500 intervals, the
 // jet's two left for it once in 250 from beside the jet) is named as such when the batch is
@@ -207,13 +209,13 @@ TEST(LongTimeModel, SaysWhenTheBedMixesMoreSlowlyThanTheBatchLasts) {
       if (w.find("mixes more slowly than the batch lasts") != std::string::npos) return true;
     return false;
   };
-  LongTimeModel shortBatch = fitLongTimeModel(db);
+  const LongTimeModel fitted = fitLongTimeModel(db);
+  std::printf("mixing time: exact %.1f s, fitted %.1f s\n", exact, fitted.mixing_seconds);
+  LongTimeModel shortBatch = fitted, longBatch = fitted;
   warnWhenTheBedOutlastsTheBatch(shortBatch, 10.0, 10.0 + 0.4 * exact);
-  std::printf("mixing time: exact %.1f s, fitted %.1f s\n", exact, shortBatch.mixing_seconds);
-  EXPECT_TRUE(says(shortBatch)) << "mixing " << shortBatch.mixing_seconds << " s, exact " << exact;
-  LongTimeModel longBatch = fitLongTimeModel(db);
+  EXPECT_TRUE(says(shortBatch)) << "mixing " << fitted.mixing_seconds << " s, exact " << exact;
   warnWhenTheBedOutlastsTheBatch(longBatch, 10.0, 10.0 + 3.0 * exact);
-  EXPECT_FALSE(says(longBatch)) << "mixing " << longBatch.mixing_seconds << " s, exact " << exact;
+  EXPECT_FALSE(says(longBatch)) << "mixing " << fitted.mixing_seconds << " s, exact " << exact;
   // a well-mixed chain is silent over any batch past a few seconds
   LongTimeModel mixed = fitLongTimeModel(synthetic(kTrue, 20000, 40, 7));
   warnWhenTheBedOutlastsTheBatch(mixed, 4.0, 60.0);
