@@ -103,7 +103,7 @@ RunResult Coupler::run() {
     for (std::uint64_t k = done; k < nsteps_ && !interrupted; ++k) {
       if (opt_.untimed_steps && k == done + *opt_.untimed_steps) resetTimings();
       beginStep(k);
-      const CouplingTerms terms = termsOfStep();                     // gas at parcels, models
+      const models::CouplingTerms terms = termsOfStep();             // gas at parcels, models
       const AdvanceReplies replies = advanceBoth(terms);             // both solvers over dt
       if (replies.particles) takeParticleState(*replies.particles);  // the particles' new state
       if (replies.fluid) takeFluidResults(*replies.fluid);           // what the gas did
@@ -404,14 +404,14 @@ void Coupler::resetTimings() {
 }
 
 // Steps 2 and 3, unless the scheme replays earlier terms (cosim bench's solver-alone runs).
-CouplingTerms Coupler::termsOfStep() {
+models::CouplingTerms Coupler::termsOfStep() {
   if (auto replayed = scheme_->replay(state_)) {
     phases_.lap("models");
     return std::move(*replayed);
   }
   std::vector<char> lost;
-  const link::ParticleData samples = sampleFluid(lost);  // the gas at the parcels
-  CouplingTerms terms = evaluateModels(samples, lost);   // forcing, exchange terms
+  const link::ParticleData samples = sampleFluid(lost);         // the gas at the parcels
+  models::CouplingTerms terms = evaluateModels(samples, lost);  // forcing, exchange terms
   if (opt_.record_terms) {
     opt_.record_terms->push_back(terms);
     phases_.skip();
@@ -450,10 +450,10 @@ link::ParticleData Coupler::samplesOf(const wire::Samples& sm, std::vector<char>
 }
 
 // Step 3: the models over all parcels; the coating owed since the last step joins the forcing.
-CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
-                                      const std::vector<char>& lost) {
-  CouplingTerms terms =
-      evaluateTerms(models_, plan_, sc_.constants, state_, samples, lost, sc_.coupling.dt);
+models::CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
+                                              const std::vector<char>& lost) {
+  models::CouplingTerms terms = models::evaluateTerms(models_, plan_.coating, sc_.constants, state_,
+                                                      samples, lost, sc_.coupling.dt);
   check(terms.forcing, "models (forcing)");
   if (step_ == 1) refuseOrWarn(checkFirstStep(sc_, state_, samples, terms.forcing));
   if (plan_.coating) ledger_.pay(terms.forcing);
@@ -463,7 +463,7 @@ CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
 }
 
 // Step 4: as the coupling scheme says (today both at the same time).
-AdvanceReplies Coupler::advanceBoth(const CouplingTerms& terms) {
+AdvanceReplies Coupler::advanceBoth(const models::CouplingTerms& terms) {
   AdvanceReplies replies = scheme_->advance(participants_, state_, terms);
   phases_.lap("advance");
   time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_);

@@ -90,12 +90,13 @@ class Coupler {
   bool checkpointDue(bool last) const;
   // The five steps of one coupling interval (docs/design.md section 2).
   void beginStep(std::uint64_t k);
-  CouplingTerms termsOfStep();  // steps 2 and 3, or what the scheme replays
+  models::CouplingTerms termsOfStep();  // steps 2 and 3, or what the scheme replays
   // The fluid's samples checked against the particles; `lost` marks those in no cell.
   link::ParticleData samplesOf(const wire::Samples& samples, std::vector<char>& lost);
   link::ParticleData sampleFluid(std::vector<char>& lost);
-  CouplingTerms evaluateModels(const link::ParticleData& samples, const std::vector<char>& lost);
-  AdvanceReplies advanceBoth(const CouplingTerms& terms);
+  models::CouplingTerms evaluateModels(const link::ParticleData& samples,
+                                       const std::vector<char>& lost);
+  AdvanceReplies advanceBoth(const models::CouplingTerms& terms);
   void takeParticleState(const wire::Advanced& particles);
   void takeFluidResults(const wire::Advanced& fluid);
   void creditAndRecord(const AdvanceReplies& replies, bool last);
@@ -131,7 +132,7 @@ class Coupler {
   RunOptions opt_;
   const util::StopRequest& stop_;  // opt_.stop, or one never requested
   RunLog log_;
-  SceneModels models_;
+  models::SceneModels models_;
   Plan plan_;
   std::string run_id_;
   RunRecord record_;

@@ -11,7 +11,8 @@ namespace cosim::orchestrator {
 
 namespace {
 
-wire::Envelope particleAdvance(const Scenario& sc, const Plan& plan, const CouplingTerms& terms) {
+wire::Envelope particleAdvance(const Scenario& sc, const Plan& plan,
+                               const models::CouplingTerms& terms) {
   wire::Envelope e;
   auto* a = e.mutable_advance();
   a->set_dt(sc.coupling.dt);
@@ -20,7 +21,8 @@ wire::Envelope particleAdvance(const Scenario& sc, const Plan& plan, const Coupl
   return e;
 }
 
-wire::Envelope fluidAdvance(const Scenario& sc, const Plan& plan, const CouplingTerms& terms) {
+wire::Envelope fluidAdvance(const Scenario& sc, const Plan& plan,
+                            const models::CouplingTerms& terms) {
   wire::Envelope e;
   auto* a = e.mutable_advance();
   a->set_dt(sc.coupling.dt);
@@ -53,7 +55,7 @@ link::ParticleData onIds(const link::ParticleData& from, const std::vector<std::
 
 AdvanceReplies ParallelScheme::advance(Participants& participants,
                                        const link::ParticleData& /*state*/,
-                                       const CouplingTerms& terms) {
+                                       const models::CouplingTerms& terms) {
   std::map<std::string, Participants::MessageBuilder> build;
   build["particles"] = [&] { return particleAdvance(sc_, plan_, terms); };
   if (plan_.fluid) build["fluid"] = [&] { return fluidAdvance(sc_, plan_, terms); };
@@ -66,7 +68,7 @@ AdvanceReplies ParallelScheme::advance(Participants& participants,
 
 AdvanceReplies OverlappedScheme::advance(Participants& participants,
                                          const link::ParticleData& state,
-                                         const CouplingTerms& terms) {
+                                         const models::CouplingTerms& terms) {
   std::map<std::string, Participants::MessageBuilder> build;
   build["particles"] = [&] { return particleAdvance(sc_, plan_, terms); };
   if (plan_.fluid) {
@@ -123,14 +125,14 @@ std::optional<wire::Samples> OverlappedScheme::samplesAhead(Participants& partic
   return s;
 }
 
-std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& state) {
+std::optional<models::CouplingTerms> FrozenScheme::replay(const link::ParticleData& state) {
   const std::size_t k = interval_++;
   // The fluid places the exchange terms in the cells it found the parcels in, so the fluid
   // alone samples them once, at the first interval (the same terms as the recording's first).
   if (k == 0 && alone_ == Alone::fluid) return std::nullopt;
   if (recording_ && k < recording_->size()) {
-    const CouplingTerms recorded = (*recording_)[k];
-    CouplingTerms t;  // only what the solver alone is sent
+    const models::CouplingTerms recorded = (*recording_)[k];
+    models::CouplingTerms t;  // only what the solver alone is sent
     if (alone_ == Alone::particles)
       t.forcing = onIds(recorded.forcing, state.ids);
     else
@@ -144,7 +146,7 @@ std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& stat
     return t;
   }
   if (!frozen_) return std::nullopt;
-  CouplingTerms t;
+  models::CouplingTerms t;
   t.forcing = onIds(frozen_->forcing, state.ids);
   t.exchange = frozen_->exchange;
   return t;
@@ -152,7 +154,7 @@ std::optional<CouplingTerms> FrozenScheme::replay(const link::ParticleData& stat
 
 AdvanceReplies FrozenScheme::advance(Participants& participants,
                                      const link::ParticleData& /*state*/,
-                                     const CouplingTerms& terms) {
+                                     const models::CouplingTerms& terms) {
   if (!frozen_) {
     frozen_ = terms;
     // The coating owed is paid once, with the first interval.

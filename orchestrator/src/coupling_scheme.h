@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "coupling_terms.h"
+#include "cosim/models/coupling_terms.h"
 #include "participants.h"
 #include "plan.h"
 #include "scenario.h"
@@ -27,12 +27,12 @@ class CouplingScheme {
   virtual std::string name() const = 0;
   // Terms this scheme replays for the interval starting from `state`, instead of sampling the
   // fluid and evaluating the models; nullopt (the default): sample and evaluate as usual.
-  virtual std::optional<CouplingTerms> replay(const link::ParticleData& /*state*/) {
+  virtual std::optional<models::CouplingTerms> replay(const link::ParticleData& /*state*/) {
     return std::nullopt;
   }
   // `state`: the particles at the start of the interval (the terms were made from it).
   virtual AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
-                                 const CouplingTerms& terms) = 0;
+                                 const models::CouplingTerms& terms) = 0;
   // The gas at the particles for the interval starting from `state`, when the scheme already
   // has it (the fluid sampled it ahead during the last interval); nullopt: sample as usual.
   virtual std::optional<wire::Samples> samplesAhead(Participants& /*participants*/,
@@ -58,7 +58,7 @@ class ParallelScheme final : public CouplingScheme {
   ParallelScheme(const Scenario& sc, const Plan& plan) : sc_(sc), plan_(plan) {}
   std::string name() const override { return "parallel"; }
   AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
-                         const CouplingTerms& terms) override;
+                         const models::CouplingTerms& terms) override;
 
  private:
   const Scenario& sc_;
@@ -85,7 +85,7 @@ class OverlappedScheme final : public CouplingScheme {
   OverlappedScheme(const Scenario& sc, const Plan& plan) : sc_(sc), plan_(plan) {}
   std::string name() const override { return "overlapped"; }
   AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
-                         const CouplingTerms& terms) override;
+                         const models::CouplingTerms& terms) override;
   std::optional<wire::Samples> samplesAhead(Participants& participants,
                                             const link::ParticleData& state) override;
   std::optional<link::ParticleData> samplingAhead() const override;
@@ -120,9 +120,9 @@ class FrozenScheme final : public CouplingScheme {
   std::string name() const override {
     return alone_ == Alone::particles ? "frozen-fluid" : "frozen-particles";
   }
-  std::optional<CouplingTerms> replay(const link::ParticleData& state) override;
+  std::optional<models::CouplingTerms> replay(const link::ParticleData& state) override;
   AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
-                         const CouplingTerms& terms) override;
+                         const models::CouplingTerms& terms) override;
   bool evaluatesEveryStep() const override { return false; }
   std::size_t replayedIntervals() const { return replayed_; }  // taken from the recording
 
@@ -133,7 +133,7 @@ class FrozenScheme final : public CouplingScheme {
   std::shared_ptr<const TermsRecording> recording_;
   std::size_t interval_ = 0;  // intervals started
   std::size_t replayed_ = 0;
-  std::optional<CouplingTerms> frozen_;
+  std::optional<models::CouplingTerms> frozen_;
 };
 
 // `name`: "parallel" or "overlapped" (coupling.scheme of a run), "frozen-fluid" (particles alone)

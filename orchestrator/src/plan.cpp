@@ -6,29 +6,15 @@
 
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
-#include "cosim/models/drag/undisturbed_velocity.h"
 #include "cosim/models/registry.h"
 
 namespace cosim::orchestrator {
 
-SceneModels makeModels(const Scenario& sc) {
-  auto& r = models::Registry::instance();
-  SceneModels m;
-  if (sc.models.drag) m.drag = r.makeDrag(sc.models.drag->law, sc.models.drag->params);
-  if (const auto* u = dynamic_cast<const models::UndisturbedVelocityDrag*>(m.drag.get());
-      u != nullptr && u->transient()) {
-    m.wake = std::make_unique<models::WakeBuildup>();
-  }
-  for (const auto& f : sc.models.forces) m.forces.push_back(r.makeForce(f.law, f.params));
-  if (sc.models.mass_transfer)
-    m.mass_transfer =
-        r.makeMassTransfer(sc.models.mass_transfer->law, sc.models.mass_transfer->params);
-  if (sc.models.coating_zone)
-    m.zone = r.makeZone(sc.models.coating_zone->law, sc.models.coating_zone->params);
-  return m;
+models::SceneModels makeModels(const Scenario& sc) {
+  return models::makeSceneModels(sc.models.choices());
 }
 
-Plan makePlan(const Scenario& sc, const SceneModels& m) {
+Plan makePlan(const Scenario& sc, const models::SceneModels& m) {
   Plan p;
   std::set<std::string> needed;
   auto add = [&](const models::Model& model) {

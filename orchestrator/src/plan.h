@@ -7,8 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "cosim/models/drag/wake_buildup.h"
-#include "cosim/models/model.h"
+#include "cosim/models/scene_models.h"
 #include "scenario.h"
 
 namespace cosim::orchestrator {
@@ -30,21 +29,11 @@ struct Plan {
   std::vector<std::string> notes;          // what was left out and why (shown to the user)
 };
 
-// The instantiated models of a scene.
-struct SceneModels {
-  std::unique_ptr<models::DragLaw> drag;
-  std::vector<std::unique_ptr<models::ForceModel>> forces;
-  std::unique_ptr<models::MassTransferLaw> mass_transfer;
-  std::unique_ptr<models::CoatingZone> zone;
-  // With undisturbed_velocity 'self_disturbance_transient': every parcel's force history, kept
-  // by the coupler between steps (and in checkpoints); null otherwise.
-  std::unique_ptr<models::WakeBuildup> wake;
-};
-
-SceneModels makeModels(const Scenario& sc);
+// The laws of the scene's models: section (its plugins were loaded when it was read).
+models::SceneModels makeModels(const Scenario& sc);
 // Throws ScenarioError when an observable names a particle field, time-series column or total
 // this plan does not record (checkObservables), so that `cosim validate` catches the typo.
-Plan makePlan(const Scenario& sc, const SceneModels& m);
+Plan makePlan(const Scenario& sc, const models::SceneModels& m);
 
 // The columns of timeseries.csv after "time", in order, for this plan.
 std::vector<std::string> timeSeriesColumns(const Plan& plan);

@@ -126,7 +126,7 @@ std::string largestEntries(const std::filesystem::path& folder, std::size_t n) {
   return out.empty() ? "(nothing)" : out;
 }
 
-StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& /*models*/,
+StabilityReport checkBeforeRun(const Scenario& sc, const models::SceneModels& /*models*/,
                                const Plan& /*plan*/, const link::ParticleData& s,
                                double reported_dt_over_rayleigh) {
   StabilityReport r;

@@ -40,8 +40,8 @@ double relaxationTime(double mass, double drag_coefficient);
 // its script's youngsModulus and poissonsRatio); only a participant that reports none is judged
 // from constants.youngs_modulus and poisson_ratio. Constants that disagree with the participant's
 // own data by more than 1 % are named in a warning.
-StabilityReport checkBeforeRun(const Scenario& sc, const SceneModels& models, const Plan& plan,
-                               const link::ParticleData& initial_state,
+StabilityReport checkBeforeRun(const Scenario& sc, const models::SceneModels& models,
+                               const Plan& plan, const link::ParticleData& initial_state,
                                double reported_dt_over_rayleigh = 0.0);
 
 // Checks that need the first fluid samples and drag coefficients: relaxation time against the

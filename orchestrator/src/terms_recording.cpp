@@ -9,6 +9,7 @@
 #include <string>
 #include <utility>
 
+#include "cosim.pb.h"
 #include "cosim/link/particle_wire.h"
 
 namespace cosim::orchestrator {
@@ -37,7 +38,7 @@ TermsRecording::~TermsRecording() {
   for (const Block& b : blocks_) munmap(b.data, b.bytes);
 }
 
-void TermsRecording::push_back(const CouplingTerms& terms) {
+void TermsRecording::push_back(const models::CouplingTerms& terms) {
   const std::string parts[kParts] = {wireBytes(terms.forcing), wireBytes(terms.exchange),
                                      std::string(terms.in_zone.begin(), terms.in_zone.end())};
   std::size_t bytes = 0;
@@ -54,7 +55,7 @@ void TermsRecording::push_back(const CouplingTerms& terms) {
   blocks_.push_back({data, bytes});
 }
 
-CouplingTerms TermsRecording::operator[](std::size_t k) const {
+models::CouplingTerms TermsRecording::operator[](std::size_t k) const {
   const Block& b = blocks_.at(k);
   const char* at = static_cast<const char*>(b.data);
   auto next = [&at] {
@@ -64,7 +65,7 @@ CouplingTerms TermsRecording::operator[](std::size_t k) const {
     at = part + n;
     return std::pair<const char*, std::size_t>{part, static_cast<std::size_t>(n)};
   };
-  CouplingTerms t;
+  models::CouplingTerms t;
   const auto [forcing, nf] = next();
   t.forcing = fromBytes(forcing, nf);
   const auto [exchange, ne] = next();

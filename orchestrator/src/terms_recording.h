@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "coupling_terms.h"
+#include "cosim/models/coupling_terms.h"
 
 namespace cosim::orchestrator {
 
@@ -23,9 +23,9 @@ class TermsRecording {
   TermsRecording& operator=(const TermsRecording&) = delete;
   ~TermsRecording();
 
-  void push_back(const CouplingTerms& terms);
+  void push_back(const models::CouplingTerms& terms);
   // A copy of interval k's terms (k < size()).
-  CouplingTerms operator[](std::size_t k) const;
+  models::CouplingTerms operator[](std::size_t k) const;
   std::size_t size() const { return blocks_.size(); }
   bool empty() const { return blocks_.empty(); }
 

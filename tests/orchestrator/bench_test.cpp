@@ -71,11 +71,11 @@ TEST(Bench, RatiosByHand) {
 // and hold the last interval's terms (coating no longer paid) past the recording's end.
 TEST(Bench, AloneStageReplaysTheRecordedIntervalsById) {
   const Scenario sc = loadScenario(fs::path(COSIM_SOURCE_DIR) / "scenarios" / "settling-sphere");
-  const SceneModels models = makeModels(sc);
+  const models::SceneModels models = makeModels(sc);
   const Plan plan = makePlan(sc, models);
   auto rec = std::make_shared<TermsRecording>();
   for (int k = 0; k < 3; ++k) {
-    CouplingTerms t;
+    models::CouplingTerms t;
     t.forcing.ids = {7, 9};
     t.forcing.field(field::drag_coefficient) = {1.0 + k, 10.0 + k};
     t.forcing.field(field::coating_increment) = {0.5, 0.25};

@@ -43,14 +43,14 @@ class AdapterCheck : public ::testing::Test {
   // The lines of an accepted scene; a failure if it is refused.
   std::vector<std::string> accepted(const fs::path& file, const std::vector<std::string>& sets) {
     Scenario sc = loadScenario(file, sets);
-    SceneModels m = makeModels(sc);
+    cosim::models::SceneModels m = makeModels(sc);
     return checkAdapters(sc, makePlan(sc, m));
   }
   // The reason of a refusal; a failure if it is accepted.
   std::string refusal(const fs::path& file, const std::vector<std::string>& sets,
                       double timeout_s = kAdapterCheckSeconds) {
     Scenario sc = loadScenario(file, sets);
-    SceneModels m = makeModels(sc);
+    cosim::models::SceneModels m = makeModels(sc);
     try {
       checkAdapters(sc, makePlan(sc, m), timeout_s);
     } catch (const ScenarioError& e) {

@@ -20,7 +20,7 @@ namespace {
 int validate(const std::string& file, const std::vector<std::string>& sets,
              const std::vector<std::string>& unsets) {
   Scenario sc = loadScenario(file, sets, unsets);
-  SceneModels m = makeModels(sc);
+  models::SceneModels m = makeModels(sc);
   Plan p = makePlan(sc, m);
   const auto checked = checkAdapters(sc, p);  // the adapters' own view of the scene
   std::cout << "scenario '" << sc.name << "' is valid (" << sc.file.string() << ")\n";

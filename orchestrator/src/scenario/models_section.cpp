@@ -194,4 +194,14 @@ ModelsSection parseModels(const YAML::Node& m, const Context& ctx, const fs::pat
   return out;
 }
 
+models::SceneModelChoices ModelsSection::choices() const {
+  models::SceneModelChoices c;
+  if (drag) c.drag = *drag;
+  for (const auto& f : forces) c.forces.push_back(f);
+  if (mass_transfer) c.mass_transfer = *mass_transfer;
+  if (coating_zone) c.coating_zone = *coating_zone;
+  for (const auto& p : plugins) c.plugins.push_back(p.string());
+  return c;
+}
+
 }  // namespace cosim::orchestrator

@@ -7,14 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "cosim/models/parameters.h"
+#include "cosim/models/scene_models.h"
 #include "scenario/context.h"
 
 namespace cosim::orchestrator {
 
-struct ModelSpec {
-  std::string law;  // registered name
-  models::Parameters params;
+// A law as the scene names it (its registered name and parameters), and the line it is on.
+struct ModelSpec : models::ModelChoice {
   int line = 0;
 };
 
@@ -27,6 +26,8 @@ struct ModelsSection {
 
   // The scene needs fluid fields (drag, forces or mass transfer).
   bool needsFluid() const { return drag || !forces.empty() || mass_transfer; }
+  // The laws and plugins as every runner of the models takes them (cosim/models/scene_models.h).
+  models::SceneModelChoices choices() const;
 
   static const std::vector<KeySpec>& keys();
   // The keys every drag law takes beside its own parameters (read by the registry's drag

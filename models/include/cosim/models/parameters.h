@@ -48,6 +48,11 @@ class Parameters {
   Parameters without(const std::string& key, std::string new_owner) const;
 
   const std::string& owner() const { return owner_; }
+  // Every value, by kind (to carry them elsewhere whole, e.g. cosim/link/models_wire.h).
+  const std::map<std::string, double>& numbers() const { return numbers_; }
+  const std::map<std::string, std::string>& texts() const { return texts_; }
+  const std::map<std::string, std::vector<double>>& lists() const { return lists_; }
+  const std::map<std::string, std::vector<Parameters>>& allChildren() const { return children_; }
   std::vector<std::string> keys() const;
   // Throws if a key not in `known` was given (catches typos like "cg_facter").
   void rejectUnknown(const std::vector<std::string>& known) const;

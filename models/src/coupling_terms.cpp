@@ -1,8 +1,8 @@
-#include "coupling_terms.h"
+#include "cosim/models/coupling_terms.h"
 
 #include "cosim/link/fields.h"
 
-namespace cosim::orchestrator {
+namespace cosim::models {
 
 namespace {
 const double* ptr(const link::ParticleData& d, const char* name) {
@@ -10,7 +10,7 @@ const double* ptr(const link::ParticleData& d, const char* name) {
 }
 }  // namespace
 
-CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan, const models::SceneConstants& c,
+CouplingTerms evaluateTerms(const SceneModels& m, bool coating, const SceneConstants& c,
                             const link::ParticleData& state, const link::ParticleData& samples,
                             const std::vector<char>& lost, double dt) {
   CouplingTerms t;
@@ -19,7 +19,7 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan, const models
   t.exchange.ids = state.ids;
 
   // The particle state (position, velocity, radius) and the fluid samples (the rest).
-  models::ParcelBatch b = models::bindParcelBatch(
+  ParcelBatch b = bindParcelBatch(
       n, [&](const char* name) { return state.has(name) ? ptr(state, name) : ptr(samples, name); });
   b.lost = lost.empty() ? nullptr : lost.data();
 
@@ -46,7 +46,7 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan, const models
       if (lost[i]) F[3 * i] = F[3 * i + 1] = F[3 * i + 2] = 0.0;
     }
   }
-  if (plan.coating) {
+  if (coating) {
     auto& k = t.exchange.field(field::transfer_coefficient);
     m.mass_transfer->transferCoefficients(b, c, k.data());
     if (m.zone) {
@@ -63,4 +63,4 @@ CouplingTerms evaluateTerms(const SceneModels& m, const Plan& plan, const models
   return t;
 }
 
-}  // namespace cosim::orchestrator
+}  // namespace cosim::models
