@@ -5,10 +5,6 @@
 
 namespace cosim::models {
 
-void loadScenePlugins(const SceneModelChoices& c) {
-  for (const auto& p : c.plugins) Registry::instance().loadPlugin(p);
-}
-
 SceneModels makeSceneModels(const SceneModelChoices& c) {
   auto& r = Registry::instance();
   SceneModels m;

@@ -1,10 +1,10 @@
 #include "cosim/link/models_wire.h"
 
-#include <cmath>
 #include <string>
 
 #include "cosim.pb.h"
 #include "cosim/link/errors.h"
+#include "cosim/models/input_checks.h"
 
 namespace cosim::link {
 
@@ -77,7 +77,8 @@ ReceivedModels fromWire(const wire::SceneModels& in) {
   if (in.has_drag()) r.choices.drag = fromWire(in.drag(), "drag");
   for (int i = 0; i < in.forces_size(); ++i)
     r.choices.forces.push_back(fromWire(in.forces(i), "forces[" + std::to_string(i) + "]"));
-  if (in.has_mass_transfer()) r.choices.mass_transfer = fromWire(in.mass_transfer(), "mass_transfer");
+  if (in.has_mass_transfer())
+    r.choices.mass_transfer = fromWire(in.mass_transfer(), "mass_transfer");
   if (in.has_coating_zone()) r.choices.coating_zone = fromWire(in.coating_zone(), "coating_zone");
   r.choices.plugins.assign(in.plugins().begin(), in.plugins().end());
   const auto& w = in.constants();
@@ -89,14 +90,11 @@ ReceivedModels fromWire(const wire::SceneModels& in) {
   r.constants.min_voidage = w.min_voidage();
   for (int i = 0; i < 3; ++i) r.constants.gravity[i] = w.gravity(i);
   r.constants.schmidt = w.schmidt();
-  // the ranges the scenario's constants section holds them to
-  const auto& c = r.constants;
-  if (!(std::isfinite(c.cg) && c.cg >= 1.0) || !(std::isfinite(c.schmidt) && c.schmidt > 0.0) ||
-      !(c.min_voidage > 0.0 && c.min_voidage < 1.0)) {
-    throw ProtocolError("SceneModels: constants out of range (cg >= 1, schmidt > 0, min_voidage "
-                        "in (0, 1)): cg " + std::to_string(c.cg) + ", schmidt " +
-                        std::to_string(c.schmidt) + ", min_voidage " +
-                        std::to_string(c.min_voidage));
+  // the laws' own check of their constants (a peer's form is checked as the scene's is)
+  try {
+    models::validateConstants("SceneModels.constants", r.constants);
+  } catch (const models::ModelError& e) {
+    throw ProtocolError(e.what());
   }
   return r;
 }

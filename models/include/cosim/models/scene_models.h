@@ -27,7 +27,7 @@ struct SceneModelChoices {
   std::vector<ModelChoice> forces;
   std::optional<ModelChoice> mass_transfer;
   std::optional<ModelChoice> coating_zone;
-  std::vector<std::string> plugins;  // shared libraries that register laws (loadScenePlugins)
+  std::vector<std::string> plugins;  // shared libraries that register laws (Registry::loadPlugin)
 };
 
 // The instantiated laws of a scene.
@@ -41,10 +41,8 @@ struct SceneModels {
   std::unique_ptr<WakeBuildup> wake;
 };
 
-// dlopens every plugin of the choices (the orchestrator does it when it reads the scene; a
-// participant that builds the laws itself, before makeSceneModels). ModelError names the file.
-void loadScenePlugins(const SceneModelChoices& choices);
-// Builds every law, the plugins' included; ModelError names the law and the parameter.
+// Builds every law, the plugins' included once loaded (Registry::loadPlugin: the orchestrator
+// loads them when it reads the scene); ModelError names the law and the parameter.
 SceneModels makeSceneModels(const SceneModelChoices& choices);
 
 }  // namespace cosim::models
