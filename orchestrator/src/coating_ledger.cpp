@@ -45,6 +45,22 @@ void CoatingLedger::pay(link::ParticleData& forcing) {
   }
 }
 
+link::ParticleData CoatingLedger::payOwed() {
+  link::ParticleData owed;
+  std::vector<double> increment;
+  owed.ids.reserve(pending_.size());
+  increment.reserve(pending_.size());
+  for (const auto& [id, m] : pending_) {
+    owed.ids.push_back(id);
+    increment.push_back(m);
+    b_.credited += m;
+    in_flight_[id] += m;
+  }
+  pending_.clear();
+  owed.put(field::coating_increment, std::move(increment));
+  return owed;
+}
+
 void CoatingLedger::undelivered() {
   for (const auto& [id, m] : in_flight_) {
     pending_[id] += m;

@@ -42,6 +42,11 @@ class CoatingLedger {
   // is in flight until the particles confirm the step (delivered()); a step that never completes
   // (the particle solver gone) gives it back to what is owed (undelivered()).
   void pay(link::ParticleData& forcing);
+  // The same payment for the peer data path, where the particles evaluate their own forcing:
+  // everything owed, as a coating_increment of only the parcels owed any (in id order). Equal to
+  // pay() over the parcels' state, since what is owed belongs to parcels that are there (a
+  // deleted parcel's credit leaves with it, leave()).
+  link::ParticleData payOwed();
   void delivered() { in_flight_.clear(); }
   void undelivered();
   // Parcels that left the domain take what they were owed with them.

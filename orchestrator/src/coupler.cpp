@@ -30,6 +30,13 @@ double stepTime(double start, double dt, std::uint64_t k) {
   return std::strtod(fmt::format("{:.12g}", t).c_str(), nullptr);
 }
 
+// cosim bench measures and replays the central path's terms, so its runs take the central path.
+Plan planOf(const Scenario& sc, const models::SceneModels& m, const RunOptions& o) {
+  Plan p = makePlan(sc, m);
+  if (o.record_terms || o.replay_terms || o.scheme.rfind("frozen", 0) == 0) p.peer = false;
+  return p;
+}
+
 std::string newRunId() {
   std::random_device rd;
   std::ostringstream os;
@@ -55,12 +62,13 @@ Coupler::Coupler(Scenario scenario, RunOptions options)
       stop_(opt_.stop != nullptr ? *opt_.stop : kNeverStopped),
       log_(opt_.quiet),
       models_(makeModels(sc_)),
-      plan_(makePlan(sc_, models_)),
+      plan_(planOf(sc_, models_, opt_)),
       run_id_(newRunId()),
       record_(sc_, plan_, log_),
       participants_(sc_, plan_, run_id_, log_, stop_),
-      scheme_(makeCouplingScheme(
-          sc_, plan_, opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme, opt_.replay_terms)),
+      scheme_(makeCouplingScheme(sc_, plan_,
+                                 opt_.scheme.empty() ? sc_.coupling.scheme : opt_.scheme,
+                                 opt_.replay_terms, opt_.resume.empty())),
       monitor_(sc_) {}
 
 Coupler::~Coupler() { participants_.shutdown(false); }
@@ -253,7 +261,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
         "else)";
     throw RunFailure("", msg, ErrorKind::input);
   }
-  if (models_.wake && !saved.wake) {
+  if (models_.wake && !plan_.peer && !saved.wake) {
     throw RunFailure("",
                      "cannot resume from " + checkpoint->string() +
                          ": it holds no wake history, which models.drag.undisturbed_velocity "
@@ -306,7 +314,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
                                       "docs/restarts.md");
   }
   ledger_.restore(saved.balance, saved.pending);
-  if (models_.wake) models_.wake->restore(*saved.wake);
+  if (models_.wake && saved.wake) models_.wake->restore(*saved.wake);
   if (saved.sample_ahead) scheme_->resumeSamplingAt(std::move(*saved.sample_ahead));
   totals_ = saved.totals;
   monitor_.restore(saved.monitor);
@@ -349,7 +357,8 @@ void Coupler::writeCheckpoint() {
   s.scene = em.c_str();
   s.particle_digest = particleDigest(state_);
   if (passes_) s.zone_passes = passes_->state();
-  if (models_.wake) s.wake = models_.wake->state();
+  if (models_.wake && !plan_.peer) s.wake = models_.wake->state();  // peer: the particles'
+
   s.sample_ahead = scheme_->samplingAhead();
   const auto dir = checkpoints_->commit(partial, s, sc_.checkpoint.keep);
   next_checkpoint_ = time_ + sc_.checkpoint.interval;
@@ -403,8 +412,15 @@ void Coupler::resetTimings() {
   participants_.resetComputeSeconds();
 }
 
-// Steps 2 and 3, unless the scheme replays earlier terms (cosim bench's solver-alone runs).
+// Steps 2 and 3, unless the scheme replays earlier terms (cosim bench's solver-alone runs). On
+// the peer data path the particles do both themselves: only the coating owed is sent.
 models::CouplingTerms Coupler::termsOfStep() {
+  if (plan_.peer) {
+    models::CouplingTerms owed;
+    if (plan_.coating) owed.forcing = ledger_.payOwed();
+    phases_.lap("models");
+    return owed;
+  }
   if (auto replayed = scheme_->replay(state_)) {
     phases_.lap("models");
     return std::move(*replayed);
@@ -475,6 +491,7 @@ AdvanceReplies Coupler::advanceBoth(const models::CouplingTerms& terms) {
 // accounted for.
 void Coupler::takeParticleState(const wire::Advanced& pa) {
   participants_.addComputeSeconds("particles", pa.wall_seconds());
+  if (pa.has_peer()) takePeerAccount(pa.peer());  // about the parcels at the interval's start
   const std::vector<std::int64_t> before = state_.ids;
   state_ = cosim::link::fromWire(pa.state());
   ledger_.delivered();  // the coating paid with this step is on the parcels
@@ -488,12 +505,46 @@ void Coupler::takeParticleState(const wire::Advanced& pa) {
   check(state_, "particles");
 }
 
+// The peer path's account of the interval, read while state_ still holds the parcels at its
+// start: the first step's checks (central: evaluateModels), the parcels the coating sink acted on
+// (the zone passes) and the precursor each took (takeFluidResults).
+void Coupler::takePeerAccount(const wire::PeerInterval& p) {
+  participants_.addComputeSeconds("particles_sample", p.sample_seconds());
+  participants_.addComputeSeconds("particles_models", p.models_seconds());
+  if (step_ == 1 && p.has_samples()) {
+    const link::ParticleData samples = cosim::link::fromWire(p.samples());
+    const link::ParticleData forcing = cosim::link::fromWire(p.forcing());
+    check(samples, "fluid");
+    check(forcing, "models (forcing)");
+    refuseOrWarn(checkFirstStep(sc_, state_, samples, forcing));
+  }
+  if (passes_) {
+    std::vector<char> in_zone(state_.size(), 0);
+    int j = 0;  // the zone's parcels come in the state's order
+    for (std::size_t i = 0; i < state_.size() && j < p.zone_ids_size(); ++i) {
+      if (state_.ids[i] == p.zone_ids(j)) {
+        in_zone[i] = 1;
+        ++j;
+      }
+    }
+    if (j != p.zone_ids_size())
+      throw RunFailure("particles",
+                       "reported parcel " + std::to_string(p.zone_ids(j)) +
+                           " in the coating zone, which is not among its parcels at the "
+                           "interval's start (or not in their order)",
+                       ErrorKind::peer);
+    passes_->update(stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_ - 1), state_.ids,
+                    in_zone);
+  }
+  peer_removed_ = cosim::link::fromWire(p.removed());
+}
+
 // The fluid's results of the interval: precursor each parcel removed (now owed as coating), the
-// precursor balance, the Courant number.
+// precursor balance, the Courant number. On the peer path the particles bring the removal.
 void Coupler::takeFluidResults(const wire::Advanced& fa) {
   participants_.addComputeSeconds("fluid", fa.wall_seconds());
   if (plan_.coating) {
-    const auto fr = cosim::link::fromWire(fa.state());
+    const auto fr = plan_.peer ? std::move(peer_removed_) : cosim::link::fromWire(fa.state());
     check(fr, "fluid");
     ledger_.owe(fr);
     if (passes_) passes_->credit(fr);

@@ -98,6 +98,7 @@ class Coupler {
                                        const std::vector<char>& lost);
   AdvanceReplies advanceBoth(const models::CouplingTerms& terms);
   void takeParticleState(const wire::Advanced& particles);
+  void takePeerAccount(const wire::PeerInterval& account);
   void takeFluidResults(const wire::Advanced& fluid);
   void creditAndRecord(const AdvanceReplies& replies, bool last);
   // The coating owed after the last interval, paid with an Advance of zero length.
@@ -163,6 +164,7 @@ class Coupler {
   std::uint64_t step_ = 0;
   double time_ = 0.0;
   link::ParticleData state_;
+  link::ParticleData peer_removed_;  // peer path: the precursor the parcels took this interval
   std::size_t initial_count_ = 0;
   double reported_dt_over_rayleigh_ = 0.0;  // the particle participant's, 0 if it reports none
   bool initial_row_written_ = false;

@@ -66,6 +66,38 @@ AdvanceReplies ParallelScheme::advance(Participants& participants,
   return r;
 }
 
+AdvanceReplies PeerScheme::advance(Participants& participants, const link::ParticleData& /*state*/,
+                                   const models::CouplingTerms& terms) {
+  std::map<std::string, Participants::MessageBuilder> build;
+  build["particles"] = [&] {
+    wire::Envelope e;
+    auto* a = e.mutable_advance();
+    a->set_dt(sc_.coupling.dt);
+    a->set_substeps(sc_.coupling.dem_steps);
+    if (terms.forcing.has(field::coating_increment))
+      cosim::link::toWire(terms.forcing, *a->mutable_terms(), {field::coating_increment});
+    a->set_report_terms(report_);
+    return e;
+  };
+  build["fluid"] = [&] {
+    wire::Envelope e;
+    e.mutable_advance()->set_dt(sc_.coupling.dt);
+    e.mutable_advance()->set_substeps(1);
+    return e;
+  };
+  auto replies = participants.advance(build);
+  report_ = false;
+  AdvanceReplies r;
+  r.particles = std::move(*replies.at("particles").mutable_advanced());
+  r.fluid = std::move(*replies.at("fluid").mutable_advanced());
+  if (!r.particles->has_peer())
+    throw RunFailure("particles",
+                     "answered an interval of coupling.data_path: peer without its account "
+                     "(Advanced.peer): the adapter does not run the peer path",
+                     ErrorKind::peer);
+  return r;
+}
+
 AdvanceReplies OverlappedScheme::advance(Participants& participants,
                                          const link::ParticleData& state,
                                          const models::CouplingTerms& terms) {
@@ -174,9 +206,11 @@ AdvanceReplies FrozenScheme::advance(Participants& participants,
   return r;
 }
 
-std::unique_ptr<CouplingScheme> makeCouplingScheme(
-    const Scenario& sc, const Plan& plan, const std::string& name,
-    std::shared_ptr<const TermsRecording> recording) {
+std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Plan& plan,
+                                                   const std::string& name,
+                                                   std::shared_ptr<const TermsRecording> recording,
+                                                   bool fresh) {
+  if (name == "parallel" && plan.peer) return std::make_unique<PeerScheme>(sc, plan, fresh);
   if (name == "parallel") return std::make_unique<ParallelScheme>(sc, plan);
   if (name == "overlapped") return std::make_unique<OverlappedScheme>(sc, plan);
   if (name == "frozen-fluid")

@@ -99,6 +99,26 @@ class OverlappedScheme final : public CouplingScheme {
   std::optional<link::ParticleData> resume_at_;
 };
 
+// The rank-to-rank data path (coupling.data_path: peer, cosim/link/peer_link.h): both solvers at
+// the same time as in ParallelScheme, but the particles sample the gas from the fluid and
+// evaluate the laws over their own parcels; each gets an Advance without per-parcel terms, the
+// particles' carrying only the coating owed (the terms' forcing: a coating_increment of the
+// parcels owed any). `report_first`: the first interval's particles also send back the gas
+// samples and the forcing, for the checks of a run's first step (not after a resume).
+class PeerScheme final : public CouplingScheme {
+ public:
+  PeerScheme(const Scenario& sc, const Plan& plan, bool report_first)
+      : sc_(sc), plan_(plan), report_(report_first) {}
+  std::string name() const override { return "parallel, data path peer"; }
+  AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
+                         const models::CouplingTerms& terms) override;
+
+ private:
+  const Scenario& sc_;
+  const Plan& plan_;
+  bool report_;
+};
+
 // One solver alone, for `cosim bench`; only the named solver advances, the other idles and
 // costs no CPU.
 //   particles alone: DEM steps under the forcing of the recorded coupled run (K, u_f, explicit
@@ -138,9 +158,10 @@ class FrozenScheme final : public CouplingScheme {
 
 // `name`: "parallel" or "overlapped" (coupling.scheme of a run), "frozen-fluid" (particles alone)
 // or "frozen-particles" (fluid alone); the last two are what `cosim bench` measures, replaying
-// `recording` when one is given.
+// `recording` when one is given. "parallel" with plan.peer is the PeerScheme (`fresh`: a new run,
+// not a resume).
 std::unique_ptr<CouplingScheme> makeCouplingScheme(
     const Scenario& sc, const Plan& plan, const std::string& name = "parallel",
-    std::shared_ptr<const TermsRecording> recording = nullptr);
+    std::shared_ptr<const TermsRecording> recording = nullptr, bool fresh = true);
 
 }  // namespace cosim::orchestrator

@@ -14,6 +14,7 @@
 #include "cosim/link/curve_keys.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/file_transfer.h"
+#include "cosim/link/models_wire.h"
 #include "cosim/link/session.h"
 #include "cosim/util/cpu_binding.h"
 #include "launchers.h"
@@ -665,8 +666,28 @@ void Participants::handshake() {
   }
 }
 
+namespace {
+// coupling.data_path: peer: the fluid binds `endpoint`; the particles connect to it and get the
+// laws, the constants and the fields of each peer message.
+wire::PeerLink peerLinkFor(const Scenario& sc, const Plan& plan, const std::string& who,
+                           const std::string& endpoint) {
+  wire::PeerLink link;
+  if (who == "fluid") {
+    link.set_bind(endpoint);
+    return link;
+  }
+  link.set_connect(endpoint);
+  link::toWire(sc.models.choices(), sc.constants, *link.mutable_models());
+  for (const auto& f : plan.sample_state) link.add_sample_state(f);
+  for (const auto& f : plan.fluid_advance_terms) link.add_exchange(f);
+  link.set_coating(plan.coating);
+  return link;
+}
+}  // namespace
+
 wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const ParticipantSpec& spec,
-                         const fs::path& workdir, const fs::path& restart_from) {
+                         const fs::path& workdir, const fs::path& restart_from,
+                         const std::string& peer_endpoint) {
   wire::Welcome wel;
   const bool fluid = spec.name == "fluid";
   for (const auto& f : fluid ? plan.fluid_send : plan.particles_send) wel.add_send(f);
@@ -682,6 +703,7 @@ wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const Participant
   for (const auto& [k, v] : sc.parameters) (*wel.mutable_parameters())[k] = v;
   wel.set_species(plan.coating);
   if (!restart_from.empty()) wel.set_restart_from(fs::absolute(restart_from).string());
+  if (plan.peer) *wel.mutable_peer() = peerLinkFor(sc, plan, spec.name, peer_endpoint);
   return wel;
 }
 
@@ -726,9 +748,13 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env,
              join({h.accepts().begin(), h.accepts().end()}) + ")");
     }
   }
+  // coupling.data_path: peer: the fluid binds the particles' link beside the run's socket
+  if (plan_.peer && peer_endpoint_.empty())
+    peer_endpoint_ = "ipc://" + (privateSocketFolder() / (run_id_ + "-peer.ipc")).string();
   wire::Envelope w;
-  *w.mutable_welcome() = welcomeFor(sc_, plan_, p.spec, p.workdir,
-                                    restart_from_.empty() ? fs::path() : restart_from_ / who);
+  *w.mutable_welcome() =
+      welcomeFor(sc_, plan_, p.spec, p.workdir,
+                 restart_from_.empty() ? fs::path() : restart_from_ / who, peer_endpoint_);
   if (h.own_folder()) {
     // No shared filesystem: the case files and the restart travel with the Welcome
     try {
@@ -781,6 +807,11 @@ void Participants::shutdown(bool clean) {
   peers_.clear();
   logRefusals();
   hub_.reset();  // the hub removes the ipc:// socket file it created
+  if (!peer_endpoint_.empty()) {
+    // the fluid's peer socket, which it leaves behind when it is killed
+    std::error_code ec;
+    fs::remove(peer_endpoint_.substr(std::string("ipc://").size()), ec);
+  }
   if (!token_file_.empty()) {
     std::error_code ec;
     fs::remove(token_file_, ec);

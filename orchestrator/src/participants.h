@@ -38,10 +38,13 @@ class RunFailure : public cosim::Error {
 using Replies = std::map<std::string, wire::Envelope>;
 
 // The Welcome a participant gets: its fields, options, folder, the run's clock and parameters;
-// `restart_from` (empty for a fresh start) is its part of a checkpoint.
+// `restart_from` (empty for a fresh start) is its part of a checkpoint. With plan.peer it holds
+// the peer link (`peer_endpoint`: where the fluid binds it; the particles also get the scene's
+// laws and the fields each peer message carries).
 wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const ParticipantSpec& spec,
                          const std::filesystem::path& workdir,
-                         const std::filesystem::path& restart_from);
+                         const std::filesystem::path& restart_from,
+                         const std::string& peer_endpoint = "ipc://peer");
 
 class Participants {
  public:
@@ -150,6 +153,7 @@ class Participants {
   std::uint64_t step_ = 0;
   double time_ = 0.0;
   std::filesystem::path restart_from_;
+  std::string peer_endpoint_;  // plan.peer: the fluid's socket for the particles (ipc://)
   bool stop_noted_ = false;
   bool answered_once_ = false;    // the first await of the run is over
   double next_wait_note_ = 15.0;  // seconds into the first await of the next "waiting" line

@@ -15,6 +15,9 @@ namespace cosim::orchestrator {
 struct Plan {
   bool fluid = false;    // start the fluid participant
   bool coating = false;  // mass transfer: species in the fluid, coating on particles
+  // coupling.data_path: peer with a fluid: the particles sample the gas and evaluate the laws
+  // themselves (peer_link.h); the orchestrator sends the schedule and the coating owed
+  bool peer = false;
   // particles participant
   std::vector<std::string> particles_send;     // state it reports
   std::vector<std::string> particles_receive;  // forcing it takes

@@ -13,6 +13,7 @@
 #include "cosim.pb.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/peer_terms.h"
 #include "cosim/models/coupling_terms.h"
 
 namespace cosim::models {
@@ -199,6 +200,61 @@ TEST(ModelsWire, TermsSplitOverTwoEvaluatorsAreTheTermsOfOne) {
   // the bed straddles the zone: the split is tested on parcels inside and outside it
   EXPECT_GT(in_zone, 0U);
   EXPECT_LT(in_zone, 3 * n);
+}
+
+// The particle participant's laws on the peer data path (cosim/link/peer_terms.h): a checkpoint
+// of their force history, read back into laws built anew, continues every parcel's wake as the
+// laws that never stopped do, bit for bit; a damaged history is refused with the file named.
+TEST(ModelsWire, PeerTermsResumeTheWakeHistoryBitForBit) {
+  wire::PeerLink link;
+  link::toWire(coatingScene(), constants(), *link.mutable_models());
+  link.set_coating(true);
+  link::ScenePeerTerms running;
+  running.configure(link);
+  const std::size_t n = 40;
+  const std::vector<char> none(n, 0);
+  std::string saved;
+  link::PeerTerms::Terms last;
+  for (int step = 0; step < 3; ++step) {
+    link::ParticleData state;
+    link::ParticleData samples;
+    bed(n, step, state, samples);
+    last = running.evaluate(state, samples, none, 1e-4);
+    if (step == 1) saved = running.saveState();
+  }
+  ASSERT_FALSE(saved.empty());
+  link::ScenePeerTerms resumed;
+  resumed.configure(link);
+  resumed.restoreState(saved);
+  EXPECT_EQ(resumed.saveState(), saved);
+  link::ParticleData state;
+  link::ParticleData samples;
+  bed(n, 2, state, samples);
+  const auto again = resumed.evaluate(state, samples, none, 1e-4);
+  ASSERT_EQ(again.forcing.names(), last.forcing.names());
+  for (const auto& name : last.forcing.names())
+    EXPECT_EQ(again.forcing.get(name), last.forcing.get(name)) << name;
+  EXPECT_EQ(resumed.saveState(), running.saveState());
+  // and the history matters: laws without it give other forces
+  link::ScenePeerTerms fresh;
+  fresh.configure(link);
+  const auto other = fresh.evaluate(state, samples, none, 1e-4);
+  bool differs = false;
+  for (const auto& name : last.forcing.names())
+    differs = differs || other.forcing.get(name) != last.forcing.get(name);
+  EXPECT_TRUE(differs) << "the wake history changed no force: the test would prove nothing";
+
+  for (const std::string damaged :
+       {saved.substr(0, saved.size() - 3), std::string("nonsense"), saved + "x"}) {
+    link::ScenePeerTerms other;
+    other.configure(link);
+    try {
+      other.restoreState(damaged);
+      FAIL() << "a damaged history accepted";
+    } catch (const link::ProtocolError& e) {
+      EXPECT_NE(std::string(e.what()).find(link::kPeerTermsFile), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(ModelsWire, RefusesWhatNoSceneGives) {

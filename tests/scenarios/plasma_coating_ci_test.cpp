@@ -917,3 +917,54 @@ TEST(PlasmaCoatingCi, CtrlCDuringACheckpointOrAReportStopsCleanly) {
   EXPECT_TRUE(report.at("zone_passes").at("ledgers_agree").get<bool>());
   fs::remove_all(base);
 }
+
+// coupling.data_path: peer with the real solvers: LIGGGHTS' participant samples the gas from
+// OpenFOAM's and evaluates the scene's laws over its parcels, OpenFOAM takes its exchange terms
+// from the particles; the orchestrator sends the schedule and the coating owed. Both solvers get
+// the same numbers as on the central path, so the run is the central one bit for bit: every
+// time-series column but the wall clock, every snapshot's fields, the zone passes, the totals.
+TEST(PlasmaCoatingCi, PeerDataPathGivesTheCentralRunBitForBit) {
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml";
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-plasma-peer-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  std::map<std::string, RunResult> runs;
+  for (const std::string path : {"central", "peer"}) {
+    RunOptions o;
+    o.quiet = true;
+    o.output = base / path;
+    runs[path] =
+        Coupler(loadScenario(scene, {"coupling.scheme=parallel", "coupling.data_path=" + path}), o)
+            .run();
+    ASSERT_EQ(runs[path].exit_code, 0) << runs[path].message;
+  }
+  ASSERT_GT(runs["peer"].totals.at("coating_credited_kg"), 0.0);
+  EXPECT_EQ(runs["peer"].totals, runs["central"].totals);
+  const auto ta = cosim::analysis::readTimeSeries(base / "central" / "timeseries.csv");
+  const auto tb = cosim::analysis::readTimeSeries(base / "peer" / "timeseries.csv");
+  ASSERT_EQ(ta.columns, tb.columns);
+  ASSERT_EQ(ta.rows(), tb.rows());
+  for (const auto& c : ta.columns) {
+    if (c == "wall_seconds") continue;
+    for (std::size_t r = 0; r < ta.rows(); ++r) {
+      const double x = ta.at(c)[r], y = tb.at(c)[r];
+      if (!(std::isnan(x) && std::isnan(y))) ASSERT_EQ(x, y) << c << " row " << r;
+    }
+  }
+  const cosim::analysis::ParticleFile pa(base / "central" / "particles.h5");
+  const cosim::analysis::ParticleFile pb(base / "peer" / "particles.h5");
+  ASSERT_EQ(pa.snapshots().size(), pb.snapshots().size());
+  for (std::size_t s = 0; s < pa.snapshots().size(); ++s) {
+    ASSERT_EQ(pa.ids(s), pb.ids(s));
+    for (const auto& name : pa.fields())
+      ASSERT_EQ(pa.read(s, name), pb.read(s, name)) << name << " at " << pa.snapshots()[s].time;
+  }
+  auto text = [](const fs::path& f) {
+    std::ifstream in(f);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(text(base / "central" / "zone_passes.csv"), text(base / "peer" / "zone_passes.csv"));
+  const auto summary = nlohmann::json::parse(std::ifstream(base / "peer" / "summary.json"));
+  EXPECT_GT(summary.at("timings_s").at("particles_models_compute").get<double>(), 0.0);
+  fs::remove_all(base);
+}

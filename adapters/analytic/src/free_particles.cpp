@@ -13,6 +13,7 @@
 #include "analytic_main.h"
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/peer_terms.h"
 #include "cosim/link/session.h"
 #include "cosim/util/adapter_options.h"
 #include "cosim/util/errors.h"
@@ -249,8 +250,10 @@ class FreeParticles final : public link::Solver {
 }  // namespace cosim::analytic
 
 int main(int argc, char** argv) {
+  cosim::link::ScenePeerTerms laws;  // coupling.data_path: peer
   return cosim::analytic::analyticMain<cosim::analytic::FreeParticles>(
       argc, argv, "cosim-free-particles",
       "non-colliding particles under gravity and the coupling forces (a cosim particle "
-      "participant, normally started by `cosim run`)");
+      "participant, normally started by `cosim run`)",
+      &laws);
 }

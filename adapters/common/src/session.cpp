@@ -355,6 +355,11 @@ wire::Envelope Session::nextCommand() {
   return std::move(*env);
 }
 
+void Session::checkOrchestrator() {
+  if (orchestrator_gone_) throw PeerError(gone_message_);
+  checkStillConnected();
+}
+
 void Session::checkStillConnected() {
   if (channel_->reconnections() != reconnections_at_welcome_)
     throw PeerError(reconnectedMessage(options_.endpoint));
@@ -431,13 +436,60 @@ ParticleData predictedAt(ParticleData at, double dt) {
   return at;
 }
 
-int runParticipant(Solver& solver, const ParticipantOptions& options) {
+namespace {
+
+// The laws' history of a particle participant on the peer path, beside its solver's part of a
+// checkpoint (nothing when the laws keep none).
+void savePeerTerms(ParticlePeer* peer, const fs::path& folder, wire::CheckpointWritten& written) {
+  if (peer == nullptr) return;
+  const std::string bytes = peer->terms().saveState();
+  if (bytes.empty()) return;
+  const fs::path file = folder / kPeerTermsFile;
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.close();
+  if (!out) throw Error(ErrorKind::resource, "could not write " + file.string());
+  written.add_files(file.string());
+}
+
+void restorePeerTerms(ParticlePeer* peer, const fs::path& folder) {
+  if (peer == nullptr) return;
+  std::ifstream in(folder / kPeerTermsFile, std::ios::binary);
+  if (!in.is_open()) return;  // the laws kept no history
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  peer->terms().restoreState(bytes.str());
+}
+
+}  // namespace
+
+int runParticipant(Solver& solver, const ParticipantOptions& options, PeerTerms* peer_terms) {
   Session session(options, solver.capabilities());
   session.exitProcessWhenOrphaned();
   try {
     const wire::Welcome welcome = session.handshake();
     solver.configure(welcome);
-    if (!welcome.restart_from().empty()) solver.restore(welcome.restart_from());
+    // coupling.data_path: peer: the per-parcel data goes to and from the other participant
+    std::unique_ptr<FluidPeer> fluid_peer;
+    std::unique_ptr<ParticlePeer> particle_peer;
+    if (welcome.has_peer()) {
+      const PeerIdentity who{session.runId(), options.token, options.name};
+      if (solver.capabilities().role == wire::FLUID) {
+        fluid_peer = std::make_unique<FluidPeer>(welcome.peer(), who, options.command_timeout_ms);
+      } else if (peer_terms == nullptr) {
+        throw InputError("adapter '" + solver.capabilities().adapter +
+                         "' cannot evaluate the coupling laws over its own parcels, which "
+                         "coupling.data_path: peer needs; use coupling.data_path: central");
+      } else {
+        particle_peer = std::make_unique<ParticlePeer>(welcome.peer(), welcome, *peer_terms, who,
+                                                       options.command_timeout_ms);
+      }
+    }
+    const PeerWatch watch = [&session] { session.checkOrchestrator(); };
+    if (!welcome.restart_from().empty()) {
+      solver.restore(welcome.restart_from());
+      restorePeerTerms(particle_peer.get(), welcome.restart_from());
+    }
     while (true) {
       wire::Envelope cmd = session.nextCommand();
       wire::Envelope out;
@@ -449,10 +501,20 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
           break;
         }
         case wire::Envelope::kAdvance: {
-          const ParticleData terms = cosim::link::fromWire(cmd.advance().terms());
           ParticleData state;
           auto* adv = out.mutable_advanced();
-          solver.advance(cmd.advance(), terms, *adv, state);
+          const bool interval = cmd.advance().dt() > 0;
+          if (fluid_peer && interval) {
+            fluid_peer->interval(solver, cmd.advance(), session.step(), session.time(), *adv,
+                                 watch);
+          } else if (particle_peer && interval) {
+            particle_peer->interval(solver, cmd.advance(), session.step(), session.time(), *adv,
+                                    state, watch);
+          } else {
+            solver.advance(cmd.advance(), cosim::link::fromWire(cmd.advance().terms()), *adv,
+                           state);
+          }
+          if (particle_peer) particle_peer->setState(state);
           cosim::link::toWire(state, *adv->mutable_state());
           if (cmd.advance().has_sample_ahead() && cmd.advance().dt() > 0) {
             // Scheme `overlapped`: the next interval's Sample, where the particles will be
@@ -469,12 +531,14 @@ int runParticipant(Solver& solver, const ParticipantOptions& options) {
           auto* w = out.mutable_checkpoint_written();
           if (options.workdir.empty()) {
             for (const auto& f : solver.checkpoint(cmd.checkpoint().path())) w->add_files(f);
+            savePeerTerms(particle_peer.get(), cmd.checkpoint().path(), *w);
           } else {
             // A folder of its own: written there, then sent back to the run's checkpoint
             const fs::path here = fs::absolute(options.workdir) / "checkpoint";
             fs::remove_all(here);
             fs::create_directories(here);
             for (const auto& f : solver.checkpoint(here.string())) w->add_files(f);
+            savePeerTerms(particle_peer.get(), here, *w);
             packFolder(here, *w->mutable_contents());
           }
           break;

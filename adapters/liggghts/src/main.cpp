@@ -10,6 +10,7 @@
 #include "cosim/liggghts/adapter_options.h"
 #include "cosim/liggghts/liggghts_solver.h"
 #include "cosim/liggghts/scene_check.h"
+#include "cosim/link/peer_terms.h"
 #include "cosim/link/session.h"
 #include "cosim/util/errors.h"
 
@@ -50,7 +51,8 @@ int main(int argc, char** argv) {
         throw cosim::InputError("unknown argument '" + rest.front() +
                                 "'; usage: cosim-liggghts --endpoint <addr> --name <participant> "
                                 "--run-id <id> (--help for all options)");
-      if (options) rc = cosim::link::runParticipant(solver, *options);
+      cosim::link::ScenePeerTerms laws;  // coupling.data_path: peer
+      if (options) rc = cosim::link::runParticipant(solver, *options, &laws);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "cosim-liggghts: %s\n", e.what());
       rc = 2;

@@ -23,6 +23,13 @@ const std::vector<KeySpec>& CouplingSection::keys() {
        "placement "
        "is off by the change of velocity over one interval, a dt^2/2; the mass balance is "
        "unchanged; docs/performance.md)"},
+      {"data_path", "central",
+       "central (every parcel's data passes through cosim: the gas sampled at the parcels, the "
+       "laws evaluated, the terms sent to both solvers) | peer (the particle participant samples "
+       "the gas from the fluid participant and evaluates the laws over its own parcels; cosim "
+       "sends both only the schedule and the coating owed and keeps the ledger, the checks and the "
+       "records; the same answers bit for bit; one machine (ipc://), coupling.scheme parallel; "
+       "docs/design.md section 5)"},
       {"cpus", "off",
        "off (the processes run wherever the system puts them) | auto (with 2 or more CPUs and both "
        "solvers started here as single processes (launch local, mpi 1): the particles and the "
@@ -63,6 +70,17 @@ CouplingSection parseCoupling(const YAML::Node& coupling, const Context& ctx) {
     if (c.scheme != "parallel" && c.scheme != "overlapped")
       ctx.fail(coupling["scheme"], "coupling.scheme",
                "expected 'parallel' or 'overlapped', got '" + c.scheme + "'");
+  }
+  if (coupling["data_path"]) {
+    c.data_path = ctx.text(coupling["data_path"], "coupling.data_path");
+    if (c.data_path != "central" && c.data_path != "peer")
+      ctx.fail(coupling["data_path"], "coupling.data_path",
+               "expected 'central' or 'peer', got '" + c.data_path + "'");
+    if (c.data_path == "peer" && c.scheme != "parallel")
+      ctx.fail(coupling["data_path"], "coupling.data_path",
+               "'peer' runs with coupling.scheme 'parallel' (the particles sample the gas "
+               "themselves at the start of each interval), not with '" +
+                   c.scheme + "'");
   }
   if (coupling["cpus"]) {
     c.cpus = ctx.text(coupling["cpus"], "coupling.cpus");

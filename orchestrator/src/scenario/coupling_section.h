@@ -18,6 +18,10 @@ struct CouplingSection {
   // parcels between the intervals, while both solvers wait; "overlapped" has the fluid sample it
   // at the end of its own step, where the parcels will be (position + velocity dt)
   std::string scheme = "parallel";
+  // Where the per-parcel data of an interval goes: "central" (through the orchestrator, which
+  // samples, evaluates the laws and sends the terms) or "peer" (between the participants; the
+  // particle participant evaluates the laws; docs/design.md section 5)
+  std::string data_path = "central";
   // Where the processes run: "off" (wherever the system puts them) or "auto" (with two or more
   // CPUs and both solvers local single processes: the particles and the orchestrator on the
   // first CPU, the fluid on the others; docs/performance.md, "Bound to CPUs")

@@ -16,6 +16,7 @@
 #include "cosim.pb.h"
 #include "cosim/link/curve_keys.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/link/peer_link.h"
 #include "cosim/link/transport.h"
 #include "cosim/util/errors.h"
 
@@ -90,7 +91,9 @@ class Solver {
     (void)lost_ids;
     throw InputError("this adapter does not sample fluid fields");
   }
-  // Advance one coupling interval (dt == 0: only report the current state).
+  // Advance one coupling interval (dt == 0: only report the current state). `terms` are
+  // cmd.terms() unpacked: an adapter may read either (on every data path the session keeps them
+  // the same).
   virtual void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced& out,
                        ParticleData& state) = 0;
   // Writes everything the solver needs to continue from this moment into the folder `path`
@@ -127,8 +130,11 @@ bool checkOptionsRequested(int argc, char** argv);
 ParticleData predictedAt(ParticleData at, double dt);
 
 // Runs the whole participant life: connect, Hello, Welcome, command loop, Goodbye.
-// Returns the process exit code (0 on a clean Shutdown).
-int runParticipant(Solver& solver, const ParticipantOptions& options);
+// Returns the process exit code (0 on a clean Shutdown). `peer_terms`: a particle adapter's
+// coupling laws for coupling.data_path: peer (peer_link.h); without them such a scene is refused
+// with the reason. A fluid adapter needs nothing for it.
+int runParticipant(Solver& solver, const ParticipantOptions& options,
+                   PeerTerms* peer_terms = nullptr);
 
 // Lower-level pieces, for tests and custom loops.
 class Session {
@@ -153,6 +159,9 @@ class Session {
   // if the connection was lost and made again.
   void reply(wire::Envelope& env);
   void sendError(const std::string& message, const std::string& where = "");
+  // Throws PeerError when the orchestrator is gone (as nextCommand would): for waits on
+  // something else than the orchestrator (the peer link).
+  void checkOrchestrator();
   const std::string& runId() const { return run_id_; }
   std::uint64_t step() const { return step_; }
   double time() const { return time_; }

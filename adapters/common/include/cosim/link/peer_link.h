@@ -1,0 +1,112 @@
+// The rank-to-rank data path with one rank a side (coupling.data_path: peer; docs/design.md
+// section 5): the per-parcel data of an interval goes between the two participants directly.
+// The orchestrator sends each an Advance without per-parcel terms; then
+//   particles -> fluid   Sample     the parcels' state (Welcome.peer.sample_state)
+//   fluid -> particles   Samples    the gas at the parcels
+//   particles            the scene's laws over their parcels (PeerTerms), the forcing kept
+//   particles -> fluid   Advance    the exchange terms; both solvers advance
+//   fluid -> particles   Advanced   the fluid's per-parcel results (precursor_removed)
+// and each answers the orchestrator with its report (the particles with their state and the
+// parcels the coating touched, wire::PeerInterval). The session runs this around the Solver
+// calls every adapter implements, so any adapter built on cosim_link has the path. C++17.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cosim.pb.h"
+#include "cosim/link/particle_data.h"
+#include "cosim/link/transport.h"
+
+namespace cosim::link {
+
+class Solver;
+
+// The particle side's coupling laws over its own parcels: what the orchestrator's step 3 does
+// over every parcel on the central path (cosim::models::evaluateTerms). The protocol library
+// knows no model: an adapter that can take part in the peer path passes one of these to
+// runParticipant (cosim/link/peer_terms.h in cosim_models_wire has the one built from the scene's
+// laws).
+class PeerTerms {
+ public:
+  virtual ~PeerTerms() = default;
+  // The scene's laws and constants (Welcome.peer.models); ProtocolError names a bad field.
+  virtual void configure(const wire::PeerLink& link) = 0;
+  struct Terms {
+    ParticleData forcing;      // -> this participant's solver
+    ParticleData exchange;     // -> the fluid
+    std::vector<char> in_zone;  // with a coating zone: the parcels the sink acts on
+  };
+  // `state` and `samples` hold the same ids in the same order; `lost`: in no cell.
+  virtual Terms evaluate(const ParticleData& state, const ParticleData& samples,
+                         const std::vector<char>& lost, double dt) = 0;
+  // The laws' own history between intervals (a transient wake), for checkpoints: empty when
+  // there is none. restoreState gets what saveState gave, bit for bit.
+  virtual std::string saveState() const { return {}; }
+  virtual void restoreState(const std::string& bytes) { (void)bytes; }
+};
+
+// Who is talking: what every peer message carries and is checked for (Header).
+struct PeerIdentity {
+  std::string run_id;
+  std::string token;
+  std::string name;  // this participant's
+};
+
+// Called while waiting for the peer: throws (PeerError) when the orchestrator is gone.
+using PeerWatch = std::function<void()>;
+
+// The fluid's side: binds Welcome.peer.bind and serves one interval at a time.
+class FluidPeer {
+ public:
+  FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_ms);
+  // The orchestrator's Advance `cmd` (dt > 0): answers the particles' Sample, advances the
+  // solver with the exchange terms of their Advance and sends them its per-parcel results.
+  // `out` gets the solver's report without per-parcel data.
+  void interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
+                wire::Advanced& out, const PeerWatch& watch);
+
+ private:
+  wire::Envelope await(wire::Envelope::BodyCase expected, std::uint64_t step,
+                       const PeerWatch& watch);
+  void send(wire::Envelope& env, std::uint64_t step, double time);
+  PeerIdentity who_;
+  int timeout_ms_;
+  std::unique_ptr<Hub> hub_;
+  std::string route_;  // the particles' routing id, from their first valid message
+};
+
+// The particles' side: connects to the fluid, evaluates the laws, keeps the last state.
+class ParticlePeer {
+ public:
+  ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welcome, PeerTerms& terms,
+               PeerIdentity who, int timeout_ms);
+  // The state the particles last reported (any Advance, dt = 0 included): where the next
+  // interval samples the gas, as the orchestrator would from the same reply.
+  void setState(const ParticleData& state) { state_ = state; }
+  // The orchestrator's Advance `cmd` (dt > 0; its terms: the coating owed, by id, only for the
+  // parcels owed any): samples the gas, evaluates the laws, sends the fluid its terms, advances
+  // the solver and waits for the fluid's results. `out` and `state` as Solver::advance gives
+  // them, with out.peer filled.
+  void interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
+                wire::Advanced& out, ParticleData& state, const PeerWatch& watch);
+  PeerTerms& terms() { return terms_; }
+
+ private:
+  wire::Envelope request(wire::Envelope env, wire::Envelope::BodyCase expected,
+                         std::uint64_t step, double time, const PeerWatch& watch);
+  wire::PeerLink link_;
+  std::vector<std::string> forcing_fields_;  // Welcome.receive
+  PeerTerms& terms_;
+  PeerIdentity who_;
+  int timeout_ms_;
+  std::unique_ptr<Channel> channel_;
+  ParticleData state_;
+};
+
+// The name of the file a particle participant keeps its laws' history in, in its checkpoint part.
+inline constexpr const char* kPeerTermsFile = "peer_terms.bin";
+
+}  // namespace cosim::link

@@ -1,0 +1,267 @@
+#include "cosim/link/peer_link.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "cosim/link/errors.h"
+#include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
+#include "cosim/link/session.h"
+
+namespace cosim::link {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr Millis kSlice{200};  // how often a wait for the peer looks at the orchestrator
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+void fillHeader(wire::Header* h, const PeerIdentity& who, std::uint64_t step, double time) {
+  h->set_protocol_version(wire::PROTOCOL_VERSION);
+  h->set_run_id(who.run_id);
+  h->set_participant(who.name);
+  h->set_step(step);
+  h->set_time(time);
+  h->set_token(who.token);
+}
+
+// A message of this run (version, run id, token): anything else is not from the peer and is
+// dropped unread, as the orchestrator drops it.
+bool fromThisRun(const wire::Envelope& e, const PeerIdentity& who) {
+  const auto& h = e.header();
+  return h.protocol_version() == wire::PROTOCOL_VERSION && h.run_id() == who.run_id &&
+         h.token() == who.token;
+}
+
+// The peer's message for this step, of the expected kind; ProtocolError otherwise.
+void checkPeerMessage(const wire::Envelope& e, wire::Envelope::BodyCase expected,
+                      std::uint64_t step, const std::string& from) {
+  if (e.has_error())
+    throw PeerError("the " + from + " participant stopped: " + e.error().message());
+  if (e.header().step() != step)
+    throw ProtocolError("the " + from + " participant sent a message for step " +
+                        std::to_string(e.header().step()) + " during step " +
+                        std::to_string(step) + " (coupling.data_path: peer)");
+  if (e.body_case() != expected)
+    throw ProtocolError("the " + from + " participant sent an unexpected message during step " +
+                        std::to_string(step) + " (coupling.data_path: peer)");
+}
+
+std::string silence(const std::string& from, int timeout_ms) {
+  return "the " + from + " participant sent nothing over the peer link for " +
+         std::to_string(timeout_ms / 1000) + " s; giving up";
+}
+
+// The first parcel and field of `d` that is not a finite number, as an error, or "".
+std::string firstNonFinite(const ParticleData& d) {
+  for (const auto& [name, v] : d.fields()) {
+    const unsigned c = field::components(name);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (!std::isfinite(v[i]))
+        return "field '" + name + "' of parcel " + std::to_string(d.ids[i / c]) + " is " +
+               std::to_string(v[i]);
+  }
+  return {};
+}
+
+}  // namespace
+
+// ---- the fluid's side ---------------------------------------------------------------------------
+
+FluidPeer::FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_ms)
+    : who_(std::move(who)), timeout_ms_(timeout_ms) {
+  if (link.bind().rfind("ipc://", 0) != 0)
+    throw ProtocolError("Welcome.peer.bind '" + link.bind() +
+                        "': the peer data path binds an ipc:// address (one machine)");
+  hub_ = std::make_unique<Hub>(link.bind());
+}
+
+wire::Envelope FluidPeer::await(wire::Envelope::BodyCase expected, std::uint64_t step,
+                                const PeerWatch& watch) {
+  const auto deadline = Clock::now() + Millis(timeout_ms_);
+  while (Clock::now() < deadline) {
+    auto in = hub_->receive(kSlice);
+    if (!in) {
+      watch();
+      continue;
+    }
+    if (!in->envelope || !fromThisRun(*in->envelope, who_)) continue;
+    if (!route_.empty() && in->peer != route_) continue;  // one particle rank: the first one
+    route_ = in->peer;
+    checkPeerMessage(*in->envelope, expected, step, "particles");
+    return std::move(*in->envelope);
+  }
+  throw TimeoutError(silence("particles", timeout_ms_));
+}
+
+void FluidPeer::send(wire::Envelope& env, std::uint64_t step, double time) {
+  fillHeader(env.mutable_header(), who_, step, time);
+  hub_->send(route_, env);
+}
+
+void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
+                         double time, wire::Advanced& out, const PeerWatch& watch) {
+  // The gas at the parcels
+  const wire::Envelope sample = await(wire::Envelope::kSample, step, watch);
+  wire::Envelope samples;
+  {
+    const auto t0 = Clock::now();
+    const ParticleData at = fromWire(sample.sample().particles());
+    ParticleData s;
+    s.ids = at.ids;
+    std::vector<std::int64_t> lost;
+    solver.sample(at, s, lost);
+    toWire(s, *samples.mutable_samples()->mutable_at_particles());
+    samples.mutable_samples()->mutable_lost_ids()->Assign(lost.begin(), lost.end());
+    samples.mutable_samples()->set_wall_seconds(secondsSince(t0));
+  }
+  send(samples, step, time);
+  // The exchange terms, then the step
+  const wire::Envelope terms = await(wire::Envelope::kAdvance, step, watch);
+  wire::Advance with_terms = cmd;
+  *with_terms.mutable_terms() = terms.advance().terms();
+  ParticleData results;
+  solver.advance(with_terms, fromWire(terms.advance().terms()), out, results);
+  wire::Envelope advanced;
+  toWire(results, *advanced.mutable_advanced()->mutable_state());
+  send(advanced, step, time);
+}
+
+// ---- the particles' side ------------------------------------------------------------------------
+
+ParticlePeer::ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welcome,
+                           PeerTerms& terms, PeerIdentity who, int timeout_ms)
+    : link_(link),
+      forcing_fields_(welcome.receive().begin(), welcome.receive().end()),
+      terms_(terms),
+      who_(std::move(who)),
+      timeout_ms_(timeout_ms) {
+  if (link.connect().rfind("ipc://", 0) != 0)
+    throw ProtocolError("Welcome.peer.connect '" + link.connect() +
+                        "': the peer data path connects to an ipc:// address (one machine)");
+  terms_.configure(link_);
+  channel_ = std::make_unique<Channel>(link.connect());
+}
+
+wire::Envelope ParticlePeer::request(wire::Envelope env, wire::Envelope::BodyCase expected,
+                                     std::uint64_t step, double time, const PeerWatch& watch) {
+  if (env.body_case() != wire::Envelope::BODY_NOT_SET) {
+    fillHeader(env.mutable_header(), who_, step, time);
+    channel_->send(env);
+  }
+  if (expected == wire::Envelope::BODY_NOT_SET) return {};
+  const auto deadline = Clock::now() + Millis(timeout_ms_);
+  while (Clock::now() < deadline) {
+    auto in = channel_->receive(kSlice);
+    if (!in) {
+      watch();
+      continue;
+    }
+    if (!fromThisRun(*in, who_)) continue;
+    checkPeerMessage(*in, expected, step, "fluid");
+    return std::move(*in);
+  }
+  throw TimeoutError(silence("fluid", timeout_ms_));
+}
+
+void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
+                            double time, wire::Advanced& out, ParticleData& state,
+                            const PeerWatch& watch) {
+  auto* account = out.mutable_peer();
+  // The gas at the parcels where the last reply left them
+  auto t0 = Clock::now();
+  wire::Envelope sample;
+  std::vector<std::string> sample_fields(link_.sample_state().begin(), link_.sample_state().end());
+  toWire(state_, *sample.mutable_sample()->mutable_particles(), sample_fields);
+  const wire::Envelope answer =
+      request(std::move(sample), wire::Envelope::kSamples, step, time, watch);
+  const ParticleData samples = fromWire(answer.samples().at_particles());
+  if (samples.ids != state_.ids)
+    throw ProtocolError("the fluid returned samples for other parcels than it was sent (ids "
+                        "differ; coupling.data_path: peer)");
+  if (const auto bad = firstNonFinite(samples); !bad.empty())
+    throw ProtocolError("the fluid's samples: " + bad);
+  std::vector<char> lost(state_.size(), 0);
+  if (answer.samples().lost_ids_size() > 0) {
+    const auto idx = state_.index();
+    for (auto id : answer.samples().lost_ids())
+      if (auto it = idx.find(id); it != idx.end()) lost[it->second] = 1;
+    account->mutable_lost_ids()->Assign(answer.samples().lost_ids().begin(),
+                                        answer.samples().lost_ids().end());
+  }
+  account->set_sample_seconds(secondsSince(t0));
+
+  // The laws; the coating the orchestrator says is owed joins the forcing
+  t0 = Clock::now();
+  PeerTerms::Terms terms = terms_.evaluate(state_, samples, lost, cmd.dt());
+  if (link_.coating()) {
+    auto& inc = terms.forcing.field(field::coating_increment);
+    const ParticleData owed = fromWire(cmd.terms());
+    if (owed.has(field::coating_increment)) {
+      const auto idx = state_.index();
+      const auto& m = owed.get(field::coating_increment);
+      for (std::size_t i = 0; i < owed.size(); ++i) {
+        const auto it = idx.find(owed.ids[i]);
+        if (it == idx.end())
+          throw ProtocolError("the orchestrator pays coating to parcel " +
+                              std::to_string(owed.ids[i]) + ", which these particles do not hold");
+        inc[it->second] = m[i];
+      }
+    }
+  }
+  if (const auto bad = firstNonFinite(terms.forcing); !bad.empty())
+    throw ProtocolError("the coupling laws' forcing: " + bad);
+  account->set_models_seconds(secondsSince(t0));
+
+  // The fluid's terms, then both advance
+  wire::Envelope fluid_terms;
+  auto* fa = fluid_terms.mutable_advance();
+  fa->set_dt(cmd.dt());
+  fa->set_substeps(1);
+  toWire(terms.exchange, *fa->mutable_terms(),
+         std::vector<std::string>(link_.exchange().begin(), link_.exchange().end()));
+  request(std::move(fluid_terms), wire::Envelope::BODY_NOT_SET, step, time, watch);
+  // The solver gets the forcing as on the central path: in the Advance (which an adapter with
+  // several ranks broadcasts as it is) and as its terms
+  wire::Advance with_forcing = cmd;
+  with_forcing.clear_report_terms();
+  toWire(terms.forcing, *with_forcing.mutable_terms(), forcing_fields_);
+  const ParticleData forcing = terms.forcing.select(forcing_fields_);
+  solver.advance(with_forcing, forcing, out, state);
+
+  // What the fluid's step took from the gas, parcel by parcel
+  t0 = Clock::now();
+  const wire::Envelope results =
+      request(wire::Envelope(), wire::Envelope::kAdvanced, step, time, watch);
+  account->set_fluid_seconds(secondsSince(t0));
+  const ParticleData fr = fromWire(results.advanced().state());
+  if (fr.has(field::precursor_removed)) {
+    if (fr.ids != state_.ids)
+      throw ProtocolError("the fluid returned results for other parcels than it was sent (ids "
+                          "differ; coupling.data_path: peer)");
+    const auto& rm = fr.get(field::precursor_removed);
+    ParticleData taken;
+    std::vector<double> values;
+    for (std::size_t i = 0; i < fr.size(); ++i) {
+      if (rm[i] == 0.0) continue;
+      if (!std::isfinite(rm[i]))
+        throw ProtocolError("the fluid's precursor_removed of parcel " + std::to_string(fr.ids[i]) +
+                            " is " + std::to_string(rm[i]));
+      taken.ids.push_back(fr.ids[i]);
+      values.push_back(rm[i]);
+    }
+    taken.put(field::precursor_removed, std::move(values));
+    toWire(taken, *account->mutable_removed());
+  }
+  for (std::size_t i = 0; i < terms.in_zone.size(); ++i)
+    if (terms.in_zone[i] != 0) account->add_zone_ids(state_.ids[i]);
+  if (cmd.report_terms()) {
+    toWire(samples, *account->mutable_samples());
+    toWire(terms.forcing, *account->mutable_forcing());
+  }
+}
+
+}  // namespace cosim::link
