@@ -923,19 +923,22 @@ TEST(PlasmaCoatingCi, CtrlCDuringACheckpointOrAReportStopsCleanly) {
 // from the particles; the orchestrator sends the schedule and the coating owed. Both solvers get
 // the same numbers as on the central path, so the run is the central one bit for bit: every
 // time-series column but the wall clock, every snapshot's fields, the zone passes, the totals.
-TEST(PlasmaCoatingCi, PeerDataPathGivesTheCentralRunBitForBit) {
+// `sets`: the layout (ranks) both runs share.
+static void expectPeerPathIsTheCentralRun(const std::vector<std::string>& sets,
+                                          const std::string& tag) {
   const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml";
   const fs::path base =
-      fs::temp_directory_path() / ("cosim-plasma-peer-" + std::to_string(getpid()));
+      fs::temp_directory_path() / ("cosim-plasma-peer-" + tag + std::to_string(getpid()));
   fs::remove_all(base);
   std::map<std::string, RunResult> runs;
   for (const std::string path : {"central", "peer"}) {
     RunOptions o;
     o.quiet = true;
     o.output = base / path;
-    runs[path] =
-        Coupler(loadScenario(scene, {"coupling.scheme=parallel", "coupling.data_path=" + path}), o)
-            .run();
+    std::vector<std::string> these = sets;
+    these.push_back("coupling.scheme=parallel");
+    these.push_back("coupling.data_path=" + path);
+    runs[path] = Coupler(loadScenario(scene, these), o).run();
     ASSERT_EQ(runs[path].exit_code, 0) << runs[path].message;
   }
   ASSERT_GT(runs["peer"].totals.at("coating_credited_kg"), 0.0);
@@ -967,4 +970,14 @@ TEST(PlasmaCoatingCi, PeerDataPathGivesTheCentralRunBitForBit) {
   const auto summary = nlohmann::json::parse(std::ifstream(base / "peer" / "summary.json"));
   EXPECT_GT(summary.at("timings_s").at("particles_models_compute").get<double>(), 0.0);
   fs::remove_all(base);
+}
+
+TEST(PlasmaCoatingCi, PeerDataPathGivesTheCentralRunBitForBit) {
+  expectPeerPathIsTheCentralRun({}, "1-");
+}
+
+// Two OpenFOAM ranks and two LIGGGHTS ranks, each solver's first rank talking for its ranks.
+TEST(PlasmaCoatingCi, PeerDataPathOnTwoPlusTwoRanksGivesTheCentralRunBitForBit) {
+  expectPeerPathIsTheCentralRun(
+      {"participants.fluid.mpi=2", "dem_ranks=2", "coupling.end_time=0.02"}, "2-");
 }

@@ -43,8 +43,8 @@ void checkPeerMessage(const wire::Envelope& e, wire::Envelope::BodyCase expected
     throw PeerError("the " + from + " participant stopped: " + e.error().message());
   if (e.header().step() != step)
     throw ProtocolError("the " + from + " participant sent a message for step " +
-                        std::to_string(e.header().step()) + " during step " +
-                        std::to_string(step) + " (coupling.data_path: peer)");
+                        std::to_string(e.header().step()) + " during step " + std::to_string(step) +
+                        " (coupling.data_path: peer)");
   if (e.body_case() != expected)
     throw ProtocolError("the " + from + " participant sent an unexpected message during step " +
                         std::to_string(step) + " (coupling.data_path: peer)");
@@ -102,8 +102,8 @@ void FluidPeer::send(wire::Envelope& env, std::uint64_t step, double time) {
   hub_->send(route_, env);
 }
 
-void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
-                         double time, wire::Advanced& out, const PeerWatch& watch) {
+void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
+                         wire::Advanced& out, const PeerWatch& watch) {
   // The gas at the parcels
   const wire::Envelope sample = await(wire::Envelope::kSample, step, watch);
   wire::Envelope samples;
@@ -180,8 +180,9 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
       request(std::move(sample), wire::Envelope::kSamples, step, time, watch);
   const ParticleData samples = fromWire(answer.samples().at_particles());
   if (samples.ids != state_.ids)
-    throw ProtocolError("the fluid returned samples for other parcels than it was sent (ids "
-                        "differ; coupling.data_path: peer)");
+    throw ProtocolError(
+        "the fluid returned samples for other parcels than it was sent (ids "
+        "differ; coupling.data_path: peer)");
   if (const auto bad = firstNonFinite(samples); !bad.empty())
     throw ProtocolError("the fluid's samples: " + bad);
   std::vector<char> lost(state_.size(), 0);
@@ -240,8 +241,9 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   const ParticleData fr = fromWire(results.advanced().state());
   if (fr.has(field::precursor_removed)) {
     if (fr.ids != state_.ids)
-      throw ProtocolError("the fluid returned results for other parcels than it was sent (ids "
-                          "differ; coupling.data_path: peer)");
+      throw ProtocolError(
+          "the fluid returned results for other parcels than it was sent (ids "
+          "differ; coupling.data_path: peer)");
     const auto& rm = fr.get(field::precursor_removed);
     ParticleData taken;
     std::vector<double> values;

@@ -35,7 +35,8 @@ T get(const std::string& in, std::size_t& at) {
 
 void ScenePeerTerms::configure(const wire::PeerLink& link) {
   ReceivedModels received = fromWire(link.models());
-  for (const auto& plugin : received.choices.plugins) models::Registry::instance().loadPlugin(plugin);
+  for (const auto& plugin : received.choices.plugins)
+    models::Registry::instance().loadPlugin(plugin);
   models_ = models::makeSceneModels(received.choices);
   constants_ = received.constants;
   coating_ = link.coating();
@@ -66,7 +67,8 @@ std::string ScenePeerTerms::saveState() const {
 
 void ScenePeerTerms::restoreState(const std::string& bytes) {
   if (!models_.wake) return;
-  if (bytes.size() < sizeof(kWakeTag) || bytes.compare(0, sizeof(kWakeTag), kWakeTag, sizeof(kWakeTag)) != 0)
+  if (bytes.size() < sizeof(kWakeTag) ||
+      bytes.compare(0, sizeof(kWakeTag), kWakeTag, sizeof(kWakeTag)) != 0)
     throw ProtocolError(std::string(kPeerTermsFile) +
                         " is not a wake history written by this cosim: start a new run");
   std::size_t at = sizeof(kWakeTag);

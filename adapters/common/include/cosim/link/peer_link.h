@@ -35,8 +35,8 @@ class PeerTerms {
   // The scene's laws and constants (Welcome.peer.models); ProtocolError names a bad field.
   virtual void configure(const wire::PeerLink& link) = 0;
   struct Terms {
-    ParticleData forcing;      // -> this participant's solver
-    ParticleData exchange;     // -> the fluid
+    ParticleData forcing;       // -> this participant's solver
+    ParticleData exchange;      // -> the fluid
     std::vector<char> in_zone;  // with a coating zone: the parcels the sink acts on
   };
   // `state` and `samples` hold the same ids in the same order; `lost`: in no cell.
@@ -95,8 +95,8 @@ class ParticlePeer {
   PeerTerms& terms() { return terms_; }
 
  private:
-  wire::Envelope request(wire::Envelope env, wire::Envelope::BodyCase expected,
-                         std::uint64_t step, double time, const PeerWatch& watch);
+  wire::Envelope request(wire::Envelope env, wire::Envelope::BodyCase expected, std::uint64_t step,
+                         double time, const PeerWatch& watch);
   wire::PeerLink link_;
   std::vector<std::string> forcing_fields_;  // Welcome.receive
   PeerTerms& terms_;

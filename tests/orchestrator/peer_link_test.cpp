@@ -1,0 +1,229 @@
+// The peer link of coupling.data_path: peer (cosim/link/peer_link.h) between two fake solvers in
+// one process: one interval carries the samples, the terms and the removal the right way, and the
+// link refuses what a stranger or a confused peer sends, naming it, and never waits forever.
+#include "cosim/link/peer_link.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <future>
+#include <string>
+#include <vector>
+
+#include "cosim/link/errors.h"
+#include "cosim/link/fields.h"
+#include "cosim/link/particle_wire.h"
+#include "cosim/link/session.h"
+
+using namespace cosim;
+using namespace cosim::link;
+
+namespace {
+
+std::string endpoint(const std::string& tag) {
+  return "ipc:///tmp/cosim-peer-test-" + tag + "-" + std::to_string(getpid()) + ".ipc";
+}
+
+// A gas of velocity (0, 0, u) everywhere; each parcel removes `k` of precursor per step.
+class FakeFluid : public Solver {
+ public:
+  Capabilities capabilities() const override { return {wire::FLUID, "fake-fluid", {}, {}}; }
+  void configure(const wire::Welcome&) override {}
+  void sample(const ParticleData& at, ParticleData& out, std::vector<std::int64_t>& lost) override {
+    auto& u = out.field(field::fluid_velocity);
+    for (std::size_t i = 0; i < at.size(); ++i) u[3 * i + 2] = 0.5;
+    lost.push_back(at.ids.back());  // the last parcel is in no cell
+  }
+  void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced& out,
+               ParticleData& state) override {
+    got_terms = terms;
+    got_cmd_terms = fromWire(cmd.terms());
+    out.mutable_fluid()->set_pressure_drop(42.0);
+    state.ids = terms.ids;
+    auto& rm = state.field(field::precursor_removed);
+    for (std::size_t i = 0; i < terms.size(); ++i) rm[i] = i == 0 ? 1e-12 : 0.0;
+  }
+  ParticleData got_terms, got_cmd_terms;
+};
+
+class FakeParticles : public Solver {
+ public:
+  Capabilities capabilities() const override { return {wire::PARTICLES, "fake-particles", {}, {}}; }
+  void configure(const wire::Welcome&) override {}
+  void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced&,
+               ParticleData& state) override {
+    got_terms = terms;
+    got_cmd_terms = fromWire(cmd.terms());
+    state = start;
+  }
+  ParticleData start, got_terms, got_cmd_terms;
+};
+
+// K = 1 for every parcel, the fluid velocity as forcing, the drag as the fluid's exchange term;
+// the first parcel is in the zone.
+class FakeLaws : public PeerTerms {
+ public:
+  void configure(const wire::PeerLink&) override {}
+  Terms evaluate(const ParticleData& state, const ParticleData& samples,
+                 const std::vector<char>& lost, double) override {
+    Terms t;
+    t.forcing.ids = state.ids;
+    t.exchange.ids = state.ids;
+    t.forcing.field(field::fluid_velocity) = samples.get(field::fluid_velocity);
+    auto& k = t.forcing.field(field::drag_coefficient);
+    for (std::size_t i = 0; i < state.size(); ++i) k[i] = lost[i] != 0 ? 0.0 : 1.0;
+    t.exchange.field(field::drag_coefficient) = k;
+    t.in_zone.assign(state.size(), 0);
+    t.in_zone[0] = 1;
+    return t;
+  }
+};
+
+ParticleData parcels() {
+  ParticleData p;
+  p.ids = {7, 3, 9};
+  p.field(field::position) = {0, 0, 0, 1, 1, 1, 2, 2, 2};
+  p.field(field::velocity).assign(9, 0.0);
+  p.field(field::radius) = {1e-3, 1e-3, 1e-3};
+  return p;
+}
+
+struct Link {
+  wire::PeerLink fluid_side, particle_side;
+  wire::Welcome particle_welcome;
+  PeerIdentity fluid{"run1", "secret", "fluid"}, particles{"run1", "secret", "particles"};
+  explicit Link(const std::string& tag) {
+    fluid_side.set_bind(endpoint(tag));
+    particle_side.set_connect(endpoint(tag));
+    for (const char* f : {field::position, field::radius}) particle_side.add_sample_state(f);
+    particle_side.add_exchange(field::drag_coefficient);
+    particle_side.set_coating(true);
+    for (const char* f : {field::drag_coefficient, field::fluid_velocity, field::coating_increment})
+      particle_welcome.add_receive(f);
+  }
+};
+
+const PeerWatch kNobodyGone = [] {};
+
+wire::Advance interval(double dt) {
+  wire::Advance a;
+  a.set_dt(dt);
+  a.set_substeps(1);
+  return a;
+}
+
+}  // namespace
+
+TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
+  Link l("one");
+  FluidPeer fluid_peer(l.fluid_side, l.fluid, 10000);
+  FakeLaws laws;
+  ParticlePeer particle_peer(l.particle_side, l.particle_welcome, laws, l.particles, 10000);
+  FakeFluid fluid;
+  FakeParticles particles;
+  particles.start = parcels();
+  particle_peer.setState(parcels());
+
+  auto fluid_done = std::async(std::launch::async, [&] {
+    wire::Advanced out;
+    fluid_peer.interval(fluid, interval(1e-4), 1, 0.0, out, kNobodyGone);
+    return out;
+  });
+  // the orchestrator pays parcel 3 its coating owed
+  wire::Advance cmd = interval(1e-4);
+  ParticleData owed;
+  owed.ids = {3};
+  owed.field(field::coating_increment) = {2.5e-13};
+  toWire(owed, *cmd.mutable_terms());
+  cmd.set_report_terms(true);
+  wire::Advanced out;
+  ParticleData state;
+  particle_peer.interval(particles, cmd, 1, 0.0, out, state, kNobodyGone);
+  const wire::Advanced fluid_out = fluid_done.get();
+
+  // the particles' solver: the laws' forcing with the coating owed, in its terms and its Advance
+  const auto& f = particles.got_terms;
+  EXPECT_EQ(f.ids, (std::vector<std::int64_t>{7, 3, 9}));
+  EXPECT_EQ(f.get(field::drag_coefficient), (std::vector<double>{1, 1, 0}));  // 9 in no cell
+  EXPECT_EQ(f.get(field::coating_increment), (std::vector<double>{0, 2.5e-13, 0}));
+  EXPECT_EQ(f.get(field::fluid_velocity)[5], 0.5);
+  EXPECT_EQ(particles.got_cmd_terms.get(field::coating_increment),
+            f.get(field::coating_increment));
+  EXPECT_FALSE(particles.got_cmd_terms.has(field::position));
+  // the fluid's solver: the exchange terms, nothing else
+  EXPECT_EQ(fluid.got_terms.names(), std::vector<std::string>{field::drag_coefficient});
+  EXPECT_EQ(fluid.got_cmd_terms.get(field::drag_coefficient), (std::vector<double>{1, 1, 0}));
+  EXPECT_EQ(fluid_out.fluid().pressure_drop(), 42.0);
+  EXPECT_EQ(fluid_out.state().ids_size(), 0) << "per-parcel data went to the orchestrator";
+  // the particles' account: the zone, the removal of the parcels that took any, the lost one
+  const auto& acc = out.peer();
+  EXPECT_EQ(std::vector<std::int64_t>(acc.zone_ids().begin(), acc.zone_ids().end()),
+            std::vector<std::int64_t>{7});
+  const ParticleData removed = fromWire(acc.removed());
+  EXPECT_EQ(removed.ids, std::vector<std::int64_t>{7});
+  EXPECT_EQ(removed.get(field::precursor_removed), std::vector<double>{1e-12});
+  EXPECT_EQ(std::vector<std::int64_t>(acc.lost_ids().begin(), acc.lost_ids().end()),
+            std::vector<std::int64_t>{9});
+  EXPECT_EQ(fromWire(acc.forcing()).get(field::coating_increment)[1], 2.5e-13);
+  EXPECT_EQ(fromWire(acc.samples()).ids, (std::vector<std::int64_t>{7, 3, 9}));
+}
+
+TEST(PeerLink, AStrangersMessageIsDroppedAndAPeerOfAnotherStepIsRefused) {
+  Link l("stranger");
+  FluidPeer fluid_peer(l.fluid_side, l.fluid, 3000);
+  FakeFluid fluid;
+  auto fluid_done = std::async(std::launch::async, [&] {
+    wire::Advanced out;
+    fluid_peer.interval(fluid, interval(1e-4), 5, 0.0, out, kNobodyGone);
+  });
+  Channel stranger(endpoint("stranger"));
+  stranger.sendRaw("not a message at all");
+  wire::Envelope wrong_token;
+  wrong_token.mutable_header()->set_protocol_version(wire::PROTOCOL_VERSION);
+  wrong_token.mutable_header()->set_run_id("run1");
+  wrong_token.mutable_header()->set_token("guess");
+  wrong_token.mutable_header()->set_step(5);
+  toWire(parcels(), *wrong_token.mutable_sample()->mutable_particles());
+  stranger.send(wrong_token);
+  // one of the run, but for step 4
+  wire::Envelope late = wrong_token;
+  late.mutable_header()->set_token("secret");
+  late.mutable_header()->set_step(4);
+  Channel particles(endpoint("stranger"));
+  particles.send(late);
+  try {
+    fluid_done.get();
+    FAIL() << "a Sample of step 4 answered during step 5";
+  } catch (const link::ProtocolError& e) {
+    EXPECT_NE(std::string(e.what()).find("a message for step 4 during step 5"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(stranger.receive(Millis(100))) << "the stranger got an answer";
+}
+
+TEST(PeerLink, ASilentPeerEndsTheWaitAndTheOrchestratorsDepartureToo) {
+  Link l("silent");
+  FakeLaws laws;
+  FakeParticles particles;
+  {
+    ParticlePeer particle_peer(l.particle_side, l.particle_welcome, laws, l.particles, 600);
+    particle_peer.setState(parcels());
+    wire::Advanced out;
+    ParticleData state;
+    try {
+      particle_peer.interval(particles, interval(1e-4), 1, 0.0, out, state, kNobodyGone);
+      FAIL() << "no fluid, and the interval returned";
+    } catch (const link::TimeoutError& e) {
+      EXPECT_NE(std::string(e.what()).find("the fluid participant sent nothing over the peer link"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  ParticlePeer particle_peer(l.particle_side, l.particle_welcome, laws, l.particles, 60000);
+  particle_peer.setState(parcels());
+  wire::Advanced out;
+  ParticleData state;
+  const PeerWatch gone = [] { throw link::PeerError("the orchestrator is gone"); };
+  EXPECT_THROW(particle_peer.interval(particles, interval(1e-4), 1, 0.0, out, state, gone),
+               link::PeerError);
+}
