@@ -634,6 +634,7 @@ void Coupler::reportParticleState(const link::ParticleData& terms) {
   auto* a = e.mutable_advance();
   a->set_dt(0.0);
   if (!terms.ids.empty()) cosim::link::toWire(terms, *a->mutable_terms());
+  if (!participants_.peerAddress().empty()) a->set_peer_connect(participants_.peerAddress());
   const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
   state_ = cosim::link::fromWire(r.advanced().state());
   if (r.advanced().has_particles())

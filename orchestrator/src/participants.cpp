@@ -615,11 +615,43 @@ void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCa
   }
 }
 
+// coupling.data_path: peer: on one machine the fluid binds the particles' link beside the run's
+// socket; across nodes (the orchestrator's link is tcp://) it binds a port of its own and says
+// where (PeerReady), with a CurveZMQ key pair for each side when the orchestrator's link has them.
+void Participants::preparePeerLink() {
+  if (!isTcp(hub_->endpoint())) {
+    peer_.bind = "ipc://" + (privateSocketFolder() / (run_id_ + "-peer.ipc")).string();
+    return;
+  }
+  peer_.bind = "tcp";
+  if (!orchestrator_public_.empty()) {
+    peer_.fluid = link::newCurveKeyPair();
+    peer_.particles = link::newCurveKeyPair();
+  }
+}
+
+// Waiting for the fluid's PeerReady: it configures its solver first (participants.fluid.timeout).
+void Participants::checkPeerReady(Clock::time_point start) {
+  Peer& fluid = *peers_.at("fluid");
+  if (fluid.process && !fluid.process->running())
+    throw processEnded("fluid", fluid.spec.adapter, *fluid.process,
+                       "before it said where its peer link listens");
+  if (std::chrono::duration<double>(Clock::now() - start).count() > fluid.spec.timeout)
+    throw RunFailure("fluid",
+                     "did not say where its peer link listens (PeerReady) within " +
+                         std::to_string(static_cast<int>(fluid.spec.timeout)) +
+                         " s of the start (participants.fluid.timeout; coupling.data_path: peer "
+                         "needs an adapter built with this cosim)",
+                     ErrorKind::peer);
+}
+
 void Participants::handshake() {
   std::set<std::string> waiting;
   for (const auto& [n, p] : peers_) waiting.insert(n);
   const auto start = Clock::now();
-  while (!waiting.empty()) {
+  // Over tcp the fluid says where its peer socket listens once it has configured
+  bool peer_ready_due = plan_.peer && isTcp(hub_->endpoint()) && peer_address_.empty();
+  while (!waiting.empty() || peer_ready_due) {
     if (stop_.requested()) throw RunFailure("", "interrupted during start-up");
     if (auto in = hub_->receive(link::Millis(100))) {
       if (const auto who = admit(*in)) {
@@ -629,6 +661,11 @@ void Participants::handshake() {
           const auto& err = env.error();
           throw RunFailure(*who, "reported an error: " + err.message() +
                                      (err.where().empty() ? "" : " (at " + err.where() + ")"));
+        }
+        if (env.has_peer_ready() && *who == "fluid") {
+          peer_address_ = env.peer_ready().endpoint();
+          peer_ready_due = false;
+          log_.file("fluid's peer link at " + peer_address_);
         }
         // Heartbeats and copies of a Hello already answered are passed over.
         if (!env.has_heartbeat() && waiting.count(*who)) {
@@ -644,6 +681,10 @@ void Participants::handshake() {
       if (p.process && !p.process->running()) {
         throw processEnded(n, p.spec.adapter, *p.process, "before connecting" + ignoredNote(n));
       }
+    }
+    if (waiting.empty() && peer_ready_due) {
+      checkPeerReady(start);
+      continue;
     }
     if (std::chrono::duration<double>(Clock::now() - start).count() >
         sc_.transport.handshake_timeout) {
@@ -667,16 +708,20 @@ void Participants::handshake() {
 }
 
 namespace {
-// coupling.data_path: peer: the fluid binds `endpoint`; the particles connect to it and get the
+// coupling.data_path: peer: the fluid binds `keys.bind`; the particles connect to it and get the
 // laws, the constants and the fields of each peer message.
 wire::PeerLink peerLinkFor(const Scenario& sc, const Plan& plan, const std::string& who,
-                           const std::string& endpoint) {
+                           const PeerKeys& keys) {
   wire::PeerLink link;
+  link.set_fluid_public(keys.fluid.public_key);
+  link.set_particles_public(keys.particles.public_key);
   if (who == "fluid") {
-    link.set_bind(endpoint);
+    link.set_bind(keys.bind);
+    link.set_fluid_secret(keys.fluid.secret_key);
     return link;
   }
-  link.set_connect(endpoint);
+  link.set_particles_secret(keys.particles.secret_key);
+  if (keys.bind != "tcp") link.set_connect(keys.bind);
   link::toWire(sc.models.choices(), sc.constants, *link.mutable_models());
   for (const auto& f : plan.sample_state) link.add_sample_state(f);
   for (const auto& f : plan.fluid_advance_terms) link.add_exchange(f);
@@ -687,7 +732,7 @@ wire::PeerLink peerLinkFor(const Scenario& sc, const Plan& plan, const std::stri
 
 wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const ParticipantSpec& spec,
                          const fs::path& workdir, const fs::path& restart_from,
-                         const std::string& peer_endpoint) {
+                         const PeerKeys& peer) {
   wire::Welcome wel;
   const bool fluid = spec.name == "fluid";
   for (const auto& f : fluid ? plan.fluid_send : plan.particles_send) wel.add_send(f);
@@ -703,7 +748,7 @@ wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const Participant
   for (const auto& [k, v] : sc.parameters) (*wel.mutable_parameters())[k] = v;
   wel.set_species(plan.coating);
   if (!restart_from.empty()) wel.set_restart_from(fs::absolute(restart_from).string());
-  if (plan.peer) *wel.mutable_peer() = peerLinkFor(sc, plan, spec.name, peer_endpoint);
+  if (plan.peer) *wel.mutable_peer() = peerLinkFor(sc, plan, spec.name, peer);
   return wel;
 }
 
@@ -748,13 +793,11 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env,
              join({h.accepts().begin(), h.accepts().end()}) + ")");
     }
   }
-  // coupling.data_path: peer: the fluid binds the particles' link beside the run's socket
-  if (plan_.peer && peer_endpoint_.empty())
-    peer_endpoint_ = "ipc://" + (privateSocketFolder() / (run_id_ + "-peer.ipc")).string();
+  if (plan_.peer && peer_.bind.empty()) preparePeerLink();
   wire::Envelope w;
   *w.mutable_welcome() =
       welcomeFor(sc_, plan_, p.spec, p.workdir,
-                 restart_from_.empty() ? fs::path() : restart_from_ / who, peer_endpoint_);
+                 restart_from_.empty() ? fs::path() : restart_from_ / who, peer_);
   if (h.own_folder()) {
     // No shared filesystem: the case files and the restart travel with the Welcome
     try {
@@ -807,10 +850,10 @@ void Participants::shutdown(bool clean) {
   peers_.clear();
   logRefusals();
   hub_.reset();  // the hub removes the ipc:// socket file it created
-  if (!peer_endpoint_.empty()) {
+  if (peer_.bind.rfind("ipc://", 0) == 0) {
     // the fluid's peer socket, which it leaves behind when it is killed
     std::error_code ec;
-    fs::remove(peer_endpoint_.substr(std::string("ipc://").size()), ec);
+    fs::remove(peer_.bind.substr(std::string("ipc://").size()), ec);
   }
   if (!token_file_.empty()) {
     std::error_code ec;

@@ -37,6 +37,13 @@ class RunFailure : public cosim::Error {
 // Replies by participant name.
 using Replies = std::map<std::string, wire::Envelope>;
 
+// coupling.data_path: peer: where the fluid binds its peer socket (an ipc:// address, or "tcp":
+// a port of its own, said in its PeerReady) and, over CurveZMQ, each side's key pair.
+struct PeerKeys {
+  std::string bind;
+  link::CurveKeyPair fluid, particles;
+};
+
 // The Welcome a participant gets: its fields, options, folder, the run's clock and parameters;
 // `restart_from` (empty for a fresh start) is its part of a checkpoint. With plan.peer it holds
 // the peer link (`peer_endpoint`: where the fluid binds it; the particles also get the scene's
@@ -44,7 +51,7 @@ using Replies = std::map<std::string, wire::Envelope>;
 wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const ParticipantSpec& spec,
                          const std::filesystem::path& workdir,
                          const std::filesystem::path& restart_from,
-                         const std::string& peer_endpoint = "ipc://peer");
+                         const PeerKeys& peer = {"ipc://peer", {}, {}});
 
 class Participants {
  public:
@@ -95,6 +102,10 @@ class Participants {
   // participant, "<name>_reply" (from the exchange's start to its reply's arrival). Against the
   // compute time it reported, that shows what the wire and the wake-ups cost each one.
   const std::map<std::string, double>& advanceWireSeconds() const { return advance_wire_; }
+
+  // coupling.data_path: peer over tcp: the fluid's peer address (its PeerReady), which the
+  // particles get in an Advance of zero length; empty otherwise (ipc: in their Welcome).
+  const std::string& peerAddress() const { return peer_address_; }
 
   // Its log file, for the tail shown with a failure (empty if it is not a participant).
   std::filesystem::path logOf(const std::string& name) const;
@@ -153,7 +164,10 @@ class Participants {
   std::uint64_t step_ = 0;
   double time_ = 0.0;
   std::filesystem::path restart_from_;
-  std::string peer_endpoint_;  // plan.peer: the fluid's socket for the particles (ipc://)
+  PeerKeys peer_;             // plan.peer: the fluid's socket for the particles, the keys
+  std::string peer_address_;  // over tcp: where the fluid's peer socket listens (PeerReady)
+  void preparePeerLink();
+  void checkPeerReady(std::chrono::steady_clock::time_point start);
   bool stop_noted_ = false;
   bool answered_once_ = false;    // the first await of the run is over
   double next_wait_note_ = 15.0;  // seconds into the first await of the next "waiting" line

@@ -73,12 +73,6 @@ Plan makePlan(const Scenario& sc, const models::SceneModels& m) {
       p.notes.push_back(
           "coupling.data_path: peer: no fluid participant, so no per-parcel data to exchange; the "
           "central path is used");
-    } else if (sc.transport.bind.rfind("tcp://", 0) == 0) {
-      throw ScenarioError(
-          sc.file.string() +
-          ": coupling.data_path: peer runs on one machine (the participants' link is ipc://), "
-          "but transport.bind is " +
-          sc.transport.bind + "; use coupling.data_path: central across nodes");
     } else {
       p.peer = true;
       p.notes.push_back(

@@ -116,7 +116,7 @@ wire::Advance interval(double dt) {
 
 TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
   Link l("one");
-  FluidPeer fluid_peer(l.fluid_side, l.fluid, 10000);
+  FluidPeer fluid_peer(l.fluid_side, l.fluid, 10000, "ipc://unused");
   FakeLaws laws;
   ParticlePeer particle_peer(l.particle_side, l.particle_welcome, laws, l.particles, 10000);
   FakeFluid fluid;
@@ -147,8 +147,7 @@ TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
   EXPECT_EQ(f.get(field::drag_coefficient), (std::vector<double>{1, 1, 0}));  // 9 in no cell
   EXPECT_EQ(f.get(field::coating_increment), (std::vector<double>{0, 2.5e-13, 0}));
   EXPECT_EQ(f.get(field::fluid_velocity)[5], 0.5);
-  EXPECT_EQ(particles.got_cmd_terms.get(field::coating_increment),
-            f.get(field::coating_increment));
+  EXPECT_EQ(particles.got_cmd_terms.get(field::coating_increment), f.get(field::coating_increment));
   EXPECT_FALSE(particles.got_cmd_terms.has(field::position));
   // the fluid's solver: the exchange terms, nothing else
   EXPECT_EQ(fluid.got_terms.names(), std::vector<std::string>{field::drag_coefficient});
@@ -170,7 +169,7 @@ TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
 
 TEST(PeerLink, AStrangersMessageIsDroppedAndAPeerOfAnotherStepIsRefused) {
   Link l("stranger");
-  FluidPeer fluid_peer(l.fluid_side, l.fluid, 3000);
+  FluidPeer fluid_peer(l.fluid_side, l.fluid, 3000, "ipc://unused");
   FakeFluid fluid;
   auto fluid_done = std::async(std::launch::async, [&] {
     wire::Advanced out;

@@ -18,10 +18,12 @@
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/time_series.h"
+#include "cosim/link/curve_keys.h"
 #include "cosim/util/stop_request.h"
 #include "coupler.h"
 #include "processes.h"
 #include "scenario.h"
+#include "tcp_relay.h"
 
 using namespace cosim;
 using namespace cosim::orchestrator;
@@ -769,19 +771,30 @@ TEST(PeerPath, StoppedAndResumedIsTheUninterruptedCentralRun) {
   expectSameRun(w.dir / "full", w.dir / "cut");
 }
 
-// Across nodes the peer link is not there yet: refused when the scene is read, with the way out.
-TEST(PeerPath, OverTcpIsRefusedNamingTheSetting) {
+// Across nodes: the orchestrator's link over tcp:// with CurveZMQ, the fluid's peer socket on a
+// port of its own with a key pair of this run for each side; the same run bit for bit.
+TEST(PeerPath, OverTcpWithCurveZmqGivesTheSameRun) {
   Workspace w;
-  try {
-    const Scenario sc = loadScenario(
-        w.dir / "scene.yaml", {"coupling.data_path=peer", "transport.bind=tcp://127.0.0.1:5999",
-                               "transport.insecure=true"});
-    const models::SceneModels m = makeModels(sc);
-    makePlan(sc, m);
-    FAIL() << "accepted";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("coupling.data_path: peer runs on one machine"),
-              std::string::npos)
-        << e.what();
-  }
+  const fs::path key_file = w.dir / "config" / "orchestrator.key";
+  link::writeKeyPairFile(key_file, link::newCurveKeyPair());
+  const std::vector<std::string> sets = {"checkpoint.interval=0"};
+  RunOptions co;
+  co.quiet = true;
+  co.output = w.dir / "central";
+  ASSERT_EQ(Coupler(loadScenario(w.dir / "scene.yaml", sets), co).run().exit_code, 0);
+  RunOptions po;
+  po.quiet = true;
+  po.output = w.dir / "peer";
+  const RunResult r = Coupler(loadScenario(w.dir / "scene.yaml",
+                                           {"checkpoint.interval=0", "coupling.data_path=peer",
+                                            "transport.bind=tcp://127.0.0.1:" +
+                                                std::to_string(test::freeLoopbackPort()),
+                                            "transport.key_file=" + key_file.string()}),
+                              po)
+                          .run();
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  expectSameRun(w.dir / "central", w.dir / "peer");
+  EXPECT_NE(text(w.dir / "peer/cosim.log").find("fluid's peer link at tcp://127."),
+            std::string::npos)
+      << text(w.dir / "peer/cosim.log");
 }

@@ -23,12 +23,14 @@
 #include <thread>
 #include <vector>
 
+#include "../orchestrator/tcp_relay.h"
 #include "batch_command.h"
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/report.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/analysis/zone_pass_file.h"
+#include "cosim/link/curve_keys.h"
 #include "cosim/link/fields.h"
 #include "cosim/util/child_process.h"
 #include "coupler.h"
@@ -980,4 +982,18 @@ TEST(PlasmaCoatingCi, PeerDataPathGivesTheCentralRunBitForBit) {
 TEST(PlasmaCoatingCi, PeerDataPathOnTwoPlusTwoRanksGivesTheCentralRunBitForBit) {
   expectPeerPathIsTheCentralRun(
       {"participants.fluid.mpi=2", "dem_ranks=2", "coupling.end_time=0.02"}, "2-");
+}
+
+// Across nodes, as on one: the orchestrator's link over tcp:// with CurveZMQ, and the fluid's
+// peer socket on a port of its own, with a key pair of this run for each side.
+TEST(PlasmaCoatingCi, PeerDataPathOverTcpGivesTheCentralRunBitForBit) {
+  const fs::path keys = fs::temp_directory_path() / ("cosim-peer-keys-" + std::to_string(getpid()));
+  fs::remove_all(keys);
+  cosim::link::writeKeyPairFile(keys / "orchestrator.key", cosim::link::newCurveKeyPair());
+  expectPeerPathIsTheCentralRun(
+      {"coupling.end_time=0.02",
+       "transport.bind=tcp://127.0.0.1:" + std::to_string(cosim::test::freeLoopbackPort()),
+       "transport.key_file=" + (keys / "orchestrator.key").string()},
+      "tcp-");
+  fs::remove_all(keys);
 }

@@ -1,7 +1,13 @@
 #include "cosim/link/peer_link.h"
 
+#include <arpa/inet.h>
+#include <netdb.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
+#include <cstring>
 
 #include "cosim/link/errors.h"
 #include "cosim/link/fields.h"
@@ -69,14 +75,57 @@ std::string firstNonFinite(const ParticleData& d) {
 
 }  // namespace
 
+// The local IPv4 address this host reaches `endpoint` (tcp://HOST:PORT) from: the address of the
+// network the orchestrator is on, which the particles reach too (no packet is sent).
+static std::string localAddressToward(const std::string& endpoint) {
+  const std::string rest = endpoint.substr(std::string("tcp://").size());
+  const auto colon = rest.rfind(':');
+  if (colon == std::string::npos)
+    throw ProtocolError("the orchestrator's address " + endpoint + " has no port");
+  const std::string host = rest.substr(0, colon), port = rest.substr(colon + 1);
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_DGRAM;
+  addrinfo* found = nullptr;
+  if (getaddrinfo(host.c_str(), port.c_str(), &hints, &found) != 0 || found == nullptr)
+    throw ProtocolError("cannot resolve the orchestrator's host '" + host +
+                        "' to an IPv4 address for the peer link (coupling.data_path: peer)");
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in local{};
+  socklen_t length = sizeof(local);
+  const bool ok = fd >= 0 && ::connect(fd, found->ai_addr, found->ai_addrlen) == 0 &&
+                  getsockname(fd, reinterpret_cast<sockaddr*>(&local), &length) == 0;
+  const int err = errno;
+  if (fd >= 0) close(fd);
+  freeaddrinfo(found);
+  if (!ok)
+    throw ProtocolError("cannot find the local address toward " + endpoint +
+                        " for the peer link: " + std::strerror(err));
+  char text[INET_ADDRSTRLEN] = {0};
+  inet_ntop(AF_INET, &local.sin_addr, text, sizeof(text));
+  return text;
+}
+
 // ---- the fluid's side ---------------------------------------------------------------------------
 
-FluidPeer::FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_ms)
+FluidPeer::FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_ms,
+                     const std::string& orchestrator)
     : who_(std::move(who)), timeout_ms_(timeout_ms) {
-  if (link.bind().rfind("ipc://", 0) != 0)
+  HubSecurity security;
+  if (!link.fluid_secret().empty()) {
+    security.server = {link.fluid_public(), link.fluid_secret()};
+    security.clients.insert(link.particles_public());
+  }
+  if (link.bind() == "tcp") {
+    if (orchestrator.rfind("tcp://", 0) != 0)
+      throw ProtocolError("Welcome.peer.bind 'tcp' but the orchestrator is at " + orchestrator);
+    hub_ = std::make_unique<Hub>("tcp://" + localAddressToward(orchestrator) + ":*", security);
+  } else if (link.bind().rfind("ipc://", 0) == 0) {
+    hub_ = std::make_unique<Hub>(link.bind(), security);
+  } else {
     throw ProtocolError("Welcome.peer.bind '" + link.bind() +
-                        "': the peer data path binds an ipc:// address (one machine)");
-  hub_ = std::make_unique<Hub>(link.bind());
+                        "': expected an ipc:// address or 'tcp' (coupling.data_path: peer)");
+  }
 }
 
 wire::Envelope FluidPeer::await(wire::Envelope::BodyCase expected, std::uint64_t step,
@@ -139,11 +188,20 @@ ParticlePeer::ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welc
       terms_(terms),
       who_(std::move(who)),
       timeout_ms_(timeout_ms) {
-  if (link.connect().rfind("ipc://", 0) != 0)
-    throw ProtocolError("Welcome.peer.connect '" + link.connect() +
-                        "': the peer data path connects to an ipc:// address (one machine)");
   terms_.configure(link_);
-  channel_ = std::make_unique<Channel>(link.connect());
+  if (!link.connect().empty()) connect(link.connect());
+}
+
+void ParticlePeer::connect(const std::string& endpoint) {
+  if (endpoint == connected_to_) return;
+  if (endpoint.rfind("ipc://", 0) != 0 && endpoint.rfind("tcp://", 0) != 0)
+    throw ProtocolError("the fluid's peer address '" + endpoint +
+                        "' is neither ipc:// nor tcp:// (coupling.data_path: peer)");
+  CurveClientKeys keys;
+  if (!link_.particles_secret().empty())
+    keys = {link_.fluid_public(), {link_.particles_public(), link_.particles_secret()}};
+  channel_ = std::make_unique<Channel>(endpoint, "", keys);
+  connected_to_ = endpoint;
 }
 
 wire::Envelope ParticlePeer::request(wire::Envelope env, wire::Envelope::BodyCase expected,
@@ -170,6 +228,10 @@ wire::Envelope ParticlePeer::request(wire::Envelope env, wire::Envelope::BodyCas
 void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
                             double time, wire::Advanced& out, ParticleData& state,
                             const PeerWatch& watch) {
+  if (!channel_)
+    throw ProtocolError(
+        "an interval of coupling.data_path: peer before the fluid's peer address "
+        "came (Advance.peer_connect)");
   auto* account = out.mutable_peer();
   // The gas at the parcels where the last reply left them
   auto t0 = Clock::now();

@@ -94,6 +94,8 @@ const char* bodyName(const wire::Envelope& e) {
       return "Error";
     case wire::Envelope::kHeartbeat:
       return "Heartbeat";
+    case wire::Envelope::kPeerReady:
+      return "PeerReady";
     default:
       return "(none)";
   }
@@ -475,7 +477,13 @@ int runParticipant(Solver& solver, const ParticipantOptions& options, PeerTerms*
     if (welcome.has_peer()) {
       const PeerIdentity who{session.runId(), options.token, options.name};
       if (solver.capabilities().role == wire::FLUID) {
-        fluid_peer = std::make_unique<FluidPeer>(welcome.peer(), who, options.command_timeout_ms);
+        fluid_peer = std::make_unique<FluidPeer>(welcome.peer(), who, options.command_timeout_ms,
+                                                 options.endpoint);
+        if (welcome.peer().bind() == "tcp") {  // say where the particles find it
+          wire::Envelope ready;
+          ready.mutable_peer_ready()->set_endpoint(fluid_peer->endpoint());
+          session.reply(ready);
+        }
       } else if (peer_terms == nullptr) {
         throw InputError("adapter '" + solver.capabilities().adapter +
                          "' cannot evaluate the coupling laws over its own parcels, which "
@@ -504,6 +512,8 @@ int runParticipant(Solver& solver, const ParticipantOptions& options, PeerTerms*
           ParticleData state;
           auto* adv = out.mutable_advanced();
           const bool interval = cmd.advance().dt() > 0;
+          if (particle_peer && !cmd.advance().peer_connect().empty())
+            particle_peer->connect(cmd.advance().peer_connect());
           if (fluid_peer && interval) {
             fluid_peer->interval(solver, cmd.advance(), session.step(), session.time(), *adv,
                                  watch);

@@ -28,8 +28,8 @@ const std::vector<KeySpec>& CouplingSection::keys() {
        "laws evaluated, the terms sent to both solvers) | peer (the particle participant samples "
        "the gas from the fluid participant and evaluates the laws over its own parcels; cosim "
        "sends both only the schedule and the coating owed and keeps the ledger, the checks and the "
-       "records; the same answers bit for bit; one machine (ipc://), coupling.scheme parallel; "
-       "docs/design.md section 5)"},
+       "records; the same answers bit for bit; coupling.scheme parallel; over tcp:// the fluid "
+       "listens on a port of its own, with CurveZMQ keys of the run; docs/design.md section 5)"},
       {"cpus", "off",
        "off (the processes run wherever the system puts them) | auto (with 2 or more CPUs and both "
        "solvers started here as single processes (launch local, mpi 1): the particles and the "

@@ -61,7 +61,12 @@ using PeerWatch = std::function<void()>;
 // The fluid's side: binds Welcome.peer.bind and serves one interval at a time.
 class FluidPeer {
  public:
-  FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_ms);
+  // `orchestrator`: the orchestrator's address; over tcp the peer socket binds an ephemeral port
+  // on the local address that reaches it (the one network both sides are known to share).
+  FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_ms,
+            const std::string& orchestrator);
+  // Where the peer socket listens (tcp: the PeerReady the session sends the orchestrator).
+  const std::string& endpoint() const { return hub_->endpoint(); }
   // The orchestrator's Advance `cmd` (dt > 0): answers the particles' Sample, advances the
   // solver with the exchange terms of their Advance and sends them its per-parcel results.
   // `out` gets the solver's report without per-parcel data.
@@ -86,6 +91,8 @@ class ParticlePeer {
   // The state the particles last reported (any Advance, dt = 0 included): where the next
   // interval samples the gas, as the orchestrator would from the same reply.
   void setState(const ParticleData& state) { state_ = state; }
+  // Over tcp: the fluid's address, from Advance.peer_connect (again with the same: nothing).
+  void connect(const std::string& endpoint);
   // The orchestrator's Advance `cmd` (dt > 0; its terms: the coating owed, by id, only for the
   // parcels owed any): samples the gas, evaluates the laws, sends the fluid its terms, advances
   // the solver and waits for the fluid's results. `out` and `state` as Solver::advance gives
@@ -103,6 +110,7 @@ class ParticlePeer {
   PeerIdentity who_;
   int timeout_ms_;
   std::unique_ptr<Channel> channel_;
+  std::string connected_to_;
   ParticleData state_;
 };
 
