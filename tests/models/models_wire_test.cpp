@@ -244,12 +244,13 @@ TEST(ModelsWire, PeerTermsResumeTheWakeHistoryBitForBit) {
     differs = differs || other.forcing.get(name) != last.forcing.get(name);
   EXPECT_TRUE(differs) << "the wake history changed no force: the test would prove nothing";
 
-  for (const std::string damaged :
-       {saved.substr(0, saved.size() - 3), std::string("nonsense"), saved + "x"}) {
-    link::ScenePeerTerms other;
-    other.configure(link);
+  const std::vector<std::string> damaged_ones = {saved.substr(0, saved.size() - 3), "nonsense",
+                                                 saved + "x"};
+  for (const auto& damaged : damaged_ones) {
+    link::ScenePeerTerms laws;
+    laws.configure(link);
     try {
-      other.restoreState(damaged);
+      laws.restoreState(damaged);
       FAIL() << "a damaged history accepted";
     } catch (const link::ProtocolError& e) {
       EXPECT_NE(std::string(e.what()).find(link::kPeerTermsFile), std::string::npos) << e.what();

@@ -12,10 +12,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numbers>
 #include <thread>
 #include <zmq.hpp>
 
+#include "cosim/analysis/files.h"
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/fields.h"
@@ -207,6 +209,44 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
   struct stat st {};
   ASSERT_EQ(::stat(socket.parent_path().c_str(), &st), 0);
   EXPECT_EQ(st.st_mode & 0777, 0700u);
+}
+
+// coupling.data_path: peer: the fluid killed while the particles wait on their peer link for it.
+// The run still ends within five seconds naming the fluid, nothing is left running, and neither
+// socket file stays behind.
+TEST(EndToEnd, PeerPathFluidKilledIsReportedAndNothingIsLeftBehind) {
+  Scenario sc = loadScenario(
+      kScenario, {"coupling.end_time=1000", "coupling.dt=1e-4", "coupling.data_path=peer"});
+  RunOptions o;
+  o.quiet = true;
+  o.output = freshFolder("peer-kill");
+  Coupler c(std::move(sc), o);
+  std::chrono::steady_clock::time_point killed_at;
+  bool killed = false;
+  c.on_step = [&](double t, const link::ParticleData&) {
+    if (!killed && t > 0.01) {
+      auto pids = childrenNamed("cosim-analytic");
+      ASSERT_EQ(pids.size(), 1u);
+      killed_at = std::chrono::steady_clock::now();
+      ::kill(pids[0], SIGKILL);
+      killed = true;
+    }
+  };
+  RunResult r = c.run();
+  const double detect =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
+  ASSERT_TRUE(killed);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_LT(detect, 5.0);
+  EXPECT_NE(r.message.find("participant 'fluid'"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("killed by signal 9"), std::string::npos) << r.message;
+  EXPECT_TRUE(childrenNamed("cosim-").empty()) << "participant processes left behind";
+  const auto summary = analysis::readJsonFile(r.folder / "summary.json");
+  EXPECT_EQ(summary.at("status"), "failed");
+  const fs::path folder = fs::temp_directory_path() / ("cosim-" + std::to_string(getuid()));
+  const std::string id = summary.at("run_id").get<std::string>();
+  EXPECT_FALSE(fs::exists(folder / (id + ".ipc"))) << "the orchestrator's socket left behind";
+  EXPECT_FALSE(fs::exists(folder / (id + "-peer.ipc"))) << "the fluid's peer socket left behind";
 }
 
 // A client that is not part of the run floods the orchestrator's socket: the flood is dropped
