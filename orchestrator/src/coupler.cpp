@@ -336,6 +336,7 @@ bool Coupler::checkpointDue(bool last) const {
 }
 
 void Coupler::writeCheckpoint() {
+  wholeState();  // its digest is of the whole state
   const auto partial = checkpoints_->begin(time_, participants_.names());
   participants_.checkpoint(partial);
   CoupledState s;
@@ -494,6 +495,8 @@ void Coupler::takeParticleState(const wire::Advanced& pa) {
   if (pa.has_peer()) takePeerAccount(pa.peer());  // about the parcels at the interval's start
   const std::vector<std::int64_t> before = state_.ids;
   state_ = cosim::link::fromWire(pa.state());
+  // The peer path sends the parcels' ids only; the rest comes when it is recorded (wholeState)
+  state_partial_ = pa.has_peer() && state_.names().empty() && !state_.ids.empty();
   ledger_.delivered();  // the coating paid with this step is on the parcels
   try {
     monitor_.checkParticleLedger(before, state_.ids,
@@ -613,6 +616,7 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
   }
   if (replies.fluid) row[col::pressure_drop] = replies.fluid->fluid().pressure_drop();
   record_.row(time_, row);
+  if (on_step || record_.snapshotDue(time_, last)) wholeState();
   const link::ParticleData held = ledger_.held(state_);
   record_.snapshot(time_, held, last);
   if (on_step) on_step(time_, held);
@@ -629,6 +633,14 @@ void Coupler::flushCredit() {
   ledger_.delivered();
 }
 
+// The peer path: the particles' whole state, for a snapshot or a checkpoint, when their last reply
+// held their ids only.
+void Coupler::wholeState() {
+  if (!state_partial_) return;
+  reportParticleState({});
+  phases_.lap("bookkeeping");
+}
+
 void Coupler::reportParticleState(const link::ParticleData& terms) {
   wire::Envelope e;
   auto* a = e.mutable_advance();
@@ -637,6 +649,7 @@ void Coupler::reportParticleState(const link::ParticleData& terms) {
   if (!participants_.peerAddress().empty()) a->set_peer_connect(participants_.peerAddress());
   const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
   state_ = cosim::link::fromWire(r.advanced().state());
+  state_partial_ = false;
   if (r.advanced().has_particles())
     reported_dt_over_rayleigh_ = r.advanced().particles().dt_over_rayleigh_time();
   check(state_, "particles");
@@ -658,6 +671,12 @@ bool Coupler::recordsZonePasses() const {
 // it the file would end at the last output time, passes later.
 void Coupler::recordStoppedState() {
   if (!record_.recording() || step_ == 0 || state_.ids.empty()) return;  // nothing ran
+  if (state_partial_) {  // the peer path, stopped between two records: the last one stands
+    log_.file(
+        "the particles' state at the stop was not sent (coupling.data_path: peer): "
+        "particles.h5 ends at its last snapshot");
+    return;
+  }
   ledger_.undelivered();  // a step cut short: what it paid is still owed to the parcels
   try {
     record_.snapshot(time_, ledger_.held(state_), true);

@@ -106,6 +106,7 @@ class Coupler {
   // An Advance of zero length: the particles take `terms` (none, or coating owed) and report
   // their state into state_.
   void reportParticleState(const link::ParticleData& terms);
+  void wholeState();
   void finishRun();
   std::string howToContinue(const std::string& status, std::uint64_t steps_done) const;
   void resetTimings();
@@ -165,6 +166,7 @@ class Coupler {
   double time_ = 0.0;
   link::ParticleData state_;
   link::ParticleData peer_removed_;  // peer path: the precursor the parcels took this interval
+  bool state_partial_ = false;       // peer path: state_ holds the parcels' ids only
   std::size_t initial_count_ = 0;
   double reported_dt_over_rayleigh_ = 0.0;  // the particle participant's, 0 if it reports none
   bool initial_row_written_ = false;

@@ -300,8 +300,12 @@ void RunRecord::row(double time, const Row& values) {
   for (std::size_t c = 0; c < r.size(); ++c) series_[columns_[c]].push_back(r[c]);
 }
 
+bool RunRecord::snapshotDue(double time, bool force) const {
+  return force || time + 1e-12 * std::max(1.0, std::fabs(time)) >= next_output_;
+}
+
 void RunRecord::snapshot(double time, const link::ParticleData& held, bool force) {
-  if (!force && time + 1e-12 * std::max(1.0, std::fabs(time)) < next_output_) return;
+  if (!snapshotDue(time, force)) return;
   particles_->write(time, held);
   next_output_ = time + sc_.output.interval;
 }

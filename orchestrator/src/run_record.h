@@ -68,6 +68,8 @@ class RunRecord {
   void row(double time, const Row& values);
   // A particle snapshot every output.interval (and whenever `force`).
   void snapshot(double time, const link::ParticleData& held, bool force);
+  // Whether snapshot(time, ..., force) would write one.
+  bool snapshotDue(double time, bool force) const;
   bool recording() const { return particles_ != nullptr; }  // the particle file is open
 
   // The scenario's observables over the final state, the recorded series and the totals.

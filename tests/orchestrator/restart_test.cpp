@@ -798,3 +798,34 @@ TEST(PeerPath, OverTcpWithCurveZmqGivesTheSameRun) {
             std::string::npos)
       << text(w.dir / "peer/cosim.log");
 }
+
+// What the peer path takes off the orchestrator: the bytes through the orchestrator's link (a
+// relay in front of its port counts them) against the central path's, for the same run. Between
+// two snapshots the particles send their ids only, the fluid its report only.
+TEST(PeerPath, TakesThePerParcelDataOffTheOrchestratorsLink) {
+  Workspace w;
+  std::map<std::string, std::size_t> bytes;
+  for (const std::string path : {"central", "peer"}) {
+    const int port = test::freeLoopbackPort();
+    test::TcpRelay relay(port);
+    RunOptions o;
+    o.quiet = true;
+    o.output = w.dir / path;
+    const RunResult r =
+        Coupler(loadScenario(w.dir / "scene.yaml",
+                             {"checkpoint.interval=0", "coupling.data_path=" + path,
+                              "transport.bind=tcp://127.0.0.1:" + std::to_string(port),
+                              "transport.connect=tcp://127.0.0.1:" + std::to_string(relay.port()),
+                              "transport.insecure=true"}),
+                o)
+            .run();
+    ASSERT_EQ(r.exit_code, 0) << r.message;
+    bytes[path] = relay.total();
+  }
+  expectSameRun(w.dir / "central", w.dir / "peer");
+  std::printf("bytes through the orchestrator's link: central %zu, peer %zu (%.1f %%)\n",
+              bytes["central"], bytes["peer"], 100.0 * bytes["peer"] / bytes["central"]);
+  // 200 parcels, 120 steps, a snapshot every 10: the central path sends about six per-parcel
+  // messages a step, the peer path one of ids a step and one of the state every tenth
+  EXPECT_LT(bytes["peer"], bytes["central"] / 4);
+}

@@ -192,6 +192,24 @@ ParticlePeer::ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welc
   if (!link.connect().empty()) connect(link.connect());
 }
 
+void ParticlePeer::checkState(const ParticleData& state) const {
+  if (const auto bad = firstNonFinite(state); !bad.empty())
+    throw ProtocolError("the particles' state after the interval: " + bad);
+  const double limit = link_.max_particle_speed();
+  if (limit <= 0 || !state.has(field::velocity)) return;
+  const auto& v = state.get(field::velocity);
+  for (std::size_t i = 0; i < state.size(); ++i) {
+    const double speed =
+        std::sqrt(v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
+    if (speed > limit)
+      throw ProtocolError("parcel " + std::to_string(state.ids[i]) + " moves at " +
+                          std::to_string(speed) + " m/s, faster than checks.max_particle_speed " +
+                          std::to_string(limit) +
+                          " m/s: the DEM is unstable (its time step or the coupling forces); "
+                          "see docs/when-things-go-wrong.md");
+  }
+}
+
 void ParticlePeer::connect(const std::string& endpoint) {
   if (endpoint == connected_to_) return;
   if (endpoint.rfind("ipc://", 0) != 0 && endpoint.rfind("tcp://", 0) != 0)

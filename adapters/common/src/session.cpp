@@ -525,7 +525,12 @@ int runParticipant(Solver& solver, const ParticipantOptions& options, PeerTerms*
                            state);
           }
           if (particle_peer) particle_peer->setState(state);
-          cosim::link::toWire(state, *adv->mutable_state());
+          if (particle_peer && cmd.advance().state_ids_only()) {
+            particle_peer->checkState(state);  // the checks the orchestrator cannot make
+            adv->mutable_state()->mutable_ids()->Assign(state.ids.begin(), state.ids.end());
+          } else {
+            cosim::link::toWire(state, *adv->mutable_state());
+          }
           if (cmd.advance().has_sample_ahead() && cmd.advance().dt() > 0) {
             // Scheme `overlapped`: the next interval's Sample, where the particles will be
             sampleInto(solver,

@@ -100,6 +100,10 @@ class ParticlePeer {
   void interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
                 wire::Advanced& out, ParticleData& state, const PeerWatch& watch);
   PeerTerms& terms() { return terms_; }
+  // The checks the orchestrator makes of a state it is not sent (Advance.state_ids_only): every
+  // field a finite number, no parcel faster than Welcome.peer.max_particle_speed; ProtocolError
+  // naming the parcel otherwise.
+  void checkState(const ParticleData& state) const;
 
  private:
   wire::Envelope request(wire::Envelope env, wire::Envelope::BodyCase expected, std::uint64_t step,
