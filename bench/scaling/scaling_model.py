@@ -195,11 +195,19 @@ def self_test():
 
 
 def main(argv):
+    if "-h" in argv or "--help" in argv:
+        print(__doc__)
+        return 0
     if "--self-test" in argv:
         self_test()
         return 0
     path = Path(argv[1]) if len(argv) > 1 else Path(__file__).with_name("inputs.json")
-    inputs = json.loads(path.read_text())
+    try:
+        inputs = json.loads(path.read_text())
+    except (OSError, json.JSONDecodeError) as e:
+        print(f"{path}: {e}; give an inputs file like bench/scaling/inputs.json "
+              f"(--help says more)", file=sys.stderr)
+        return 2
     if "wire_us_per_parcel" in inputs and "wire_us_per_parcel_by_size" not in inputs:
         print(f"{path}: wire_us_per_parcel is now wire_us_per_parcel_by_size, a list of "
               f"{{\"parcels\", \"us_per_parcel\", \"source\"}} (see bench/scaling/inputs.json); "
