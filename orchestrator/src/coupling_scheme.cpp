@@ -211,7 +211,8 @@ std::unique_ptr<CouplingScheme> makeCouplingScheme(const Scenario& sc, const Pla
                                                    const std::string& name,
                                                    std::shared_ptr<const TermsRecording> recording,
                                                    bool fresh) {
-  if (name == "parallel" && plan.peer) return std::make_unique<PeerScheme>(sc, plan, fresh);
+  if ((name == "parallel" || name == "overlapped") && plan.peer)
+    return std::make_unique<PeerScheme>(sc, plan, fresh);  // the particles sample the gas
   if (name == "parallel") return std::make_unique<ParallelScheme>(sc, plan);
   if (name == "overlapped") return std::make_unique<OverlappedScheme>(sc, plan);
   if (name == "frozen-fluid")

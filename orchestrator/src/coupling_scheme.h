@@ -100,8 +100,9 @@ class OverlappedScheme final : public CouplingScheme {
 };
 
 // The rank-to-rank data path (coupling.data_path: peer, cosim/link/peer_link.h): both solvers at
-// the same time as in ParallelScheme, but the particles sample the gas from the fluid and
-// evaluate the laws over their own parcels; each gets an Advance without per-parcel terms, the
+// the same time as in ParallelScheme (or sampling ahead as in OverlappedScheme, between the two
+// participants), but the particles sample the gas from the fluid and evaluate the laws over their
+// own parcels; each gets an Advance without per-parcel terms, the
 // particles' carrying only the coating owed (the terms' forcing: a coating_increment of the
 // parcels owed any). `report_first`: the first interval's particles also send back the gas
 // samples and the forcing, for the checks of a run's first step (not after a resume).
@@ -109,7 +110,7 @@ class PeerScheme final : public CouplingScheme {
  public:
   PeerScheme(const Scenario& sc, const Plan& plan, bool report_first)
       : sc_(sc), plan_(plan), report_(report_first) {}
-  std::string name() const override { return "parallel, data path peer"; }
+  std::string name() const override { return sc_.coupling.scheme + ", data path peer"; }
   AdvanceReplies advance(Participants& participants, const link::ParticleData& state,
                          const models::CouplingTerms& terms) override;
 

@@ -727,6 +727,7 @@ wire::PeerLink peerLinkFor(const Scenario& sc, const Plan& plan, const std::stri
   for (const auto& f : plan.fluid_advance_terms) link.add_exchange(f);
   link.set_coating(plan.coating);
   link.set_max_particle_speed(sc.checks.max_particle_speed);
+  link.set_sample_ahead(sc.coupling.scheme == "overlapped");
   return link;
 }
 }  // namespace

@@ -829,3 +829,35 @@ TEST(PeerPath, TakesThePerParcelDataOffTheOrchestratorsLink) {
   // messages a step, the peer path one of ids a step and one of the state every tenth
   EXPECT_LT(bytes["peer"], bytes["central"] / 4);
 }
+
+// The overlapped scheme on the peer path (the fluid samples ahead for the particles): the central
+// overlapped run bit for bit, also when stopped and resumed (the particles keep where the gas was
+// sampled ahead in their checkpoint part and sample it there again).
+TEST(PeerPath, OverlappedIsTheCentralOverlappedRunStoppedOrNot) {
+  Workspace w;
+  RunOptions fo;
+  fo.quiet = true;
+  fo.output = w.dir / "central";
+  ASSERT_EQ(Coupler(loadScenario(w.dir / "scene.yaml",
+                                 {"checkpoint.interval=0", "coupling.scheme=overlapped"}),
+                    fo)
+                .run()
+                .exit_code,
+            0);
+  const std::vector<std::string> peer = {"checkpoint.interval=0", "coupling.scheme=overlapped",
+                                         "coupling.data_path=peer"};
+  RunOptions po;
+  po.quiet = true;
+  po.output = w.dir / "peer";
+  const RunResult r = Coupler(loadScenario(w.dir / "scene.yaml", peer), po).run();
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  expectSameRun(w.dir / "central", w.dir / "peer");
+  const RunResult cut = runStoppedAfter(w.dir / "scene.yaml", peer, w.dir / "cut", 40);
+  ASSERT_EQ(cut.exit_code, 130) << cut.message;
+  RunOptions ro;
+  ro.quiet = true;
+  ro.resume = w.dir / "cut";
+  const RunResult resumed = Coupler(loadRunScene(w.dir / "cut"), ro).run();
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
+  expectSameRun(w.dir / "central", w.dir / "cut");
+}

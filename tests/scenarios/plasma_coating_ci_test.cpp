@@ -937,8 +937,8 @@ static void expectPeerPathIsTheCentralRun(const std::vector<std::string>& sets,
     RunOptions o;
     o.quiet = true;
     o.output = base / path;
-    std::vector<std::string> these = sets;
-    these.push_back("coupling.scheme=parallel");
+    std::vector<std::string> these = {"coupling.scheme=parallel"};  // unless `sets` says
+    these.insert(these.end(), sets.begin(), sets.end());
     these.push_back("coupling.data_path=" + path);
     runs[path] = Coupler(loadScenario(scene, these), o).run();
     ASSERT_EQ(runs[path].exit_code, 0) << runs[path].message;
@@ -996,4 +996,11 @@ TEST(PlasmaCoatingCi, PeerDataPathOverTcpGivesTheCentralRunBitForBit) {
        "transport.key_file=" + (keys / "orchestrator.key").string()},
       "tcp-");
   fs::remove_all(keys);
+}
+
+// The overlapped scheme on the peer path: the fluid samples the gas where the parcels will be at
+// the end of its step and sends it to the particles with its results; the same run as the central
+// path's overlapped scheme.
+TEST(PlasmaCoatingCi, PeerDataPathOverlappedGivesTheCentralRunBitForBit) {
+  expectPeerPathIsTheCentralRun({"coupling.scheme=overlapped", "coupling.end_time=0.02"}, "ovl-");
 }

@@ -5,6 +5,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -51,7 +52,7 @@ void checkPeerMessage(const wire::Envelope& e, wire::Envelope::BodyCase expected
     throw ProtocolError("the " + from + " participant sent a message for step " +
                         std::to_string(e.header().step()) + " during step " + std::to_string(step) +
                         " (coupling.data_path: peer)");
-  if (e.body_case() != expected)
+  if (expected != wire::Envelope::BODY_NOT_SET && e.body_case() != expected)
     throw ProtocolError("the " + from + " participant sent an unexpected message during step " +
                         std::to_string(step) + " (coupling.data_path: peer)");
 }
@@ -153,29 +154,28 @@ void FluidPeer::send(wire::Envelope& env, std::uint64_t step, double time) {
 
 void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
                          wire::Advanced& out, const PeerWatch& watch) {
-  // The gas at the parcels
-  const wire::Envelope sample = await(wire::Envelope::kSample, step, watch);
-  wire::Envelope samples;
-  {
-    const auto t0 = Clock::now();
-    const ParticleData at = fromWire(sample.sample().particles());
-    ParticleData s;
-    s.ids = at.ids;
-    std::vector<std::int64_t> lost;
-    solver.sample(at, s, lost);
-    toWire(s, *samples.mutable_samples()->mutable_at_particles());
-    samples.mutable_samples()->mutable_lost_ids()->Assign(lost.begin(), lost.end());
-    samples.mutable_samples()->set_wall_seconds(secondsSince(t0));
+  // The gas at the parcels, unless the particles use the samples of the last interval's end
+  const wire::Envelope sample = await(wire::Envelope::BODY_NOT_SET, step, watch);
+  if (!sample.has_sample() && !sample.has_advance())
+    throw ProtocolError("the particles participant sent an unexpected message during step " +
+                        std::to_string(step) + " (coupling.data_path: peer)");
+  if (sample.has_sample()) {
+    wire::Envelope samples;
+    sampleInto(solver, fromWire(sample.sample().particles()), *samples.mutable_samples());
+    send(samples, step, time);
   }
-  send(samples, step, time);
-  // The exchange terms, then the step
-  const wire::Envelope terms = await(wire::Envelope::kAdvance, step, watch);
+  // The exchange terms (the particles sent them at once when they had the gas sampled ahead)
+  const wire::Envelope terms =
+      sample.has_advance() ? sample : await(wire::Envelope::kAdvance, step, watch);
   wire::Advance with_terms = cmd;
   *with_terms.mutable_terms() = terms.advance().terms();
   ParticleData results;
   solver.advance(with_terms, fromWire(terms.advance().terms()), out, results);
   wire::Envelope advanced;
   toWire(results, *advanced.mutable_advanced()->mutable_state());
+  if (terms.advance().has_sample_ahead())  // the next interval's samples, where they will be
+    sampleInto(solver, predictedAt(fromWire(terms.advance().sample_ahead()), cmd.dt()),
+               *advanced.mutable_advanced()->mutable_ahead());
   send(advanced, step, time);
 }
 
@@ -184,6 +184,7 @@ void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t
 ParticlePeer::ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welcome,
                            PeerTerms& terms, PeerIdentity who, int timeout_ms)
     : link_(link),
+      sample_fields_(link.sample_state().begin(), link.sample_state().end()),
       forcing_fields_(welcome.receive().begin(), welcome.receive().end()),
       terms_(terms),
       who_(std::move(who)),
@@ -208,6 +209,22 @@ void ParticlePeer::checkState(const ParticleData& state) const {
                           " m/s: the DEM is unstable (its time step or the coupling forces); "
                           "see docs/when-things-go-wrong.md");
   }
+}
+
+std::string ParticlePeer::aheadBytes() const {
+  if (!ahead_ || !ahead_at_) return {};
+  wire::FieldSet at;
+  toWire(*ahead_at_, at);
+  return at.SerializeAsString();
+}
+
+void ParticlePeer::restoreAhead(const std::string& bytes) {
+  wire::FieldSet at;
+  if (!at.ParseFromString(bytes))
+    throw ProtocolError(std::string(kPeerAheadFile) +
+                        " is not a FieldSet: the checkpoint is "
+                        "damaged");
+  resume_at_ = fromWire(at);
 }
 
 void ParticlePeer::connect(const std::string& endpoint) {
@@ -243,56 +260,95 @@ wire::Envelope ParticlePeer::request(wire::Envelope env, wire::Envelope::BodyCas
   throw TimeoutError(silence("fluid", timeout_ms_));
 }
 
+wire::Samples ParticlePeer::gasAtParcels(std::uint64_t step, double time, const PeerWatch& watch) {
+  auto sampleAt = [&](const ParticleData& at) {
+    wire::Envelope sample;
+    toWire(at, *sample.mutable_sample()->mutable_particles(), sample_fields_);
+    return std::move(
+        *request(std::move(sample), wire::Envelope::kSamples, step, time, watch).mutable_samples());
+  };
+  if (resume_at_) {  // the first interval after a resume: the gas where it was sampled ahead
+    ahead_ = sampleAt(*resume_at_);
+    resume_at_.reset();
+  }
+  std::optional<wire::Samples> got;
+  if (ahead_ && ahead_->lost_ids_size() == 0 &&
+      static_cast<std::size_t>(ahead_->at_particles().ids_size()) == state_.ids.size() &&
+      std::equal(state_.ids.begin(), state_.ids.end(), ahead_->at_particles().ids().begin()))
+    got = std::move(ahead_);
+  ahead_.reset();
+  return got ? std::move(*got) : sampleAt(state_);
+}
+
+void ParticlePeer::addCoatingOwed(const wire::Advance& cmd, ParticleData& forcing) const {
+  auto& inc = forcing.field(field::coating_increment);
+  const ParticleData owed = fromWire(cmd.terms());
+  if (!owed.has(field::coating_increment)) return;
+  const auto idx = state_.index();
+  const auto& m = owed.get(field::coating_increment);
+  for (std::size_t i = 0; i < owed.size(); ++i) {
+    const auto it = idx.find(owed.ids[i]);
+    if (it == idx.end())
+      throw ProtocolError("the orchestrator pays coating to parcel " + std::to_string(owed.ids[i]) +
+                          ", which these particles do not hold");
+    inc[it->second] = m[i];
+  }
+}
+
+void ParticlePeer::accountRemoval(const wire::Advanced& results,
+                                  wire::PeerInterval& account) const {
+  const ParticleData fr = fromWire(results.state());
+  if (!fr.has(field::precursor_removed)) return;
+  if (fr.ids != state_.ids)
+    throw ProtocolError(
+        "the fluid returned results for other parcels than it was sent (ids differ; "
+        "coupling.data_path: peer)");
+  const auto& rm = fr.get(field::precursor_removed);
+  ParticleData taken;
+  std::vector<double> values;
+  for (std::size_t i = 0; i < fr.size(); ++i) {
+    if (rm[i] == 0.0) continue;
+    if (!std::isfinite(rm[i]))
+      throw ProtocolError("the fluid's precursor_removed of parcel " + std::to_string(fr.ids[i]) +
+                          " is " + std::to_string(rm[i]));
+    taken.ids.push_back(fr.ids[i]);
+    values.push_back(rm[i]);
+  }
+  taken.put(field::precursor_removed, std::move(values));
+  toWire(taken, *account.mutable_removed());
+}
+
 void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
                             double time, wire::Advanced& out, ParticleData& state,
                             const PeerWatch& watch) {
   if (!channel_)
     throw ProtocolError(
-        "an interval of coupling.data_path: peer before the fluid's peer address "
-        "came (Advance.peer_connect)");
+        "an interval of coupling.data_path: peer before the fluid's peer address came "
+        "(Advance.peer_connect)");
   auto* account = out.mutable_peer();
-  // The gas at the parcels where the last reply left them
+  // The gas at the parcels
   auto t0 = Clock::now();
-  wire::Envelope sample;
-  std::vector<std::string> sample_fields(link_.sample_state().begin(), link_.sample_state().end());
-  toWire(state_, *sample.mutable_sample()->mutable_particles(), sample_fields);
-  const wire::Envelope answer =
-      request(std::move(sample), wire::Envelope::kSamples, step, time, watch);
-  const ParticleData samples = fromWire(answer.samples().at_particles());
+  const wire::Samples answer = gasAtParcels(step, time, watch);
+  const ParticleData samples = fromWire(answer.at_particles());
   if (samples.ids != state_.ids)
     throw ProtocolError(
-        "the fluid returned samples for other parcels than it was sent (ids "
-        "differ; coupling.data_path: peer)");
+        "the fluid returned samples for other parcels than it was sent (ids differ; "
+        "coupling.data_path: peer)");
   if (const auto bad = firstNonFinite(samples); !bad.empty())
     throw ProtocolError("the fluid's samples: " + bad);
   std::vector<char> lost(state_.size(), 0);
-  if (answer.samples().lost_ids_size() > 0) {
+  if (answer.lost_ids_size() > 0) {
     const auto idx = state_.index();
-    for (auto id : answer.samples().lost_ids())
+    for (auto id : answer.lost_ids())
       if (auto it = idx.find(id); it != idx.end()) lost[it->second] = 1;
-    account->mutable_lost_ids()->Assign(answer.samples().lost_ids().begin(),
-                                        answer.samples().lost_ids().end());
+    account->mutable_lost_ids()->Assign(answer.lost_ids().begin(), answer.lost_ids().end());
   }
   account->set_sample_seconds(secondsSince(t0));
 
   // The laws; the coating the orchestrator says is owed joins the forcing
   t0 = Clock::now();
   PeerTerms::Terms terms = terms_.evaluate(state_, samples, lost, cmd.dt());
-  if (link_.coating()) {
-    auto& inc = terms.forcing.field(field::coating_increment);
-    const ParticleData owed = fromWire(cmd.terms());
-    if (owed.has(field::coating_increment)) {
-      const auto idx = state_.index();
-      const auto& m = owed.get(field::coating_increment);
-      for (std::size_t i = 0; i < owed.size(); ++i) {
-        const auto it = idx.find(owed.ids[i]);
-        if (it == idx.end())
-          throw ProtocolError("the orchestrator pays coating to parcel " +
-                              std::to_string(owed.ids[i]) + ", which these particles do not hold");
-        inc[it->second] = m[i];
-      }
-    }
-  }
+  if (link_.coating()) addCoatingOwed(cmd, terms.forcing);
   if (const auto bad = firstNonFinite(terms.forcing); !bad.empty())
     throw ProtocolError("the coupling laws' forcing: " + bad);
   account->set_models_seconds(secondsSince(t0));
@@ -304,6 +360,11 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   fa->set_substeps(1);
   toWire(terms.exchange, *fa->mutable_terms(),
          std::vector<std::string>(link_.exchange().begin(), link_.exchange().end()));
+  ahead_at_.reset();
+  if (link_.sample_ahead()) {  // the gas where the parcels will be, sampled in the fluid's step
+    toWire(state_, *fa->mutable_sample_ahead(), sample_fields_);
+    ahead_at_ = predictedAt(state_.select(sample_fields_), cmd.dt());
+  }
   request(std::move(fluid_terms), wire::Envelope::BODY_NOT_SET, step, time, watch);
   // The solver gets the forcing as on the central path: in the Advance (which an adapter with
   // several ranks broadcasts as it is) and as its terms
@@ -318,26 +379,8 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   const wire::Envelope results =
       request(wire::Envelope(), wire::Envelope::kAdvanced, step, time, watch);
   account->set_fluid_seconds(secondsSince(t0));
-  const ParticleData fr = fromWire(results.advanced().state());
-  if (fr.has(field::precursor_removed)) {
-    if (fr.ids != state_.ids)
-      throw ProtocolError(
-          "the fluid returned results for other parcels than it was sent (ids "
-          "differ; coupling.data_path: peer)");
-    const auto& rm = fr.get(field::precursor_removed);
-    ParticleData taken;
-    std::vector<double> values;
-    for (std::size_t i = 0; i < fr.size(); ++i) {
-      if (rm[i] == 0.0) continue;
-      if (!std::isfinite(rm[i]))
-        throw ProtocolError("the fluid's precursor_removed of parcel " + std::to_string(fr.ids[i]) +
-                            " is " + std::to_string(rm[i]));
-      taken.ids.push_back(fr.ids[i]);
-      values.push_back(rm[i]);
-    }
-    taken.put(field::precursor_removed, std::move(values));
-    toWire(taken, *account->mutable_removed());
-  }
+  if (results.advanced().has_ahead()) ahead_ = results.advanced().ahead();
+  accountRemoval(results.advanced(), *account);
   for (std::size_t i = 0; i < terms.in_zone.size(); ++i)
     if (terms.in_zone[i] != 0) account->add_zone_ids(state_.ids[i]);
   if (cmd.report_terms()) {

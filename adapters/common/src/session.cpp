@@ -414,9 +414,6 @@ int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check
   return 0;
 }
 
-namespace {
-
-// The solver's Sample of `in`, as the Samples message, with the time it took.
 void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& s) {
   const auto t0 = std::chrono::steady_clock::now();
   ParticleData samples;
@@ -428,8 +425,6 @@ void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& s) {
   s.set_wall_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
-}  // namespace
-
 ParticleData predictedAt(ParticleData at, double dt) {
   if (!at.has(field::position) || !at.has(field::velocity)) return at;
   auto& x = at.field(field::position);
@@ -440,13 +435,8 @@ ParticleData predictedAt(ParticleData at, double dt) {
 
 namespace {
 
-// The laws' history of a particle participant on the peer path, beside its solver's part of a
-// checkpoint (nothing when the laws keep none).
-void savePeerTerms(ParticlePeer* peer, const fs::path& folder, wire::CheckpointWritten& written) {
-  if (peer == nullptr) return;
-  const std::string bytes = peer->terms().saveState();
+void writeBytes(const fs::path& file, const std::string& bytes, wire::CheckpointWritten& written) {
   if (bytes.empty()) return;
-  const fs::path file = folder / kPeerTermsFile;
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
@@ -454,13 +444,26 @@ void savePeerTerms(ParticlePeer* peer, const fs::path& folder, wire::CheckpointW
   written.add_files(file.string());
 }
 
-void restorePeerTerms(ParticlePeer* peer, const fs::path& folder) {
-  if (peer == nullptr) return;
-  std::ifstream in(folder / kPeerTermsFile, std::ios::binary);
-  if (!in.is_open()) return;  // the laws kept no history
+std::optional<std::string> readBytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in.is_open()) return std::nullopt;
   std::stringstream bytes;
   bytes << in.rdbuf();
-  peer->terms().restoreState(bytes.str());
+  return bytes.str();
+}
+
+// The laws' history and where the gas was sampled ahead, beside the solver's part of a
+// checkpoint (nothing when there is neither).
+void savePeerTerms(ParticlePeer* peer, const fs::path& folder, wire::CheckpointWritten& written) {
+  if (peer == nullptr) return;
+  writeBytes(folder / kPeerTermsFile, peer->terms().saveState(), written);
+  writeBytes(folder / kPeerAheadFile, peer->aheadBytes(), written);
+}
+
+void restorePeerTerms(ParticlePeer* peer, const fs::path& folder) {
+  if (peer == nullptr) return;
+  if (auto bytes = readBytes(folder / kPeerTermsFile)) peer->terms().restoreState(*bytes);
+  if (auto bytes = readBytes(folder / kPeerAheadFile)) peer->restoreAhead(*bytes);
 }
 
 }  // namespace

@@ -28,7 +28,7 @@ const std::vector<KeySpec>& CouplingSection::keys() {
        "laws evaluated, the terms sent to both solvers) | peer (the particle participant samples "
        "the gas from the fluid participant and evaluates the laws over its own parcels; cosim "
        "sends both only the schedule and the coating owed and keeps the ledger, the checks and the "
-       "records; the same answers bit for bit; coupling.scheme parallel; over tcp:// the fluid "
+       "records; the same answers bit for bit, with either scheme; over tcp:// the fluid "
        "listens on a port of its own, with CurveZMQ keys of the run; docs/design.md section 5)"},
       {"cpus", "off",
        "off (the processes run wherever the system puts them) | auto (with 2 or more CPUs and both "
@@ -76,11 +76,6 @@ CouplingSection parseCoupling(const YAML::Node& coupling, const Context& ctx) {
     if (c.data_path != "central" && c.data_path != "peer")
       ctx.fail(coupling["data_path"], "coupling.data_path",
                "expected 'central' or 'peer', got '" + c.data_path + "'");
-    if (c.data_path == "peer" && c.scheme != "parallel")
-      ctx.fail(coupling["data_path"], "coupling.data_path",
-               "'peer' runs with coupling.scheme 'parallel' (the particles sample the gas "
-               "themselves at the start of each interval), not with '" +
-                   c.scheme + "'");
   }
   if (coupling["cpus"]) {
     c.cpus = ctx.text(coupling["cpus"], "coupling.cpus");

@@ -13,6 +13,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -104,11 +105,25 @@ class ParticlePeer {
   // field a finite number, no parcel faster than Welcome.peer.max_particle_speed; ProtocolError
   // naming the parcel otherwise.
   void checkState(const ParticleData& state) const;
+  // coupling.scheme overlapped: where the fluid sampled the gas ahead (the parcels at the last
+  // interval's start, moved by velocity dt), for a checkpoint: a resumed run samples it there
+  // again (restoreAhead), so that it continues as the run that never stopped. Empty: none.
+  std::string aheadBytes() const;
+  void restoreAhead(const std::string& bytes);
 
  private:
   wire::Envelope request(wire::Envelope env, wire::Envelope::BodyCase expected, std::uint64_t step,
                          double time, const PeerWatch& watch);
+  // The gas at the parcels where the last reply left them: sampled ahead at the last interval's
+  // end when the parcels are the same ones and none was placed outside the mesh (the central
+  // path's overlapped rules), else sampled now.
+  wire::Samples gasAtParcels(std::uint64_t step, double time, const PeerWatch& watch);
+  // The coating the orchestrator says is owed (cmd.terms, by id) into the forcing.
+  void addCoatingOwed(const wire::Advance& cmd, ParticleData& forcing) const;
+  // The fluid's per-parcel removal, of the parcels that took any, into the account.
+  void accountRemoval(const wire::Advanced& results, wire::PeerInterval& account) const;
   wire::PeerLink link_;
+  std::vector<std::string> sample_fields_;   // Welcome.peer.sample_state
   std::vector<std::string> forcing_fields_;  // Welcome.receive
   PeerTerms& terms_;
   PeerIdentity who_;
@@ -116,9 +131,14 @@ class ParticlePeer {
   std::unique_ptr<Channel> channel_;
   std::string connected_to_;
   ParticleData state_;
+  std::optional<wire::Samples> ahead_;     // the gas where the parcels are now, sampled ahead
+  std::optional<ParticleData> ahead_at_;   // where ahead_ was sampled
+  std::optional<ParticleData> resume_at_;  // a resume's: sample there first
 };
 
 // The name of the file a particle participant keeps its laws' history in, in its checkpoint part.
 inline constexpr const char* kPeerTermsFile = "peer_terms.bin";
+// ... and where it had the gas sampled ahead (coupling.scheme overlapped): a wire::FieldSet.
+inline constexpr const char* kPeerAheadFile = "peer_ahead.pb";
 
 }  // namespace cosim::link

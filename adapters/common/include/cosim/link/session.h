@@ -129,6 +129,9 @@ bool checkOptionsRequested(int argc, char** argv);
 // prepare that sampling during its step (they are the same numbers, bit for bit).
 ParticleData predictedAt(ParticleData at, double dt);
 
+// The solver's Sample of `in` as the Samples message (lost ids, the time it took).
+void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& out);
+
 // Runs the whole participant life: connect, Hello, Welcome, command loop, Goodbye.
 // Returns the process exit code (0 on a clean Shutdown). `peer_terms`: a particle adapter's
 // coupling laws for coupling.data_path: peer (peer_link.h); without them such a scene is refused
