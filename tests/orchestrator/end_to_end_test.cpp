@@ -164,17 +164,19 @@ TEST(EndToEnd, OverlappedSchemeSamplesDuringTheFluidsStepAndFollowsTheSameSoluti
   EXPECT_NE(text.str().find("\"fluid_sample_ahead_compute\""), std::string::npos) << text.str();
 }
 
-TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehind) {
-  Scenario sc = loadScenario(kScenario, {"coupling.end_time=1000", "coupling.dt=1e-4"});
+// Runs the sphere scene with `sets` and SIGKILLs the child whose name starts with `victim` once
+// 10 ms are simulated; returns the run and how long after the kill it ended.
+static std::pair<RunResult, double> runAndKill(const std::vector<std::string>& sets,
+                                               const std::string& victim, const std::string& tag) {
   RunOptions o;
   o.quiet = true;
-  o.output = freshFolder("kill");
-  Coupler c(std::move(sc), o);
+  o.output = freshFolder(tag);
+  Coupler c(loadScenario(kScenario, sets), o);
   std::chrono::steady_clock::time_point killed_at;
   bool killed = false;
   c.on_step = [&](double t, const link::ParticleData&) {
     if (!killed && t > 0.01) {
-      auto pids = childrenNamed("cosim-free-part");
+      auto pids = childrenNamed(victim);
       ASSERT_EQ(pids.size(), 1u);
       killed_at = std::chrono::steady_clock::now();
       ::kill(pids[0], SIGKILL);
@@ -182,9 +184,14 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
     }
   };
   RunResult r = c.run();
-  const double detect =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
-  ASSERT_TRUE(killed);
+  EXPECT_TRUE(killed);
+  return {std::move(r),
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count()};
+}
+
+TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehind) {
+  const auto [r, detect] =
+      runAndKill({"coupling.end_time=1000", "coupling.dt=1e-4"}, "cosim-free-part", "kill");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_LT(detect, 5.0);
   EXPECT_NE(r.message.find("particles"), std::string::npos) << r.message;
@@ -215,27 +222,9 @@ TEST(EndToEnd, KilledParticipantIsReportedWithinFiveSecondsAndNothingIsLeftBehin
 // The run still ends within five seconds naming the fluid, nothing is left running, and neither
 // socket file stays behind.
 TEST(EndToEnd, PeerPathFluidKilledIsReportedAndNothingIsLeftBehind) {
-  Scenario sc = loadScenario(
-      kScenario, {"coupling.end_time=1000", "coupling.dt=1e-4", "coupling.data_path=peer"});
-  RunOptions o;
-  o.quiet = true;
-  o.output = freshFolder("peer-kill");
-  Coupler c(std::move(sc), o);
-  std::chrono::steady_clock::time_point killed_at;
-  bool killed = false;
-  c.on_step = [&](double t, const link::ParticleData&) {
-    if (!killed && t > 0.01) {
-      auto pids = childrenNamed("cosim-analytic");
-      ASSERT_EQ(pids.size(), 1u);
-      killed_at = std::chrono::steady_clock::now();
-      ::kill(pids[0], SIGKILL);
-      killed = true;
-    }
-  };
-  RunResult r = c.run();
-  const double detect =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - killed_at).count();
-  ASSERT_TRUE(killed);
+  const auto [r, detect] =
+      runAndKill({"coupling.end_time=1000", "coupling.dt=1e-4", "coupling.data_path=peer"},
+                 "cosim-analytic", "peer-kill");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_LT(detect, 5.0);
   EXPECT_NE(r.message.find("participant 'fluid'"), std::string::npos) << r.message;

@@ -1,4 +1,4 @@
-// The peer link of coupling.data_path: peer (cosim/link/peer_link.h) between two fake solvers in
+// The peer link of coupling.data_path: peer (cosim/link/peer_link.h) between two test solvers in
 // one process: one interval carries the samples, the terms and the removal the right way, and the
 // link refuses what a stranger or a confused peer sends, naming it, and never waits forever.
 #include "cosim/link/peer_link.h"
@@ -25,9 +25,9 @@ std::string endpoint(const std::string& tag) {
 }
 
 // A gas of velocity (0, 0, u) everywhere; each parcel removes `k` of precursor per step.
-class FakeFluid : public Solver {
+class UniformGas : public Solver {
  public:
-  Capabilities capabilities() const override { return {wire::FLUID, "fake-fluid", {}, {}}; }
+  Capabilities capabilities() const override { return {wire::FLUID, "uniform-gas", {}, {}}; }
   void configure(const wire::Welcome&) override {}
   void sample(const ParticleData& at, ParticleData& out, std::vector<std::int64_t>& lost) override {
     auto& u = out.field(field::fluid_velocity);
@@ -46,9 +46,11 @@ class FakeFluid : public Solver {
   ParticleData got_terms, got_cmd_terms;
 };
 
-class FakeParticles : public Solver {
+class RecordingParticles : public Solver {
  public:
-  Capabilities capabilities() const override { return {wire::PARTICLES, "fake-particles", {}, {}}; }
+  Capabilities capabilities() const override {
+    return {wire::PARTICLES, "recording-particles", {}, {}};
+  }
   void configure(const wire::Welcome&) override {}
   void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced&,
                ParticleData& state) override {
@@ -61,7 +63,7 @@ class FakeParticles : public Solver {
 
 // K = 1 for every parcel, the fluid velocity as forcing, the drag as the fluid's exchange term;
 // the first parcel is in the zone.
-class FakeLaws : public PeerTerms {
+class UnitDragLaws : public PeerTerms {
  public:
   void configure(const wire::PeerLink&) override {}
   Terms evaluate(const ParticleData& state, const ParticleData& samples,
@@ -117,10 +119,10 @@ wire::Advance interval(double dt) {
 TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
   Link l("one");
   FluidPeer fluid_peer(l.fluid_side, l.fluid, 10000, "ipc://unused");
-  FakeLaws laws;
+  UnitDragLaws laws;
   ParticlePeer particle_peer(l.particle_side, l.particle_welcome, laws, l.particles, 10000);
-  FakeFluid fluid;
-  FakeParticles particles;
+  UniformGas fluid;
+  RecordingParticles particles;
   particles.start = parcels();
   particle_peer.setState(parcels());
 
@@ -170,7 +172,7 @@ TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
 TEST(PeerLink, AStrangersMessageIsDroppedAndAPeerOfAnotherStepIsRefused) {
   Link l("stranger");
   FluidPeer fluid_peer(l.fluid_side, l.fluid, 3000, "ipc://unused");
-  FakeFluid fluid;
+  UniformGas fluid;
   auto fluid_done = std::async(std::launch::async, [&] {
     wire::Advanced out;
     fluid_peer.interval(fluid, interval(1e-4), 5, 0.0, out, kNobodyGone);
@@ -202,8 +204,8 @@ TEST(PeerLink, AStrangersMessageIsDroppedAndAPeerOfAnotherStepIsRefused) {
 
 TEST(PeerLink, ASilentPeerEndsTheWaitAndTheOrchestratorsDepartureToo) {
   Link l("silent");
-  FakeLaws laws;
-  FakeParticles particles;
+  UnitDragLaws laws;
+  RecordingParticles particles;
   {
     ParticlePeer particle_peer(l.particle_side, l.particle_welcome, laws, l.particles, 600);
     particle_peer.setState(parcels());

@@ -283,16 +283,22 @@ wire::Samples ParticlePeer::gasAtParcels(std::uint64_t step, double time, const 
 void ParticlePeer::addCoatingOwed(const wire::Advance& cmd, ParticleData& forcing) const {
   auto& inc = forcing.field(field::coating_increment);
   const ParticleData owed = fromWire(cmd.terms());
-  if (!owed.has(field::coating_increment)) return;
-  const auto idx = state_.index();
+  if (!owed.has(field::coating_increment) || owed.ids.empty()) return;
+  // The owed parcels come in id order (the ledger's): each parcel looks itself up among them,
+  // with no index of every parcel built on every step
+  if (!std::is_sorted(owed.ids.begin(), owed.ids.end()))
+    throw ProtocolError("the orchestrator's coating owed is not in parcel id order");
   const auto& m = owed.get(field::coating_increment);
-  for (std::size_t i = 0; i < owed.size(); ++i) {
-    const auto it = idx.find(owed.ids[i]);
-    if (it == idx.end())
-      throw ProtocolError("the orchestrator pays coating to parcel " + std::to_string(owed.ids[i]) +
-                          ", which these particles do not hold");
-    inc[it->second] = m[i];
+  std::size_t paid = 0;
+  for (std::size_t i = 0; i < state_.size(); ++i) {
+    const auto it = std::lower_bound(owed.ids.begin(), owed.ids.end(), state_.ids[i]);
+    if (it == owed.ids.end() || *it != state_.ids[i]) continue;
+    inc[i] = m[static_cast<std::size_t>(it - owed.ids.begin())];
+    ++paid;
   }
+  if (paid != owed.size())
+    throw ProtocolError("the orchestrator pays coating to " + std::to_string(owed.size() - paid) +
+                        " parcel(s) these particles do not hold");
 }
 
 void ParticlePeer::accountRemoval(const wire::Advanced& results,
