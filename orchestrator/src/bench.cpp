@@ -27,8 +27,9 @@ const char* const kPhases[] = {"fluid_sample", "models", "advance", "bookkeeping
 std::string schemeOf(const std::string& stage) {
   if (stage == "dem") return "frozen-fluid";
   if (stage == "cfd") return "frozen-particles";
-  if (stage == "coupled") return "";  // the scene's coupling.scheme
-  throw std::invalid_argument("cosim bench: unknown stage '" + stage + "' (dem, cfd, coupled)");
+  if (stage == "coupled" || stage == "peer") return "";  // the scene's coupling.scheme
+  throw std::invalid_argument("cosim bench: unknown stage '" + stage +
+                              "' (coupled, dem, cfd, peer)");
 }
 
 double at(const std::map<std::string, double>& m, const std::string& key) {
@@ -51,12 +52,17 @@ BenchRatios benchRatios(const std::map<std::string, BenchStage>& stages) {
     const auto it = stages.find(n);
     return it == stages.end() ? 0.0 : it->second.total();
   };
-  BenchRatios r;
   const double alone = std::max(total("dem"), total("cfd"));
-  const auto coupled = stages.find("coupled");
-  if (coupled == stages.end() || !(coupled->second.total() > 0)) return r;
-  r.coupled_over_max = alone > 0 ? coupled->second.total() / alone : 0.0;
-  r.serial_percent = 100.0 * coupled->second.serial() / coupled->second.total();
+  // R and the serial share of one coupled stage (coupled or peer); zeros without it.
+  auto ratios = [&](const char* n, double& over_max, double& serial) {
+    const auto it = stages.find(n);
+    if (it == stages.end() || !(it->second.total() > 0)) return;
+    over_max = alone > 0 ? it->second.total() / alone : 0.0;
+    serial = 100.0 * it->second.serial() / it->second.total();
+  };
+  BenchRatios r;
+  ratios("coupled", r.coupled_over_max, r.serial_percent);
+  ratios("peer", r.peer_over_max, r.peer_serial_percent);
   return r;
 }
 
@@ -90,9 +96,36 @@ BenchStart benchStart(const BenchOptions& opt) {
   return {std::move(sc), readCoupledState(*newest).time};
 }
 
+// The stages to run: the asked ones, and the peer stage when asked for or the scene's own path.
+// A run's data path stays the one it began with (cosim resume), so `from` takes a central run
+// and no peer stage.
+std::vector<std::string> stagesOf(const BenchOptions& opt, const Scenario& probe) {
+  std::vector<std::string> names = opt.stages;
+  const bool scene_peer = probe.coupling.data_path == "peer";
+  const bool want_peer =
+      opt.peer || scene_peer || std::find(names.begin(), names.end(), "peer") != names.end();
+  if (!opt.from.empty() && scene_peer)
+    throw std::invalid_argument(
+        "cosim bench --from " + opt.from.string() +
+        ": the run takes coupling.data_path: peer, and a run keeps its data path, while the "
+        "bench's coupled stage records the central path's terms for the solvers alone; bench "
+        "the scene instead (cosim bench SCENE --peer)");
+  if (!opt.from.empty() && want_peer)
+    throw std::invalid_argument("cosim bench --from " + opt.from.string() +
+                                ": the peer stage needs the scene: a run keeps the data path it "
+                                "began with");
+  if (want_peer && std::find(names.begin(), names.end(), "peer") == names.end())
+    names.emplace_back("peer");
+  return names;
+}
+
 }  // namespace
 
 int runBench(const BenchOptions& opt, std::ostream& out) {
+  if (!opt.from.empty() && opt.peer)
+    throw std::invalid_argument("cosim bench --from " + opt.from.string() +
+                                " --peer: the peer stage needs the scene (cosim bench SCENE "
+                                "--peer): a run keeps the data path it began with");
   const BenchStart start = benchStart(opt);
   const Scenario& probe = start.scene;
   const bool from_run = !opt.from.empty();
@@ -114,15 +147,16 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
   if (have_load) out << fmt::format("; load average {:.2f}", load[0]);
   out << "\n  run folders under " << folder.string() << std::endl;
 
+  const std::vector<std::string> names = stagesOf(opt, probe);
   // The stages' run folders are written over (as with cosim run --overwrite): each must be new,
   // empty or a run folder of cosim's, checked before the first stage runs.
-  for (const auto& name : opt.stages)
+  for (const auto& name : names)
     analysis::claimOutputFolder(folder / name, analysis::kSummaryFile, "\"cosim-summary\"",
                                 "cosim bench -o");
 
   std::map<std::string, BenchStage> stages;
   // The coupled stage runs first and records its terms; the solver-alone stages replay them.
-  std::vector<std::string> order = opt.stages;
+  std::vector<std::string> order = names;
   std::stable_partition(order.begin(), order.end(), [](const auto& n) { return n == "coupled"; });
   const bool recorded = !order.empty() && order.front() == "coupled";
   auto recording = std::make_shared<TermsRecording>();
@@ -137,17 +171,20 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
     else if (recorded)
       ro.replay_terms = recording;
     const std::filesystem::path stage = folder / name;
+    std::vector<std::string> stage_sets = sets;
+    stage_sets.emplace_back(name == "peer" ? "coupling.data_path=peer"
+                                           : "coupling.data_path=central");
     std::optional<Coupler> c;
     if (from_run) {
       // A copy of the run as `cosim pack` makes it, resumed: the run itself is never written.
       std::filesystem::remove_all(stage);
       packRun(opt.from, stage, probe);
       ro.resume = std::filesystem::absolute(stage);
-      c.emplace(loadRunScene(stage, sets), ro);
+      c.emplace(loadRunScene(stage, sets), ro);  // a central run (stagesOf)
     } else {
       ro.overwrite = true;
       ro.output = stage;
-      c.emplace(loadScenario(opt.scenario, sets, opt.unsets), ro);
+      c.emplace(loadScenario(opt.scenario, stage_sets, opt.unsets), ro);
     }
     const RunResult r = c->run();
     if (r.exit_code != 0) {
@@ -167,7 +204,7 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
   for (const char* p : kPhases) out << "  " << std::setw(12) << p;
   out << "  particles_compute  fluid_compute  fluid_sample_compute  send  particles_reply  "
          "fluid_reply\n";
-  for (const auto& name : opt.stages) {
+  for (const auto& name : names) {
     const auto& st = stages.at(name);
     out << std::left << std::setw(10) << name << std::right << std::setw(8)
         << util::fixed(1e3 * st.total(), 2);
@@ -187,6 +224,9 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
     out << fmt::format("coupled/dem = {:.3f}\n", total("coupled") / total("dem"));
   if (total("cfd") > 0 && total("coupled") > 0)
     out << fmt::format("coupled/cfd = {:.3f}\n", total("coupled") / total("cfd"));
+  if (total("peer") > 0)
+    out << fmt::format("peer/max(dem,cfd) = {:.3f}; serial share = {:.1f} %\n", r.peer_over_max,
+                       r.peer_serial_percent);
   out << fmt::format("coupled/max(dem,cfd) = {:.3f}; serial share = {:.1f} %", r.coupled_over_max,
                      r.serial_percent)
       << std::endl;

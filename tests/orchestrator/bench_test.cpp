@@ -139,6 +139,49 @@ TEST(Bench, CommandLastLineOnTheSettlingSphere) {
   fs::remove_all(out);
 }
 
+// --peer: the coupled step once more on the rank-to-rank data path, timed on a line of its own
+// before the last; the sphere settles there exactly as on the central path (same laws, same
+// samples: docs/design.md section 5), so the two stages end in the same state.
+TEST(Bench, PeerStageTimesTheRankToRankPathOnALineOfItsOwn) {
+  const fs::path out = fs::temp_directory_path() / ("cosim-bench-peer-" + std::to_string(getpid()));
+  fs::remove_all(out);
+  int status = 0;
+  const std::string text =
+      capture(std::string(COSIM_EXE) + " bench " + COSIM_SOURCE_DIR +
+                  "/scenarios/settling-sphere --steps 4 --warmup 1 --peer -o " + out.string(),
+              status);
+  ASSERT_EQ(status, 0) << text;
+  const std::regex peer_line(
+      R"((^|\n)peer/max\(dem,cfd\) = [0-9]+\.[0-9]+; serial share = [0-9]+\.[0-9]+ %\n)");
+  EXPECT_TRUE(std::regex_search(text, peer_line)) << text;
+  EXPECT_TRUE(std::regex_match(
+      lastLine(text), std::regex(R"(coupled/max\(dem,cfd\) = [0-9.]+; serial share = [0-9.]+ %)")))
+      << text;
+  EXPECT_NE(text.find("\npeer "), std::string::npos) << text;  // its row of the table
+  const auto coupled = nlohmann::json::parse(fileText(out / "coupled" / "summary.json"));
+  const auto peer = nlohmann::json::parse(fileText(out / "peer" / "summary.json"));
+  EXPECT_EQ(peer.at("steps"), coupled.at("steps"));
+  EXPECT_EQ(peer.at("headline"), coupled.at("headline")) << peer.dump(1);
+  EXPECT_EQ(peer.at("extra").at("observables"), coupled.at("extra").at("observables"))
+      << peer.dump(1);
+  fs::remove_all(out);
+}
+
+// A run keeps the data path it began with, so --from takes no peer stage: refused before any
+// stage runs, naming the flag and what to do instead.
+TEST(Bench, PeerStageFromARunIsRefusedNamingTheFlag) {
+  const fs::path out =
+      fs::temp_directory_path() / ("cosim-bench-peerfrom-" + std::to_string(getpid()));
+  fs::remove_all(out);
+  int status = 0;
+  const std::string text = capture(std::string(COSIM_EXE) + " bench --from " + out.string() +
+                                       "/nowhere --peer -o " + (out / "bench").string(),
+                                   status);
+  EXPECT_NE(status, 0) << text;
+  EXPECT_NE(text.find("--peer"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(out / "bench")) << text;
+}
+
 // --from RUN: each stage continues a copy of the run's newest checkpoint for warmup + steps
 // coupling steps (the settling sphere at dt 1e-4 s from its checkpoint at 2 ms: 50 steps before,
 // 1 + 4 after); the run's own folder is not written.

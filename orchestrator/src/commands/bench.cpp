@@ -1,4 +1,4 @@
-// cosim bench SCENARIO|--from RUN [--steps N] [--warmup N] [--set K=V] [-o FOLDER]
+// cosim bench SCENARIO|--from RUN [--steps N] [--warmup N] [--peer] [--set K=V] [-o FOLDER]
 #include "../bench.h"
 
 #include <iostream>
@@ -14,7 +14,8 @@ void addBenchCommand(CLI::App& app, Commands& commands) {
       "bench",
       "Cost of a coupled step against its solvers alone, on the same scene: coupled (its terms "
       "recorded), the particles alone under the recorded forcing and the fluid alone with the "
-      "recorded particle terms, per step with phases; the last line reads "
+      "recorded particle terms, per step with phases (and with --peer the coupled step on the "
+      "rank-to-rank data path); the last line reads "
       "'coupled/max(dem,cfd) = R; serial share = S %'");
   auto* scene = bench->add_option("scenario", o->scenario, "scenario file or folder");
   auto* from = bench->add_option(
@@ -26,6 +27,10 @@ void addBenchCommand(CLI::App& app, Commands& commands) {
   bench->add_option("--steps", o->steps, "timed coupling steps per stage (default 50)")
       ->check(CLI::Range(1, 1000000000));
   bench->add_option("--warmup", o->warmup, "untimed steps before them (default 5)");
+  bench->add_flag("--peer", o->peer,
+                  "also time the coupled step on the rank-to-rank data path "
+                  "(coupling.data_path: peer; its own line before the last); taken when the "
+                  "scene sets that path; not with --from");
   bench->add_option("--set", o->sets, "override a value (as for run)")->take_all();
   bench->add_option("--unset", o->unsets, "remove a node (as for run)")->take_all();
   bench->add_option("-o,--output", o->output,
