@@ -168,7 +168,7 @@ int runBench(const BenchOptions& opt, std::ostream& out) {
     ro.untimed_steps = opt.warmup;
     if (name == "coupled")
       ro.record_terms = recording;
-    else if (recorded)
+    else if (recorded && name != "peer")  // the peer stage couples; the alone stages replay
       ro.replay_terms = recording;
     const std::filesystem::path stage = folder / name;
     std::vector<std::string> stage_sets = sets;

@@ -161,6 +161,9 @@ TEST(Bench, PeerStageTimesTheRankToRankPathOnALineOfItsOwn) {
   const auto coupled = nlohmann::json::parse(fileText(out / "coupled" / "summary.json"));
   const auto peer = nlohmann::json::parse(fileText(out / "peer" / "summary.json"));
   EXPECT_EQ(peer.at("steps"), coupled.at("steps"));
+  // on the peer path the particles sample the gas themselves, and time it
+  EXPECT_TRUE(peer.at("timings_s").contains("particles_sample_compute")) << peer.dump(1);
+  EXPECT_FALSE(coupled.at("timings_s").contains("particles_sample_compute")) << coupled.dump(1);
   EXPECT_EQ(peer.at("headline"), coupled.at("headline")) << peer.dump(1);
   EXPECT_EQ(peer.at("extra").at("observables"), coupled.at("extra").at("observables"))
       << peer.dump(1);
