@@ -13,11 +13,13 @@ Two data paths:
   while both solvers wait, and its bytes cross its one network link (the larger direction, half of
   bytes_per_parcel, at the link's rate).
 - rank to rank: both solvers partition the vessel alike among the nodes, so a parcel's cell lives
-  on its own node; each particle rank exchanges with the gas ranks of its node (the same
-  per-parcel work and packing, for its own parcels, all ranks at once, in messages of its own
-  parcels: N over the particle ranks, the DEM's share of the cores by the solvers' work), and only
-  the step's round trips with the orchestrator (its schedule, the ledger's totals) cross the
-  network.
+  on its own node; each particle rank exchanges with the gas ranks of its node (for its own
+  parcels, all ranks at once, in messages of its own parcels: N over the particle ranks, the DEM's
+  share of the cores by the solvers' work), and only the step's round trips with the orchestrator
+  (its schedule, the ledger's totals; peer_messages_per_step) cross the network. Its coupling
+  work per parcel is peer_us_per_parcel_by_size where the inputs have it (measured on the peer
+  path itself: the laws, packing, the wire between the two ranks and the checks, by the parcels a
+  message carries), else the central path's serial_us_per_parcel plus its wire.
 The wire's cost per parcel depends on the parcels a message carries (measured at a few sizes):
 log-log between the measured sizes; below the smallest and beyond the largest the nearest
 measured value is held, beyond the largest an optimistic bound (the cost per parcel grew 27 times
@@ -81,15 +83,25 @@ def central_seconds(p, n_parcels, net):
     return work + link + p["messages_per_step"] * net["latency_us"] * 1e-6
 
 
+def rank_to_rank_work_us(p, message_parcels):
+    """The coupling work per parcel of a particle rank whose messages carry message_parcels:
+    measured on the peer path (peer_us_per_parcel_by_size) or, without it, the central path's
+    serial work and wire. Returns (us, held) as wire_us_per_parcel."""
+    if "peer_us_per_parcel_by_size" in p:
+        return wire_us_per_parcel(p["peer_us_per_parcel_by_size"], message_parcels)
+    wire, held = wire_us_per_parcel(p["wire_us_per_parcel_by_size"], message_parcels)
+    return p["serial_us_per_parcel"] + wire, held
+
+
 def rank_to_rank_seconds(p, n_parcels, nodes, net):
     """The coupling work, done by the particle ranks for their own parcels, with the cores split so
     that the particle ranks (with that work) and the gas ranks finish together: the work spreads
     over all cores."""
     cores = nodes * p["cores_per_node"]
-    wire, _ = wire_us_per_parcel(p["wire_us_per_parcel_by_size"],
-                                 rank_message_parcels(p, n_parcels, nodes))
-    work = n_parcels * (p["serial_us_per_parcel"] + wire) * 1e-6 / cores
-    return work + p["messages_per_step"] * net["latency_us"] * 1e-6
+    w, _ = rank_to_rank_work_us(p, rank_message_parcels(p, n_parcels, nodes))
+    work = n_parcels * w * 1e-6 / cores
+    messages = p.get("peer_messages_per_step", p["messages_per_step"])
+    return work + messages * net["latency_us"] * 1e-6
 
 
 def share(outside, solvers):
@@ -130,27 +142,31 @@ def tables(p):
                  f"the measured {sizes[0]:,} to {sizes[-1]:,}; \"held\": outside them, the "
                  f"nearest measured value, an optimistic bound, the cost per parcel rising "
                  f"toward both ends):\n")
+    rank_column = ("coupling work, measured on the peer path [us/parcel]"
+                   if "peer_us_per_parcel_by_size" in p else "serial work + wire [us/parcel]")
     lines.append("| parcels | nodes | central: a message [parcels] | wire [us/parcel] "
-                 "| rank to rank: a message [parcels] | wire [us/parcel] |")
+                 f"| rank to rank: a message [parcels] | {rank_column} |")
     lines.append("|---:|---:|---:|---:|---:|---:|")
 
-    def cost(m):
-        us, held = wire_us_per_parcel(table, m)
+    def cost(us_held):
+        us, held = us_held
         return f"{us:.3g}" + (f", held ({held} the measured sizes)" if held else "")
 
     for n in p["parcels"]:
         for nodes in p["nodes"]:
             r = rank_message_parcels(p, n, nodes)
-            lines.append(f"| {n:,} | {nodes} | {n:,} | {cost(n)} | {r:,.0f} | {cost(r)} |")
+            lines.append(f"| {n:,} | {nodes} | {n:,} | {cost(wire_us_per_parcel(table, n))} | "
+                         f"{r:,.0f} | {cost(rank_to_rank_work_us(p, r))} |")
     dem, cfd = solver_us_per_parcel(p)
     n = max(p["parcels"])
-    ws = "/".join(f"{p['serial_us_per_parcel'] + cost_at:.3g}" for cost_at in
-                  (wire_us_per_parcel(table, rank_message_parcels(p, n, nodes))[0]
-                   for nodes in p["nodes"]))
+    ws = "/".join(f"{rank_to_rank_work_us(p, rank_message_parcels(p, n, nodes))[0]:.3g}"
+                  for nodes in p["nodes"])
     # rank to rank, large beds: share = w / (w + the solvers' work per parcel); 2 % needs
     # w <= 0.02 / 0.98 of that work
+    source = ("measured on the peer path" if "peer_us_per_parcel_by_size" in p
+              else "the central path's serial work and wire")
     lines.append(f"\nRank to rank, on large beds the share tends to w / (w + {dem + cfd:.3g} us), "
-                 f"w the coupling work per parcel (at {n:,} parcels on "
+                 f"w the coupling work per parcel ({source}; at {n:,} parcels on "
                  f"{'/'.join(str(nodes) for nodes in p['nodes'])} nodes: {ws} us) and "
                  f"{dem + cfd:.3g} us the solvers' per parcel (DEM {dem:.3g}, gas {cfd:.3g}, at "
                  f"their efficiencies): 2 % needs w <= {0.02 / 0.98 * (dem + cfd):.3g} us.")
@@ -186,11 +202,19 @@ def self_test():
     # = 8 ms, plus 40 us
     assert abs(rank_message_parcels(p, 1.6e5, 2) - 1e4) < 1e-6
     assert abs(rank_to_rank_seconds(p, 1.6e5, 2, net) - 0.00804) < 1e-9
-    # the measured table of inputs.json: its own values at its measured sizes
+    # the peer path's own measured work replaces serial + wire for rank to rank, and its round
+    # trips with the orchestrator: 10^4 parcels a message at 0.2 us: 1.6 x 10^5 x 0.2 us over 20
+    # cores = 1.6 ms, plus 2 x 10 us; the central path unchanged
+    p["peer_us_per_parcel_by_size"] = [{"parcels": 1e4, "us_per_parcel": 0.2}]
+    p["peer_messages_per_step"] = 2
+    assert abs(rank_to_rank_seconds(p, 1.6e5, 2, net) - 0.00162) < 1e-9
+    assert abs(central_seconds(p, 1.6e5, net) - 0.14404) < 1e-9
+    # the measured tables of inputs.json: their own values at their measured sizes
     inputs = json.loads(Path(__file__).with_name("inputs.json").read_text())
-    for e in inputs["wire_us_per_parcel_by_size"]["value"]:
-        us, held = wire_us_per_parcel(inputs["wire_us_per_parcel_by_size"]["value"], e["parcels"])
-        assert held is None and abs(us - e["us_per_parcel"]) < 1e-12, (e, us, held)
+    for key in ("wire_us_per_parcel_by_size", "peer_us_per_parcel_by_size"):
+        for e in inputs[key]["value"]:
+            us, held = wire_us_per_parcel(inputs[key]["value"], e["parcels"])
+            assert held is None and abs(us - e["us_per_parcel"]) < 1e-12, (e, us, held)
     print("scaling model: self-test passed")
 
 
@@ -216,7 +240,7 @@ def main(argv):
     p = values(inputs)
     print(f"inputs: {path}")
     for k, v in inputs.items():
-        if k == "wire_us_per_parcel_by_size":
+        if k in ("wire_us_per_parcel_by_size", "peer_us_per_parcel_by_size"):
             print(f"  {k}: {v['source']}")
             for e in sorted(v["value"], key=lambda e: e["parcels"]):
                 print(f"    {e['parcels']:,} parcels a message: {e['us_per_parcel']} us: "

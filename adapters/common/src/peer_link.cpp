@@ -382,10 +382,10 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
 
   // What the fluid's step took from the gas, parcel by parcel
   t0 = Clock::now();
-  const wire::Envelope results =
-      request(wire::Envelope(), wire::Envelope::kAdvanced, step, time, watch);
+  wire::Envelope results = request(wire::Envelope(), wire::Envelope::kAdvanced, step, time, watch);
   account->set_fluid_seconds(secondsSince(t0));
-  if (results.advanced().has_ahead()) ahead_ = results.advanced().ahead();
+  if (results.advanced().has_ahead())  // kept for the next interval: taken, not copied
+    ahead_ = std::move(*results.mutable_advanced()->mutable_ahead());
   accountRemoval(results.advanced(), *account);
   for (std::size_t i = 0; i < terms.in_zone.size(); ++i)
     if (terms.in_zone[i] != 0) account->add_zone_ids(state_.ids[i]);
