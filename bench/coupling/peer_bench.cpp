@@ -40,11 +40,12 @@ namespace field = cosim::field;
 namespace orch = cosim::orchestrator;
 using cosim::link::ParticleData;
 
-const bool kSteadyHeap = [] {  // as bench/coupling: the orchestrator's steady state, not a fresh heap
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 256 << 20);
-  return true;
-}();
+const bool kSteadyHeap =
+    [] {  // as bench/coupling: the orchestrator's steady state, not a fresh heap
+      mallopt(M_MMAP_THRESHOLD, 32 << 20);
+      mallopt(M_TRIM_THRESHOLD, 256 << 20);
+      return true;
+    }();
 
 // Parcels of 1.5 mm in the quick bed's lower 20 mm (36 mm square), some in its coating zone.
 ParticleData bed(std::size_t n) {
@@ -68,7 +69,9 @@ ParticleData bed(std::size_t n) {
 // A gas at rest but for a rising stream, of the bed's voidage; no parcel outside the mesh.
 class FixedGas : public cosim::link::Solver {
  public:
-  cosim::link::Capabilities capabilities() const override { return {wire::FLUID, "fixed-gas", {}, {}}; }
+  cosim::link::Capabilities capabilities() const override {
+    return {wire::FLUID, "fixed-gas", {}, {}};
+  }
   void configure(const wire::Welcome&) override {}
   void sample(const ParticleData& at, ParticleData& out, std::vector<std::int64_t>&) override {
     const std::size_t n = at.size();
@@ -131,12 +134,11 @@ void BM_PeerInterval(benchmark::State& state) {
     state.SkipWithError("the scene does not take the peer path");
     return;
   }
-  const std::string endpoint =
-      "ipc:///tmp/cosim-peer-bench-" + std::to_string(::getpid()) + "-" + std::to_string(n) + ".ipc";
+  const std::string endpoint = "ipc:///tmp/cosim-peer-bench-" + std::to_string(::getpid()) + "-" +
+                               std::to_string(n) + ".ipc";
   const orch::PeerKeys keys{endpoint, {}, {}};
-  const wire::Welcome fluid_welcome = orch::welcomeFor(sc, plan, sc.participants.at("fluid"),
-                                                       std::filesystem::temp_directory_path(), "",
-                                                       keys);
+  const wire::Welcome fluid_welcome = orch::welcomeFor(
+      sc, plan, sc.participants.at("fluid"), std::filesystem::temp_directory_path(), "", keys);
   const wire::Welcome particle_welcome = orch::welcomeFor(
       sc, plan, sc.participants.at("particles"), std::filesystem::temp_directory_path(), "", keys);
 

@@ -2,10 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <sstream>
@@ -493,10 +495,16 @@ AdvanceReplies Coupler::advanceBoth(const models::CouplingTerms& terms) {
 void Coupler::takeParticleState(const wire::Advanced& pa) {
   participants_.addComputeSeconds("particles", pa.wall_seconds());
   if (pa.has_peer()) takePeerAccount(pa.peer());  // about the parcels at the interval's start
+  if (pa.has_peer() && pa.state().ids_size() == 0 && pa.state().fields_size() == 0) {
+    takeParticleChanges(pa);  // who came and went; the state comes when it is recorded
+    ledger_.delivered();
+    return;
+  }
   const std::vector<std::int64_t> before = state_.ids;
   state_ = cosim::link::fromWire(pa.state());
-  // The peer path sends the parcels' ids only; the rest comes when it is recorded (wholeState)
+  // An older participant's peer reply: the parcels' ids only (Advance.state_ids_only)
   state_partial_ = pa.has_peer() && state_.names().empty() && !state_.ids.empty();
+  if (state_partial_) std::sort(state_.ids.begin(), state_.ids.end());
   ledger_.delivered();  // the coating paid with this step is on the parcels
   try {
     monitor_.checkParticleLedger(before, state_.ids,
@@ -506,6 +514,27 @@ void Coupler::takeParticleState(const wire::Advanced& pa) {
     throw RunFailure("particles", e.what());
   }
   check(state_, "particles");
+}
+
+// The peer path between records (Advance.state_changes_only): the particles send their count and
+// the ids that came and went, not their parcels, so that nothing here grows with the bed on a
+// step where none came or left. state_ keeps the ids, sorted; wholeState checks them against the
+// particles' own when it records the state.
+void Coupler::takeParticleChanges(const wire::Advanced& pa) {
+  if (!state_partial_) {  // the last reply was the whole state, in the particles' order
+    link::ParticleData ids;
+    ids.ids = std::move(state_.ids);
+    std::sort(ids.ids.begin(), ids.ids.end());
+    state_ = std::move(ids);
+    state_partial_ = true;
+  }
+  if (auto wrong = applyParticleChanges(
+          state_.ids, {pa.inserted_ids().begin(), pa.inserted_ids().end()},
+          {pa.deleted_ids().begin(), pa.deleted_ids().end()}, pa.particles().particle_count()))
+    throw RunFailure("particles",
+                     "reported at step " + std::to_string(step_) +
+                         " (t = " + analysis::formatShortest(time_) + " s) that it " + *wrong,
+                     ErrorKind::peer);
 }
 
 // The peer path's account of the interval, read while state_ still holds the parcels at its
@@ -521,7 +550,21 @@ void Coupler::takePeerAccount(const wire::PeerInterval& p) {
     check(forcing, "models (forcing)");
     refuseOrWarn(checkFirstStep(sc_, state_, samples, forcing));
   }
-  if (passes_) {
+  if (passes_ && state_partial_) {  // state_: the ids, sorted; the zone's few looked up in them
+    std::vector<std::int64_t> inside(p.zone_ids().begin(), p.zone_ids().end());
+    std::sort(inside.begin(), inside.end());
+    const auto& ids = state_.ids;
+    for (const auto id : inside) {
+      if (!std::binary_search(ids.begin(), ids.end(), id))
+        throw RunFailure("particles",
+                         "reported parcel " + std::to_string(id) +
+                             " in the coating zone, which is not among its parcels at the "
+                             "interval's start",
+                         ErrorKind::peer);
+    }
+    passes_->updateInside(stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_ - 1),
+                          std::move(inside));
+  } else if (passes_) {
     std::vector<char> in_zone(state_.size(), 0);
     int j = 0;  // the zone's parcels come in the state's order
     for (std::size_t i = 0; i < state_.size() && j < p.zone_ids_size(); ++i) {
@@ -616,10 +659,13 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
   }
   if (replies.fluid) row[col::pressure_drop] = replies.fluid->fluid().pressure_drop();
   record_.row(time_, row);
-  if (on_step || record_.snapshotDue(time_, last)) wholeState();
-  const link::ParticleData held = ledger_.held(state_);
-  record_.snapshot(time_, held, last);
-  if (on_step) on_step(time_, held);
+  // The parcels with their coating owed, only when recorded or watched: a copy of every parcel
+  if (on_step || record_.snapshotDue(time_, last)) {
+    wholeState();
+    const link::ParticleData held = ledger_.held(state_);
+    record_.snapshot(time_, held, last);
+    if (on_step) on_step(time_, held);
+  }
   phases_.lap("bookkeeping");
 }
 
@@ -637,7 +683,14 @@ void Coupler::flushCredit() {
 // held their ids only.
 void Coupler::wholeState() {
   if (!state_partial_) return;
+  const std::vector<std::int64_t> known = std::move(state_.ids);  // sorted
   reportParticleState({});
+  // the changes the particles reported step by step must add up to the parcels they hold
+  if (auto wrong = compareWithChanges(known, state_.ids))
+    throw RunFailure(
+        "particles",
+        "sent its state at t = " + analysis::formatShortest(time_) + " s, which " + *wrong,
+        ErrorKind::peer);
   phases_.lap("bookkeeping");
 }
 

@@ -99,6 +99,7 @@ class Coupler {
   AdvanceReplies advanceBoth(const models::CouplingTerms& terms);
   void takeParticleState(const wire::Advanced& particles);
   void takePeerAccount(const wire::PeerInterval& account);
+  void takeParticleChanges(const wire::Advanced& particles);
   void takeFluidResults(const wire::Advanced& fluid);
   void creditAndRecord(const AdvanceReplies& replies, bool last);
   // The coating owed after the last interval, paid with an Advance of zero length.
@@ -166,7 +167,7 @@ class Coupler {
   double time_ = 0.0;
   link::ParticleData state_;
   link::ParticleData peer_removed_;  // peer path: the precursor the parcels took this interval
-  bool state_partial_ = false;       // peer path: state_ holds the parcels' ids only
+  bool state_partial_ = false;       // peer path: state_ holds the parcels' ids only, sorted
   std::size_t initial_count_ = 0;
   double reported_dt_over_rayleigh_ = 0.0;  // the particle participant's, 0 if it reports none
   bool initial_row_written_ = false;

@@ -77,7 +77,7 @@ AdvanceReplies PeerScheme::advance(Participants& participants, const link::Parti
     if (terms.forcing.has(field::coating_increment))
       cosim::link::toWire(terms.forcing, *a->mutable_terms(), {field::coating_increment});
     a->set_report_terms(report_);
-    a->set_state_ids_only(true);  // the orchestrator asks for the rest when it records it
+    a->set_state_changes_only(true);  // the orchestrator asks for the state when it records it
     return e;
   };
   build["fluid"] = [&] {

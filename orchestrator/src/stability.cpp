@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <iomanip>
+#include <iterator>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -386,6 +387,47 @@ std::optional<std::string> checkParticleCount(const Scenario& sc,
          "insertion (two insertions, or a count that is not the scene's n_grains).";
   }
   return m.str();
+}
+
+std::optional<std::string> applyParticleChanges(std::vector<std::int64_t>& ids,
+                                                std::vector<std::int64_t> inserted,
+                                                std::vector<std::int64_t> deleted,
+                                                std::uint64_t count) {
+  std::sort(deleted.begin(), deleted.end());
+  std::sort(inserted.begin(), inserted.end());
+  auto held = [&](std::int64_t id) { return std::binary_search(ids.begin(), ids.end(), id); };
+  if (const auto it = std::find_if_not(deleted.begin(), deleted.end(), held); it != deleted.end())
+    return "deleted parcel " + std::to_string(*it) + ", which it did not hold";
+  if (const auto it = std::find_if(inserted.begin(), inserted.end(), held); it != inserted.end())
+    return "inserted parcel " + std::to_string(*it) + ", which it already held";
+  if (const auto it = std::adjacent_find(inserted.begin(), inserted.end()); it != inserted.end())
+    return "inserted parcel " + std::to_string(*it) + " twice";
+  if (const auto it = std::adjacent_find(deleted.begin(), deleted.end()); it != deleted.end())
+    return "deleted parcel " + std::to_string(*it) + " twice";
+  const std::size_t after = ids.size() - deleted.size() + inserted.size();
+  if (count != after)
+    return "holds " + std::to_string(count) + " parcels, where the " + std::to_string(ids.size()) +
+           " it held with the " + std::to_string(inserted.size()) + " it inserted and the " +
+           std::to_string(deleted.size()) + " it deleted make " + std::to_string(after);
+  if (deleted.empty() && inserted.empty()) return std::nullopt;
+  std::vector<std::int64_t> kept, now;
+  kept.reserve(ids.size());
+  std::set_difference(ids.begin(), ids.end(), deleted.begin(), deleted.end(),
+                      std::back_inserter(kept));
+  now.reserve(after);
+  std::merge(kept.begin(), kept.end(), inserted.begin(), inserted.end(), std::back_inserter(now));
+  ids = std::move(now);
+  return std::nullopt;
+}
+
+std::optional<std::string> compareWithChanges(const std::vector<std::int64_t>& known,
+                                              std::vector<std::int64_t> sent) {
+  std::sort(sent.begin(), sent.end());
+  if (sent == known) return std::nullopt;
+  const auto [a, b] = std::mismatch(known.begin(), known.end(), sent.begin(), sent.end());
+  if (b == sent.end() || (a != known.end() && *a < *b))
+    return "lacks parcel " + std::to_string(*a) + ", which it never reported deleted";
+  return "holds parcel " + std::to_string(*b) + ", which it never reported inserted";
 }
 
 std::optional<std::string> checkParticleState(const link::ParticleData& s, const std::string& where,

@@ -56,6 +56,20 @@ std::optional<std::string> checkParticleState(const link::ParticleData& state,
                                               const std::string& where, double max_speed,
                                               std::uint64_t step, double time);
 
+// The peer path between records (Advance.state_changes_only): `ids`, the parcels held before the
+// step (sorted), become those after it, from the ids the particles reported inserted and deleted;
+// `count` is the number they report holding. Returns what does not add up (a deleted parcel not
+// held, an inserted one held already or twice, another count), leaving `ids` as they were.
+std::optional<std::string> applyParticleChanges(std::vector<std::int64_t>& ids,
+                                                std::vector<std::int64_t> inserted,
+                                                std::vector<std::int64_t> deleted,
+                                                std::uint64_t count);
+
+// The parcels of a whole state (`sent`, in any order) against the ids kept from the reported
+// changes (`known`, sorted): which parcel one holds and the other does not, if any.
+std::optional<std::string> compareWithChanges(const std::vector<std::int64_t>& known,
+                                              std::vector<std::int64_t> sent);
+
 // The particles held when coupling starts against checks.particle_count (when the scene sets
 // it): another count says what was inserted, the mass it stands for (with
 // constants.particle_density) against the mass asked for, and what to do. nullopt if it agrees

@@ -32,6 +32,10 @@ void ZonePassRecorder::update(double time, const std::vector<std::int64_t>& ids,
     if (in_zone[i]) inside.push_back(ids[i]);
   }
   std::sort(inside.begin(), inside.end());
+  updateInside(time, std::move(inside));
+}
+
+void ZonePassRecorder::updateInside(double time, std::vector<std::int64_t> inside) {
   // Both sorted by id: one merge finds who left (open, not inside) and who entered.
   auto it = open_.begin();
   for (const std::int64_t id : inside) {

@@ -42,6 +42,8 @@ class ZonePassRecorder {
   // The membership decided for the step starting at `time`: in_zone[i] for parcel ids[i].
   // Parcels that left the zone close their pass at `time`; parcels that entered open one.
   void update(double time, const std::vector<std::int64_t>& ids, const std::vector<char>& in_zone);
+  // The same from the ids of the parcels in the zone, sorted (the peer path's account).
+  void updateInside(double time, std::vector<std::int64_t> inside);
   // The fluid's per-parcel precursor_removed over the step joins the open passes.
   void credit(const link::ParticleData& fluid_results);
   // Particles deleted in the step ending at `time` close their pass there.

@@ -171,6 +171,45 @@ TEST(Monitor, ParticleLedger) {
   }
 }
 
+// The peer path between records: the particles send who came and went, the orchestrator keeps the
+// ids (sorted) and refuses changes that do not add up, naming the parcel, its ids left as they
+// were.
+TEST(Monitor, ParticleChangesOfThePeerPathAddUpOrAreRefused) {
+  std::vector<std::int64_t> ids = {1, 2, 3, 5};
+  EXPECT_FALSE(applyParticleChanges(ids, {7, 4}, {2}, 5));
+  EXPECT_EQ(ids, (std::vector<std::int64_t>{1, 3, 4, 5, 7}));
+  EXPECT_FALSE(applyParticleChanges(ids, {}, {}, 5));  // the common step: nothing to do
+  EXPECT_EQ(ids, (std::vector<std::int64_t>{1, 3, 4, 5, 7}));
+  const std::vector<std::int64_t> before = ids;
+  auto refused = [&](std::vector<std::int64_t> in, std::vector<std::int64_t> out,
+                     std::uint64_t count, const std::string& says) {
+    const auto wrong = applyParticleChanges(ids, std::move(in), std::move(out), count);
+    ASSERT_TRUE(wrong) << says;
+    EXPECT_NE(wrong->find(says), std::string::npos) << *wrong;
+    EXPECT_EQ(ids, before) << *wrong;
+  };
+  refused({}, {9}, 4, "deleted parcel 9, which it did not hold");
+  refused({3}, {}, 6, "inserted parcel 3, which it already held");
+  refused({8, 8}, {}, 7, "inserted parcel 8 twice");
+  refused({}, {4, 4}, 3, "deleted parcel 4 twice");
+  refused({8}, {1}, 6,
+          "holds 6 parcels, where the 5 it held with the 1 it inserted and the 1 it "
+          "deleted make 5");
+}
+
+TEST(Monitor, WholeStateAgainstTheReportedChanges) {
+  const std::vector<std::int64_t> known = {1, 3, 4};
+  EXPECT_FALSE(compareWithChanges(known, {4, 1, 3}));  // any order
+  EXPECT_EQ(compareWithChanges(known, {4, 1}).value_or(""),
+            "lacks parcel 3, which it never reported deleted");
+  EXPECT_EQ(compareWithChanges(known, {4, 1, 3, 9}).value_or(""),
+            "holds parcel 9, which it never reported inserted");
+  EXPECT_EQ(compareWithChanges(known, {4, 2, 3, 1}).value_or(""),
+            "holds parcel 2, which it never reported inserted");
+  EXPECT_EQ(compareWithChanges(known, {}).value_or(""),
+            "lacks parcel 1, which it never reported deleted");
+}
+
 TEST(Monitor, CourantWarnsOnceThenStops) {
   Scenario sc = baseScenario();
   StepMonitor m(sc);

@@ -528,8 +528,11 @@ int runParticipant(Solver& solver, const ParticipantOptions& options, PeerTerms*
                            state);
           }
           if (particle_peer) particle_peer->setState(state);
-          if (particle_peer && cmd.advance().state_ids_only()) {
+          if (particle_peer && cmd.advance().state_changes_only()) {
             particle_peer->checkState(state);  // the checks the orchestrator cannot make
+            adv->mutable_particles()->set_particle_count(state.size());
+          } else if (particle_peer && cmd.advance().state_ids_only()) {
+            particle_peer->checkState(state);
             adv->mutable_state()->mutable_ids()->Assign(state.ids.begin(), state.ids.end());
           } else {
             cosim::link::toWire(state, *adv->mutable_state());
