@@ -15,6 +15,7 @@
 #include "cosim/analysis/summary.h"
 #include "cosim/util/format.h"
 #include "coupler.h"
+#include "plan.h"
 #include "run_pack.h"
 #include "scenario.h"
 
@@ -114,6 +115,11 @@ std::vector<std::string> stagesOf(const BenchOptions& opt, const Scenario& probe
     throw std::invalid_argument("cosim bench --from " + opt.from.string() +
                                 ": the peer stage needs the scene: a run keeps the data path it "
                                 "began with");
+  if (want_peer && !makePlan(probe, makeModels(probe)).fluid)
+    throw std::invalid_argument(
+        "cosim bench --peer: the scene has no fluid participant, so no per-parcel data goes "
+        "between the solvers and there is no peer path to time (coupling.data_path: peer runs "
+        "it on the central path); leave out --peer");
   if (want_peer && std::find(names.begin(), names.end(), "peer") == names.end())
     names.emplace_back("peer");
   return names;

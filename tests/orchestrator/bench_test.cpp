@@ -185,6 +185,32 @@ TEST(Bench, PeerStageFromARunIsRefusedNamingTheFlag) {
   EXPECT_FALSE(fs::exists(out / "bench")) << text;
 }
 
+// A scene without a fluid has no per-parcel exchange and no peer path: --peer is refused saying so.
+TEST(Bench, PeerStageWithoutAFluidIsRefusedSayingWhy) {
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-bench-nofluid-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  fs::create_directories(base);
+  std::ofstream(base / "scene.yaml") << R"(name: alone
+participants:
+  particles:
+    adapter: free-particles
+    options:
+      density: 2500
+      particles: [ { id: 1, position: [0, 0, 0], velocity: [0, 0, 0], radius: 1.0e-4 } ]
+coupling: { dt: 1.0e-4, dem_steps: 1, end_time: 1.0e-3 }
+)";
+  int status = 0;
+  const std::string text =
+      capture(std::string(COSIM_EXE) + " bench " + (base / "scene.yaml").string() +
+                  " --steps 2 --warmup 1 --peer -o " + (base / "b").string(),
+              status);
+  EXPECT_NE(status, 0) << text;
+  EXPECT_NE(text.find("no fluid participant"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(base / "b")) << text;
+  fs::remove_all(base);
+}
+
 // --from RUN: each stage continues a copy of the run's newest checkpoint for warmup + steps
 // coupling steps (the settling sphere at dt 1e-4 s from its checkpoint at 2 ms: 50 steps before,
 // 1 + 4 after); the run's own folder is not written.
