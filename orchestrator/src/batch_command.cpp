@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "cli_checks.h"
 #include "cosim/analysis/files.h"
 #include "cosim/analysis/long_time.h"
 #include "cosim/analysis/long_time_check.h"
@@ -95,28 +96,28 @@ CLI::App* addBatchCommand(CLI::App& app, BatchOptions& o) {
       ->required()
       ->check(CLI::ExistingDirectory);
   b->add_option("--until", o.until, "the batch's length [s] (default 3600)")
-      ->check(CLI::Range(0.001, 1.0e7));
+      ->check(cli::above(0.0, "seconds", 1.0e7));
   b->add_option("--times", o.times, "more times to report [s], comma separated")
       ->delimiter(',')
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::atLeast(0.0, "seconds"));
   b->add_option("--from", o.from, "the record used starts here [s] (skip the start-up)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::atLeast(0.0, "seconds"));
   b->add_option("--to", o.to,
                 "the record used ends here [s]; the run's snapshots after it check the model "
                 "(its prediction beside what the run recorded)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(cli::atLeast(0.0, "seconds"));
   b->add_option("--rings", o.rings,
                 "compartments: rings about the vertical axis (default: the grid the record holds "
                 "best of 6x8, 12x16, 16x24, 24x32; 6 when only --layers is given)")
-      ->check(CLI::Range(1, 100));
+      ->check(cli::wholeNumber(1, 100));
   b->add_option("--layers", o.layers,
                 "compartments: layers of the bed (default: as --rings; 8 when only --rings is "
                 "given)")
-      ->check(CLI::Range(1, 100));
+      ->check(cli::wholeNumber(1, 100));
   b->add_option("--step", o.step,
                 "the model's step [s], a whole number of the record's intervals (default: the "
                 "step the record holds best of its interval, 0.2, 0.5 and 1 s)")
-      ->check(CLI::PositiveNumber);
+      ->check(cli::above(0.0, "seconds"));
   b->add_option("--seed", o.seed, "seed of the random moves (the same seed, the same answer)");
   b->add_option("-o,--output", o.output, "folder for batch.json and batch.csv (default RUN/batch)");
   return b;

@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "../cli_checks.h"
 #include "commands.h"
 
 namespace cosim::orchestrator {
@@ -25,8 +26,9 @@ void addBenchCommand(CLI::App& app, Commands& commands) {
   scene->excludes(from);
   from->excludes(scene);
   bench->add_option("--steps", o->steps, "timed coupling steps per stage (default 50)")
-      ->check(CLI::Range(1, 1000000000));
-  bench->add_option("--warmup", o->warmup, "untimed steps before them (default 5)");
+      ->check(cli::wholeNumber(1, 1000000000));
+  bench->add_option("--warmup", o->warmup, "untimed steps before them (default 5)")
+      ->check(cli::wholeNumber(0, 1000000000));
   bench->add_flag("--peer", o->peer,
                   "also time the coupled step on the rank-to-rank data path "
                   "(coupling.data_path: peer; its own line before the last); taken when the "

@@ -2,6 +2,7 @@
 #include <iostream>
 #include <memory>
 
+#include "../cli_checks.h"
 #include "commands.h"
 #include "cosim/analysis/piv_command.h"
 
@@ -21,12 +22,14 @@ void addPivCommand(CLI::App& app, Commands& commands) {
   piv->add_option("--to", o->to, "snapshots at t <= this count [s] (default: the end)");
   piv->add_option("--depth", o->depth,
                   "a parcel is seen when its centre lies within this distance of the front wall "
-                  "[m] (default: within its own diameter)");
-  piv->add_option("--cell", o->cell, "grid cell and profile band [m] (default 0.004)");
+                  "[m] (default: within its own diameter)")
+      ->check(cli::above(0.0, "metres"));
+  piv->add_option("--cell", o->cell, "grid cell and profile band [m] (default 0.004)")
+      ->check(cli::above(0.0, "metres"));
   piv->add_option("--blocks", o->blocks,
                   "blocks of consecutive snapshots for the profiles' standard errors (batch "
                   "means; default 10)")
-      ->check(CLI::Range(2, 100000));
+      ->check(cli::wholeNumber(2, 100000));
   piv->add_option("--heights", o->heights,
                   "profile heights above the bottom [m] (default 0.13,0.15)")
       ->delimiter(',');
