@@ -50,7 +50,8 @@ TEST(CommandLineNumbers, AboveABoundWithAnUpperLimit) {
   EXPECT_EQ(check(v, "1e7"), "");
   EXPECT_EQ(check(v, "0"), "expected a number of seconds above 0 and at most 10000000, got '0'");
   EXPECT_NE(check(v, "2e7"), "");
-  EXPECT_EQ(check(cli::above(0.0, "metres"), "-0.004"), "expected a number of metres above 0, got '-0.004'");
+  EXPECT_EQ(check(cli::above(0.0, "metres"), "-0.004"),
+            "expected a number of metres above 0, got '-0.004'");
 }
 
 TEST(CommandLineNumbers, WholeNumbersRefuseSignsFractionsAndOverflow) {
