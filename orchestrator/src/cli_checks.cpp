@@ -35,14 +35,13 @@ CLI::Validator atLeast(double min, const std::string& unit) {
           fmt::format("NUMBER>={}", min)};
 }
 
-CLI::Validator above(double min, const std::string& unit, double max) {
+CLI::Validator above(double min, const std::string& unit, std::optional<double> max) {
   return {[min, max, unit](std::string& in) -> std::string {
             double v = 0;
-            const bool ok = parseNumber(in, v) && v > min && (max <= min || v <= max);
-            if (ok) return {};
-            if (max > min)
+            if (parseNumber(in, v) && v > min && (!max || v <= *max)) return {};
+            if (max)
               return fmt::format("expected {} above {} and at most {}, got '{}'", quantity(unit),
-                                 min, max, in);
+                                 min, *max, in);
             return fmt::format("expected {} above {}, got '{}'", quantity(unit), min, in);
           },
           fmt::format("NUMBER>{}", min)};

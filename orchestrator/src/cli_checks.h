@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace cosim::orchestrator::cli {
@@ -12,7 +13,7 @@ namespace cosim::orchestrator::cli {
 // A finite number of `unit` (e.g. "seconds", "metres") of at least `min`.
 CLI::Validator atLeast(double min, const std::string& unit);
 // A finite number of `unit` above `min` (and at most `max` when given).
-CLI::Validator above(double min, const std::string& unit, double max = 0.0);
+CLI::Validator above(double min, const std::string& unit, std::optional<double> max = {});
 // A whole number from `min` to `max`, written without a sign or a fraction.
 CLI::Validator wholeNumber(std::uint64_t min, std::uint64_t max);
 
