@@ -180,7 +180,7 @@ void BM_PeerInterval(benchmark::State& state) {
                            nobody_gone);
     particle_peer.checkState(now);  // the session's check of a state sent as ids only
     particle_peer.setState(now);
-    benchmark::DoNotOptimize(out.peer().zone_ids_size());
+    benchmark::DoNotOptimize(out.peer().ledger().passes_size());
   };
   // Untimed: the first interval samples the gas where the parcels are (nothing sampled ahead
   // yet) and every buffer meets its size for the first time.

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "coating_ledger.h"
+#include "cosim/link/coating_ledger.h"
 #include "cosim/link/particle_data.h"
 #include "cosim/models/drag/wake_buildup.h"
 #include "stability.h"
@@ -25,7 +25,7 @@ namespace cosim::orchestrator {
 struct CoupledState {
   std::uint64_t step = 0;  // coupling steps done
   double time = 0.0;       // [s]
-  CoatingLedger::Balance balance;
+  link::CoatingLedger::Balance balance;
   std::map<std::int64_t, double> pending;  // coating owed, by parcel id
   std::map<std::string, double> totals;
   StepMonitor::State monitor;

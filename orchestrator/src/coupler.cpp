@@ -25,12 +25,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Time at the end of step k: start + k dt, rounded to 12 significant digits so that 2453 steps
-// of 1e-4 s are recorded as 0.2453 s and not as 0.24530000000000002 (the product's round-off).
-double stepTime(double start, double dt, std::uint64_t k) {
-  const double t = start + static_cast<double>(k) * dt;
-  return std::strtod(fmt::format("{:.12g}", t).c_str(), nullptr);
-}
+using link::stepTime;  // the end of step k, as every record carries it
 
 // cosim bench measures and replays the central path's terms, so its runs take the central path.
 Plan planOf(const Scenario& sc, const models::SceneModels& m, const RunOptions& o) {
@@ -138,8 +133,10 @@ RunResult Coupler::run() {
                        "); a checkpoint holds this state. Continue with:\n  cosim resume " +
                        record_.folder().string();
       progress->abort();
+      closePeerPasses();
     } else {
       finishRun();
+      closePeerPasses();
       progress->finish(time_, result.steps);
     }
     participants_.shutdown(true);
@@ -416,13 +413,12 @@ void Coupler::resetTimings() {
 }
 
 // Steps 2 and 3, unless the scheme replays earlier terms (cosim bench's solver-alone runs). On
-// the peer data path the particles do both themselves: only the coating owed is sent.
+// the peer data path the particles do both themselves, and pay the coating owed from their own
+// part of the ledger: no per-parcel term is sent.
 models::CouplingTerms Coupler::termsOfStep() {
   if (plan_.peer) {
-    models::CouplingTerms owed;
-    if (plan_.coating) owed.forcing = ledger_.payOwed();
     phases_.lap("models");
-    return owed;
+    return {};
   }
   if (auto replayed = scheme_->replay(state_)) {
     phases_.lap("models");
@@ -537,9 +533,8 @@ void Coupler::takeParticleChanges(const wire::Advanced& pa) {
                      ErrorKind::peer);
 }
 
-// The peer path's account of the interval, read while state_ still holds the parcels at its
-// start: the first step's checks (central: evaluateModels), the parcels the coating sink acted on
-// (the zone passes) and the precursor each took (takeFluidResults).
+// The peer path's account of the interval: the first step's checks (central: evaluateModels),
+// the time the particles spent sampling and in the laws, their part of the coating ledger.
 void Coupler::takePeerAccount(const wire::PeerInterval& p) {
   participants_.addComputeSeconds("particles_sample", p.sample_seconds());
   participants_.addComputeSeconds("particles_models", p.models_seconds());
@@ -550,50 +545,58 @@ void Coupler::takePeerAccount(const wire::PeerInterval& p) {
     check(forcing, "models (forcing)");
     refuseOrWarn(checkFirstStep(sc_, state_, samples, forcing));
   }
-  if (passes_ && state_partial_) {  // state_: the ids, sorted; the zone's few looked up in them
-    std::vector<std::int64_t> inside(p.zone_ids().begin(), p.zone_ids().end());
-    std::sort(inside.begin(), inside.end());
-    const auto& ids = state_.ids;
-    for (const auto id : inside) {
-      if (!std::binary_search(ids.begin(), ids.end(), id))
-        throw RunFailure("particles",
-                         "reported parcel " + std::to_string(id) +
-                             " in the coating zone, which is not among its parcels at the "
-                             "interval's start",
-                         ErrorKind::peer);
-    }
-    passes_->updateInside(stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_ - 1),
-                          std::move(inside));
-  } else if (passes_) {
-    std::vector<char> in_zone(state_.size(), 0);
-    int j = 0;  // the zone's parcels come in the state's order
-    for (std::size_t i = 0; i < state_.size() && j < p.zone_ids_size(); ++i) {
-      if (state_.ids[i] == p.zone_ids(j)) {
-        in_zone[i] = 1;
-        ++j;
-      }
-    }
-    if (j != p.zone_ids_size())
+  if (p.has_ledger()) takePeerLedger(p.ledger());
+}
+
+// The peer path: the particles' part of the coating ledger (running totals) and the zone passes
+// they closed, which zone_passes.csv takes as they come.
+void Coupler::takePeerLedger(const wire::PeerLedger& l) {
+  if (!plan_.coating) return;
+  for (const double v : {l.removed(), l.credited(), l.credited_including_owed(), l.left_domain()})
+    if (!std::isfinite(v))
       throw RunFailure("particles",
-                       "reported parcel " + std::to_string(p.zone_ids(j)) +
-                           " in the coating zone, which is not among its parcels at the "
-                           "interval's start (or not in their order)",
+                       "reported a coating ledger total of " + analysis::formatShortest(v) +
+                           " at step " + std::to_string(step_) + " (PeerLedger)",
                        ErrorKind::peer);
-    passes_->update(stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_ - 1), state_.ids,
-                    in_zone);
+  link::CoatingLedger::Balance b;
+  b.removed = l.removed();
+  b.credited = l.credited();
+  b.left_domain = l.left_domain();
+  b.any_left = l.any_left();
+  ledger_.takeParticleTotals(b, l.credited_including_owed());
+  if (!passes_ || l.passes_size() == 0) return;
+  std::vector<analysis::ZonePass> rows;
+  rows.reserve(static_cast<std::size_t>(l.passes_size()));
+  for (const auto& r : l.passes()) {
+    if (!std::isfinite(r.entry_time()) || !std::isfinite(r.exit_time()) ||
+        r.exit_time() < r.entry_time() || !std::isfinite(r.coating()) || r.coating() < 0)
+      throw RunFailure("particles",
+                       "reported a zone pass of parcel " + std::to_string(r.parcel_id()) +
+                           " from t = " + analysis::formatShortest(r.entry_time()) + " to " +
+                           analysis::formatShortest(r.exit_time()) + " s with coating " +
+                           analysis::formatShortest(r.coating()) +
+                           " kg: expected finite times in order and a coating of at least 0",
+                       ErrorKind::peer);
+    rows.push_back({r.parcel_id(), r.entry_time(), r.exit_time(), r.coating(), r.at_start(),
+                    r.exit() == wire::ZonePass::RUN_END   ? analysis::ZonePass::Exit::run_end
+                    : r.exit() == wire::ZonePass::DELETED ? analysis::ZonePass::Exit::deleted
+                                                          : analysis::ZonePass::Exit::left});
   }
-  peer_removed_ = cosim::link::fromWire(p.removed());
+  passes_->write(rows);
 }
 
 // The fluid's results of the interval: precursor each parcel removed (now owed as coating), the
-// precursor balance, the Courant number. On the peer path the particles bring the removal.
+// precursor balance, the Courant number. On the peer path the particles booked the removal
+// themselves (takePeerLedger).
 void Coupler::takeFluidResults(const wire::Advanced& fa) {
   participants_.addComputeSeconds("fluid", fa.wall_seconds());
   if (plan_.coating) {
-    const auto fr = plan_.peer ? std::move(peer_removed_) : cosim::link::fromWire(fa.state());
-    check(fr, "fluid");
-    ledger_.owe(fr);
-    if (passes_) passes_->credit(fr);
+    if (!plan_.peer) {
+      const auto fr = cosim::link::fromWire(fa.state());
+      check(fr, "fluid");
+      ledger_.owe(fr);
+      if (passes_) passes_->credit(fr);
+    }
     const auto& species = fa.fluid().species();
     ledger_.addFlows(species.precursor_in(), species.precursor_out());
     ledger_.setHeld(species.precursor_held());
@@ -626,10 +629,14 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
 void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
   if (replies.particles) {
     const auto& pa = *replies.particles;
-    ledger_.leave({pa.deleted_ids().begin(), pa.deleted_ids().end()},
-                  pa.particles().deleted_coating_mass());
-    if (passes_ && !pa.deleted_ids().empty())
-      passes_->leave({pa.deleted_ids().begin(), pa.deleted_ids().end()}, time_);
+    if (plan_.peer) {  // the particles' ledger and passes saw them leave
+      ledger_.addDeletedCoating(pa.particles().deleted_coating_mass());
+    } else {
+      ledger_.leave({pa.deleted_ids().begin(), pa.deleted_ids().end()},
+                    pa.particles().deleted_coating_mass());
+      if (passes_ && !pa.deleted_ids().empty())
+        passes_->leave({pa.deleted_ids().begin(), pa.deleted_ids().end()}, time_);
+    }
     if (!pa.inserted_ids().empty()) totals_["particles_inserted"] += pa.inserted_ids_size();
     if (!pa.deleted_ids().empty()) totals_["particles_deleted"] += pa.deleted_ids_size();
   }
@@ -672,6 +679,10 @@ void Coupler::creditAndRecord(const AdvanceReplies& replies, bool last) {
 // The fluid reports removal after a step and the particles receive it with the next step's
 // terms, so the last step's removal needs an Advance of zero length of its own.
 void Coupler::flushCredit() {
+  if (plan_.peer) {  // the particles pay from their own part of the ledger
+    reportParticleState({}, ZeroLength::pay_owed);
+    return;
+  }
   link::ParticleData flush;
   flush.ids = state_.ids;
   ledger_.pay(flush);
@@ -694,10 +705,12 @@ void Coupler::wholeState() {
   phases_.lap("bookkeeping");
 }
 
-void Coupler::reportParticleState(const link::ParticleData& terms) {
+void Coupler::reportParticleState(const link::ParticleData& terms, ZeroLength what) {
   wire::Envelope e;
   auto* a = e.mutable_advance();
   a->set_dt(0.0);
+  a->set_pay_owed(what == ZeroLength::pay_owed);
+  a->set_close_passes(what == ZeroLength::close_passes);
   if (!terms.ids.empty()) cosim::link::toWire(terms, *a->mutable_terms());
   if (!participants_.peerAddress().empty()) a->set_peer_connect(participants_.peerAddress());
   const auto r = participants_.request("particles", std::move(e), wire::Envelope::kAdvanced);
@@ -706,6 +719,16 @@ void Coupler::reportParticleState(const link::ParticleData& terms) {
   if (r.advanced().has_particles())
     reported_dt_over_rayleigh_ = r.advanced().particles().dt_over_rayleigh_time();
   check(state_, "particles");
+  if (r.advanced().has_peer() && r.advanced().peer().has_ledger())
+    takePeerLedger(r.advanced().peer().ledger());
+}
+
+// The peer path, a run that ends with its particles still there (completed, or stopped on
+// request): the passes still open close at the end, as on the central path (closeZonePasses).
+void Coupler::closePeerPasses() {
+  if (!plan_.peer || !passes_) return;
+  reportParticleState({}, ZeroLength::close_passes);
+  passes_closed_ = true;
 }
 
 void Coupler::finishRun() {
@@ -740,6 +763,11 @@ void Coupler::recordStoppedState() {
 
 void Coupler::closeZonePasses(std::uint64_t steps_done) {
   if (!passes_) return;
+  if (plan_.peer && !passes_closed_)
+    log_.file("the zone passes still open when the run stopped are not in " +
+              std::string(analysis::kZonePassesFile) +
+              " (coupling.data_path: peer: the particles keep them, and the run did not end "
+              "with them)");
   try {
     passes_->close(stepTime(sc_.coupling.start_time, sc_.coupling.dt, steps_done));
     if (passes_->coatingOutsidePasses() != 0.0) {

@@ -1,7 +1,7 @@
 // The run: one coupling loop over the pieces that each own one concept (docs/design.md):
 //   Participants    start, handshake, send and await, watch, shut down (participants.h)
 //   CouplingScheme  how both solvers advance over an interval (coupling_scheme.h)
-//   CoatingLedger   coating owed and paid, the precursor balance (coating_ledger.h)
+//   CoatingLedger   coating owed and paid, the precursor balance (cosim/link/coating_ledger.h)
 //   RunRecord       run folder, time series, snapshots, summary (run_record.h)
 //   StepMonitor     what no physics allows, checked every step (stability.h)
 //   ZonePassRecorder every parcel's passes through the coating zone (zone_passes.h)
@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "checkpoints.h"
-#include "coating_ledger.h"
+#include "cosim/link/coating_ledger.h"
 #include "cosim/link/particle_data.h"
 #include "coupling_scheme.h"
 #include "observables.h"
@@ -99,14 +99,18 @@ class Coupler {
   AdvanceReplies advanceBoth(const models::CouplingTerms& terms);
   void takeParticleState(const wire::Advanced& particles);
   void takePeerAccount(const wire::PeerInterval& account);
+  void takePeerLedger(const wire::PeerLedger& ledger);
   void takeParticleChanges(const wire::Advanced& particles);
   void takeFluidResults(const wire::Advanced& fluid);
   void creditAndRecord(const AdvanceReplies& replies, bool last);
   // The coating owed after the last interval, paid with an Advance of zero length.
   void flushCredit();
   // An Advance of zero length: the particles take `terms` (none, or coating owed) and report
-  // their state into state_.
-  void reportParticleState(const link::ParticleData& terms);
+  // their state into state_; on the peer path they may also pay what they owe or close the
+  // open zone passes (the run's end).
+  enum class ZeroLength { state, pay_owed, close_passes };
+  void reportParticleState(const link::ParticleData& terms, ZeroLength what = ZeroLength::state);
+  void closePeerPasses();
   void wholeState();
   void finishRun();
   std::string howToContinue(const std::string& status, std::uint64_t steps_done) const;
@@ -141,9 +145,10 @@ class Coupler {
   RunRecord record_;
   Participants participants_;
   std::unique_ptr<CouplingScheme> scheme_;
-  CoatingLedger ledger_;
+  link::CoatingLedger ledger_;
   StepMonitor monitor_;
   std::optional<ZonePassRecorder> passes_;
+  bool passes_closed_ = false;  // the peer path: the particles closed the open passes
   Progress* progress_ = nullptr;
 
   std::optional<CheckpointStore> checkpoints_;
@@ -166,8 +171,7 @@ class Coupler {
   std::uint64_t step_ = 0;
   double time_ = 0.0;
   link::ParticleData state_;
-  link::ParticleData peer_removed_;  // peer path: the precursor the parcels took this interval
-  bool state_partial_ = false;       // peer path: state_ holds the parcels' ids only, sorted
+  bool state_partial_ = false;  // peer path: state_ holds the parcels' ids only, sorted
   std::size_t initial_count_ = 0;
   double reported_dt_over_rayleigh_ = 0.0;  // the particle participant's, 0 if it reports none
   bool initial_row_written_ = false;

@@ -726,6 +726,8 @@ wire::PeerLink peerLinkFor(const Scenario& sc, const Plan& plan, const std::stri
   for (const auto& f : plan.sample_state) link.add_sample_state(f);
   for (const auto& f : plan.fluid_advance_terms) link.add_exchange(f);
   link.set_coating(plan.coating);
+  // the particles keep the coating ledger and, with a zone, the zone passes (coupler.h)
+  link.set_zone_passes(plan.coating && sc.models.choices().coating_zone.has_value());
   link.set_max_particle_speed(sc.checks.max_particle_speed);
   link.set_sample_ahead(sc.coupling.scheme == "overlapped");
   return link;

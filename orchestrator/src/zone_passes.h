@@ -1,13 +1,11 @@
-// Exact passes of every parcel through the coating zone (docs/analysis.md, "zone_passes.csv").
-// The coupler decides at the start of every coupling step which parcels are in the zone (the
-// zone's shape, and found in the fluid's mesh): exactly those get a transfer coefficient, so
-// exactly those take precursor from the gas over the step. This recorder follows that membership
-// from step to step: a pass opens at the start of the first step a parcel spends in the zone and
-// closes at the start of the first step it spends outside (its last step's end). It adds to each
-// open pass the precursor its parcel removed over the step (the pass's coating) and writes every
-// closed pass to RUN/zone_passes.csv. Its state (the rows written, who is in the zone since when
-// with how much coating) is part of a checkpoint, so that a resumed run writes the same file as
-// an uninterrupted one.
+// RUN/zone_passes.csv (docs/analysis.md, "zone_passes.csv"): every pass of every parcel through
+// the coating zone, one row per pass, written as the passes close. On the central data path the
+// recorder follows the zone membership itself (a link::ZonePassTracker: the coupler decides at
+// the start of every coupling step which parcels are in the zone); on the peer path the particle
+// session keeps the tracker and the recorder writes the passes it reports (write()). Its state
+// (the rows written, and on the central path who is in the zone since when with how much
+// coating) is part of a checkpoint, so that a resumed run writes the same file as an
+// uninterrupted one.
 #pragma once
 
 #include <cstdint>
@@ -18,19 +16,16 @@
 
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/link/zone_pass_tracker.h"
 
 namespace cosim::orchestrator {
 
 class ZonePassRecorder {
  public:
-  struct OpenPass {
-    double entry_time = 0;  // [s]
-    double coating = 0;     // [kg] precursor removed since the entry
-    bool at_start = false;  // in the zone when the run started
-  };
+  using OpenPass = link::ZonePassTracker::OpenPass;
   struct State {
     std::size_t rows = 0;                   // rows of zone_passes.csv
-    std::map<std::int64_t, OpenPass> open;  // parcels in the zone now
+    std::map<std::int64_t, OpenPass> open;  // parcels in the zone now (central path)
     double coating_outside = 0;             // [kg] removed by parcels in no pass: 0 by design
   };
 
@@ -39,29 +34,21 @@ class ZonePassRecorder {
   // Resume: cuts zone_passes.csv back to the checkpoint's rows and continues from its state.
   void resume(const std::filesystem::path& run_folder, State state);
 
-  // The membership decided for the step starting at `time`: in_zone[i] for parcel ids[i].
-  // Parcels that left the zone close their pass at `time`; parcels that entered open one.
+  // The central path: link::ZonePassTracker's calls, each writing the passes it closed.
   void update(double time, const std::vector<std::int64_t>& ids, const std::vector<char>& in_zone);
-  // The same from the ids of the parcels in the zone, sorted (the peer path's account).
-  void updateInside(double time, std::vector<std::int64_t> inside);
-  // The fluid's per-parcel precursor_removed over the step joins the open passes.
   void credit(const link::ParticleData& fluid_results);
-  // Particles deleted in the step ending at `time` close their pass there.
   void leave(const std::vector<std::int64_t>& deleted_ids, double time);
-  // End of the run at `time`: every open pass is written with exit run_end (a pass opened at
-  // `time` itself, by a step that never finished, is dropped).
   void close(double time);
+  // The peer path: passes the particle session closed, written as they come.
+  void write(const std::vector<analysis::ZonePass>& passes);
 
-  State state() const { return {writer_ ? writer_->rows() : 0, open_, coating_outside_}; }
-  double coatingOutsidePasses() const { return coating_outside_; }
+  State state() const;
+  double coatingOutsidePasses() const { return tracker_.coatingOutsidePasses(); }
 
  private:
   void flush();
   std::unique_ptr<analysis::ZonePassWriter> writer_;
-  std::map<std::int64_t, OpenPass> open_;
-  std::vector<analysis::ZonePass> closed_;  // rows of the current step, written by flush()
-  double coating_outside_ = 0;
-  bool first_update_ = false;
+  link::ZonePassTracker tracker_;
 };
 
 }  // namespace cosim::orchestrator

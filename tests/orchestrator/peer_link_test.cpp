@@ -100,6 +100,8 @@ struct Link {
     for (const char* f : {field::position, field::radius}) particle_side.add_sample_state(f);
     particle_side.add_exchange(field::drag_coefficient);
     particle_side.set_coating(true);
+    particle_side.set_zone_passes(true);
+    particle_welcome.set_cfd_dt(1e-4);
     for (const char* f : {field::drag_coefficient, field::fluid_velocity, field::coating_increment})
       particle_welcome.add_receive(f);
   }
@@ -131,23 +133,18 @@ TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
     fluid_peer.interval(fluid, interval(1e-4), 1, 0.0, out, kNobodyGone);
     return out;
   });
-  // the orchestrator pays parcel 3 its coating owed
   wire::Advance cmd = interval(1e-4);
-  ParticleData owed;
-  owed.ids = {3};
-  owed.field(field::coating_increment) = {2.5e-13};
-  toWire(owed, *cmd.mutable_terms());
   cmd.set_report_terms(true);
   wire::Advanced out;
   ParticleData state;
   particle_peer.interval(particles, cmd, 1, 0.0, out, state, kNobodyGone);
   const wire::Advanced fluid_out = fluid_done.get();
 
-  // the particles' solver: the laws' forcing with the coating owed, in its terms and its Advance
+  // the particles' solver: the laws' forcing, in its terms and its Advance; nothing owed yet
   const auto& f = particles.got_terms;
   EXPECT_EQ(f.ids, (std::vector<std::int64_t>{7, 3, 9}));
   EXPECT_EQ(f.get(field::drag_coefficient), (std::vector<double>{1, 1, 0}));  // 9 in no cell
-  EXPECT_EQ(f.get(field::coating_increment), (std::vector<double>{0, 2.5e-13, 0}));
+  EXPECT_EQ(f.get(field::coating_increment), (std::vector<double>{0, 0, 0}));
   EXPECT_EQ(f.get(field::fluid_velocity)[5], 0.5);
   EXPECT_EQ(particles.got_cmd_terms.get(field::coating_increment), f.get(field::coating_increment));
   EXPECT_FALSE(particles.got_cmd_terms.has(field::position));
@@ -156,17 +153,67 @@ TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
   EXPECT_EQ(fluid.got_cmd_terms.get(field::drag_coefficient), (std::vector<double>{1, 1, 0}));
   EXPECT_EQ(fluid_out.fluid().pressure_drop(), 42.0);
   EXPECT_EQ(fluid_out.state().ids_size(), 0) << "per-parcel data went to the orchestrator";
-  // the particles' account: the zone, the removal of the parcels that took any, the lost one
+  // the particles' account: the lost parcel, and their ledger's totals, no parcel by parcel
   const auto& acc = out.peer();
-  EXPECT_EQ(std::vector<std::int64_t>(acc.zone_ids().begin(), acc.zone_ids().end()),
-            std::vector<std::int64_t>{7});
-  const ParticleData removed = fromWire(acc.removed());
-  EXPECT_EQ(removed.ids, std::vector<std::int64_t>{7});
-  EXPECT_EQ(removed.get(field::precursor_removed), std::vector<double>{1e-12});
+  EXPECT_EQ(acc.zone_ids_size(), 0);
+  EXPECT_EQ(acc.removed().ids_size(), 0);
   EXPECT_EQ(std::vector<std::int64_t>(acc.lost_ids().begin(), acc.lost_ids().end()),
             std::vector<std::int64_t>{9});
-  EXPECT_EQ(fromWire(acc.forcing()).get(field::coating_increment)[1], 2.5e-13);
+  EXPECT_EQ(acc.ledger().removed(), 1e-12);  // parcel 7, the first, took 1e-12 (UniformGas)
+  EXPECT_EQ(acc.ledger().credited(), 0.0);
+  EXPECT_EQ(acc.ledger().credited_including_owed(), 1e-12);
+  EXPECT_EQ(acc.ledger().passes_size(), 0);  // 7 entered the zone, and is still there
   EXPECT_EQ(fromWire(acc.samples()).ids, (std::vector<std::int64_t>{7, 3, 9}));
+
+  // The next interval pays parcel 7 what it took, from the particles' own ledger
+  fluid_done = std::async(std::launch::async, [&] {
+    wire::Advanced o;
+    fluid_peer.interval(fluid, interval(1e-4), 2, 1e-4, o, kNobodyGone);
+    return o;
+  });
+  particle_peer.setState(state);
+  wire::Advanced out2;
+  particle_peer.interval(particles, interval(1e-4), 2, 1e-4, out2, state, kNobodyGone);
+  fluid_done.get();
+  EXPECT_EQ(particles.got_terms.get(field::coating_increment), (std::vector<double>{1e-12, 0, 0}));
+  EXPECT_EQ(out2.peer().ledger().removed(), 2e-12);
+  EXPECT_EQ(out2.peer().ledger().credited(), 1e-12);
+  EXPECT_EQ(out2.peer().ledger().credited_including_owed(), 2e-12);
+
+  // The run's end: the last uptake paid, the open pass closed at the end of step 2
+  wire::Advance flush;
+  flush.set_pay_owed(true);
+  flush.set_close_passes(true);
+  const ParticleData last = particle_peer.zeroLengthTerms(flush);
+  EXPECT_EQ(last.get(field::coating_increment), (std::vector<double>{1e-12, 0, 0}));
+  wire::Advanced end;
+  particle_peer.afterZeroLength(flush, 2, end);
+  const auto& ledger = end.peer().ledger();
+  EXPECT_EQ(ledger.credited(), 2e-12);
+  ASSERT_EQ(ledger.passes_size(), 1);
+  EXPECT_EQ(ledger.passes(0).parcel_id(), 7);
+  EXPECT_EQ(ledger.passes(0).entry_time(), 0.0);
+  EXPECT_EQ(ledger.passes(0).exit_time(), 2e-4);
+  EXPECT_EQ(ledger.passes(0).coating(), 2e-12);
+  EXPECT_TRUE(ledger.passes(0).at_start());
+  EXPECT_EQ(ledger.passes(0).exit(), wire::ZonePass::RUN_END);
+}
+
+TEST(PeerLink, TheParticlesLedgerAndOpenPassesComeBackFromTheirCheckpointPart) {
+  Link l("ledger");
+  UnitDragLaws laws;
+  ParticlePeer before(l.particle_side, l.particle_welcome, laws, l.particles, 10000);
+  before.setState(parcels());
+  // nothing happened yet: an empty ledger round-trips, and a damaged part is named
+  ParticlePeer after(l.particle_side, l.particle_welcome, laws, l.particles, 10000);
+  after.restoreLedger(before.ledgerBytes());
+  EXPECT_EQ(after.ledgerBytes(), before.ledgerBytes());
+  try {
+    after.restoreLedger("\x0a\xff\xff");
+    FAIL() << "a damaged peer_ledger.pb was read";
+  } catch (const ProtocolError& e) {
+    EXPECT_NE(std::string(e.what()).find(kPeerLedgerFile), std::string::npos) << e.what();
+  }
 }
 
 TEST(PeerLink, AStrangersMessageIsDroppedAndAPeerOfAnotherStepIsRefused) {

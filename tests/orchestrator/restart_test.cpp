@@ -19,6 +19,7 @@
 #include "cosim/analysis/particle_file.h"
 #include "cosim/analysis/time_series.h"
 #include "cosim/link/curve_keys.h"
+#include "cosim/link/peer_link.h"
 #include "cosim/util/stop_request.h"
 #include "coupler.h"
 #include "processes.h"
@@ -720,10 +721,11 @@ TEST(Pack, RefusalsNameTheReasonAndWriteNothing) {
         << "a partial copy was left: " << e.path();
 }
 
-// coupling.data_path: peer (docs/design.md section 5): the particles sample the gas from the fluid
-// and evaluate the laws over their parcels; the orchestrator sends only the schedule and the
-// coating owed. The scene above (drag, coating in a zone, parcels leaving) must give the central
-// path's run bit for bit: the time series, every snapshot, the zone passes, the totals.
+// coupling.data_path: peer (docs/design.md section 5): the particles sample the gas from the fluid,
+// evaluate the laws over their parcels and keep the coating ledger and the zone passes of their
+// parcels; the orchestrator sends only the schedule and keeps the totals. The scene above (drag,
+// coating in a zone, parcels leaving) must give the central path's run bit for bit: the time
+// series, every snapshot, the zone passes, the totals.
 TEST(PeerPath, GivesTheCentralRunBitForBit) {
   Workspace w;
   const std::vector<std::string> central = {"checkpoint.interval=0"};
@@ -769,6 +771,31 @@ TEST(PeerPath, StoppedAndResumedIsTheUninterruptedCentralRun) {
   const RunResult resumed = Coupler(loadRunScene(w.dir / "cut"), ro).run();
   ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
   expectSameRun(w.dir / "full", w.dir / "cut");
+}
+
+// The particles' part of a peer run's checkpoint holds their coating ledger and open zone passes
+// (peer_ledger.pb); a checkpoint without it (an older cosim's, whose orchestrator kept them) is
+// refused with that reason, and the run folder keeps what it had.
+TEST(PeerPath, AResumeWithoutTheParticlesLedgerIsRefusedWithTheReason) {
+  Workspace w;
+  const RunResult cut =
+      runStoppedAfter(w.dir / "scene.yaml", {"checkpoint.interval=0", "coupling.data_path=peer"},
+                      w.dir / "cut", 40);
+  ASSERT_EQ(cut.exit_code, 130) << cut.message;
+  std::vector<fs::path> parts;
+  for (const auto& e : fs::recursive_directory_iterator(w.dir / "cut" / "checkpoints"))
+    if (e.path().filename() == link::kPeerLedgerFile) parts.push_back(e.path());
+  ASSERT_EQ(parts.size(), 1u) << "one checkpoint, one particle part with the ledger";
+  fs::remove(parts[0]);
+  const std::string series = text(w.dir / "cut" / "timeseries.csv");
+  RunOptions ro;
+  ro.quiet = true;
+  ro.resume = w.dir / "cut";
+  const RunResult refused = Coupler(loadRunScene(w.dir / "cut"), ro).run();
+  EXPECT_NE(refused.exit_code, 0);
+  EXPECT_NE(refused.message.find("holds no peer_ledger.pb"), std::string::npos) << refused.message;
+  EXPECT_NE(refused.message.find("older cosim"), std::string::npos) << refused.message;
+  EXPECT_EQ(text(w.dir / "cut" / "timeseries.csv"), series);
 }
 
 // Across nodes: the orchestrator's link over tcp:// with CurveZMQ, the fluid's peer socket on a

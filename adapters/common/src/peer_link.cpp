@@ -188,8 +188,11 @@ ParticlePeer::ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welc
       forcing_fields_(welcome.receive().begin(), welcome.receive().end()),
       terms_(terms),
       who_(std::move(who)),
-      timeout_ms_(timeout_ms) {
+      timeout_ms_(timeout_ms),
+      start_time_(welcome.start_time()),
+      dt_(welcome.cfd_dt()) {
   terms_.configure(link_);
+  if (link_.coating() && link_.zone_passes()) passes_.emplace();
   if (!link.connect().empty()) connect(link.connect());
 }
 
@@ -280,37 +283,29 @@ wire::Samples ParticlePeer::gasAtParcels(std::uint64_t step, double time, const 
   return got ? std::move(*got) : sampleAt(state_);
 }
 
-void ParticlePeer::addCoatingOwed(const wire::Advance& cmd, ParticleData& forcing) const {
+void ParticlePeer::payOwed(ParticleData& forcing) {
   auto& inc = forcing.field(field::coating_increment);
-  const ParticleData owed = fromWire(cmd.terms());
-  if (!owed.has(field::coating_increment) || owed.ids.empty()) return;
-  // The owed parcels come in id order (the ledger's): each parcel looks itself up among them,
-  // with no index of every parcel built on every step
-  if (!std::is_sorted(owed.ids.begin(), owed.ids.end()))
-    throw ProtocolError("the orchestrator's coating owed is not in parcel id order");
+  const ParticleData owed = ledger_.payOwed();  // in id order, as the orchestrator's would be
+  if (owed.ids.empty()) return;
+  // Each parcel looks itself up among the owed ones, with no index of every parcel built on
+  // every step
   const auto& m = owed.get(field::coating_increment);
-  std::size_t paid = 0;
-  for (std::size_t i = 0; i < state_.size(); ++i) {
-    const auto it = std::lower_bound(owed.ids.begin(), owed.ids.end(), state_.ids[i]);
-    if (it == owed.ids.end() || *it != state_.ids[i]) continue;
-    inc[i] = m[static_cast<std::size_t>(it - owed.ids.begin())];
-    ++paid;
+  for (std::size_t i = 0; i < forcing.size(); ++i) {
+    const auto it = std::lower_bound(owed.ids.begin(), owed.ids.end(), forcing.ids[i]);
+    if (it != owed.ids.end() && *it == forcing.ids[i])
+      inc[i] = m[static_cast<std::size_t>(it - owed.ids.begin())];
   }
-  if (paid != owed.size())
-    throw ProtocolError("the orchestrator pays coating to " + std::to_string(owed.size() - paid) +
-                        " parcel(s) these particles do not hold");
 }
 
-void ParticlePeer::accountRemoval(const wire::Advanced& results,
-                                  wire::PeerInterval& account) const {
+ParticleData ParticlePeer::removal(const wire::Advanced& results) const {
+  ParticleData taken;
   const ParticleData fr = fromWire(results.state());
-  if (!fr.has(field::precursor_removed)) return;
+  if (!fr.has(field::precursor_removed)) return taken;
   if (fr.ids != state_.ids)
     throw ProtocolError(
         "the fluid returned results for other parcels than it was sent (ids differ; "
         "coupling.data_path: peer)");
   const auto& rm = fr.get(field::precursor_removed);
-  ParticleData taken;
   std::vector<double> values;
   for (std::size_t i = 0; i < fr.size(); ++i) {
     if (rm[i] == 0.0) continue;
@@ -321,7 +316,115 @@ void ParticlePeer::accountRemoval(const wire::Advanced& results,
     values.push_back(rm[i]);
   }
   taken.put(field::precursor_removed, std::move(values));
-  toWire(taken, *account.mutable_removed());
+  return taken;
+}
+
+// The order of the orchestrator's central path: the membership at the interval's start, the
+// payment delivered, the uptake owed and added to the passes, then the parcels that left.
+void ParticlePeer::book(const std::vector<char>& in_zone, const ParticleData& taken,
+                        const wire::Advanced& out, double start, double end) {
+  if (passes_) {
+    std::vector<std::int64_t> inside;
+    for (std::size_t i = 0; i < in_zone.size(); ++i)
+      if (in_zone[i] != 0) inside.push_back(state_.ids[i]);
+    std::sort(inside.begin(), inside.end());
+    passes_->updateInside(start, std::move(inside));
+  }
+  ledger_.delivered();
+  ledger_.owe(taken);
+  if (passes_) passes_->credit(taken);
+  const std::vector<std::int64_t> deleted(out.deleted_ids().begin(), out.deleted_ids().end());
+  ledger_.leave(deleted, out.particles().deleted_coating_mass());
+  if (passes_ && !deleted.empty()) passes_->leave(deleted, end);
+}
+
+void ParticlePeer::report(wire::PeerInterval& account) {
+  auto* l = account.mutable_ledger();
+  const auto& b = ledger_.balance();
+  l->set_removed(b.removed);
+  l->set_credited(b.credited);
+  l->set_credited_including_owed(ledger_.creditedIncludingOwed());
+  l->set_left_domain(b.left_domain);
+  l->set_any_left(b.any_left);
+  if (!passes_) return;
+  for (const auto& p : passes_->takeClosed()) {
+    auto* r = l->add_passes();
+    r->set_parcel_id(p.parcel_id);
+    r->set_entry_time(p.entry_time);
+    r->set_exit_time(p.exit_time);
+    r->set_coating(p.coating);
+    r->set_at_start(p.at_start);
+    r->set_exit(p.exit == ZonePass::Exit::left      ? wire::ZonePass::LEFT
+                : p.exit == ZonePass::Exit::run_end ? wire::ZonePass::RUN_END
+                                                    : wire::ZonePass::DELETED);
+  }
+}
+
+ParticleData ParticlePeer::zeroLengthTerms(const wire::Advance& cmd) {
+  ParticleData terms;
+  if (!link_.coating() || !cmd.pay_owed()) return terms;
+  terms.ids = state_.ids;
+  payOwed(terms);
+  return terms;
+}
+
+void ParticlePeer::afterZeroLength(const wire::Advance& cmd, std::uint64_t step,
+                                   wire::Advanced& out) {
+  if (!link_.coating()) return;
+  if (cmd.pay_owed()) ledger_.delivered();
+  if (cmd.close_passes() && passes_) passes_->close(stepTime(start_time_, dt_, step));
+  report(*out.mutable_peer());
+}
+
+std::string ParticlePeer::ledgerBytes() const {
+  wire::PeerLedgerState s;
+  const auto& b = ledger_.balance();
+  auto* t = s.mutable_totals();
+  t->set_removed(b.removed);
+  t->set_credited(b.credited);
+  t->set_credited_including_owed(ledger_.creditedIncludingOwed());
+  t->set_left_domain(b.left_domain);
+  t->set_any_left(b.any_left);
+  for (const auto& [id, m] : ledger_.pending()) {
+    s.add_owed_ids(id);
+    s.add_owed(m);
+  }
+  if (passes_) {
+    const auto st = passes_->state();
+    for (const auto& [id, p] : st.open) {
+      auto* r = s.add_open();
+      r->set_parcel_id(id);
+      r->set_entry_time(p.entry_time);
+      r->set_coating(p.coating);
+      r->set_at_start(p.at_start);
+    }
+    s.set_coating_outside(st.coating_outside);
+    s.set_passes_started(st.started);
+  }
+  return s.SerializeAsString();
+}
+
+void ParticlePeer::restoreLedger(const std::string& bytes) {
+  wire::PeerLedgerState s;
+  if (!s.ParseFromString(bytes) || s.owed_ids_size() != s.owed_size())
+    throw ProtocolError(std::string(kPeerLedgerFile) +
+                        " is not a PeerLedgerState: the checkpoint is damaged");
+  CoatingLedger::Balance b;
+  b.removed = s.totals().removed();
+  b.credited = s.totals().credited();
+  b.left_domain = s.totals().left_domain();
+  b.any_left = s.totals().any_left();
+  std::map<std::int64_t, double> owed;
+  for (int i = 0; i < s.owed_ids_size(); ++i) owed[s.owed_ids(i)] = s.owed(i);
+  ledger_.restore(b, std::move(owed));
+  if (passes_) {
+    ZonePassTracker::State st;
+    for (const auto& r : s.open())
+      st.open[r.parcel_id()] = {r.entry_time(), r.coating(), r.at_start()};
+    st.coating_outside = s.coating_outside();
+    st.started = s.passes_started();
+    passes_->restore(std::move(st));
+  }
 }
 
 void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
@@ -354,7 +457,7 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   // The laws; the coating the orchestrator says is owed joins the forcing
   t0 = Clock::now();
   PeerTerms::Terms terms = terms_.evaluate(state_, samples, lost, cmd.dt());
-  if (link_.coating()) addCoatingOwed(cmd, terms.forcing);
+  if (link_.coating()) payOwed(terms.forcing);
   if (const auto bad = firstNonFinite(terms.forcing); !bad.empty())
     throw ProtocolError("the coupling laws' forcing: " + bad);
   account->set_models_seconds(secondsSince(t0));
@@ -386,9 +489,11 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   account->set_fluid_seconds(secondsSince(t0));
   if (results.advanced().has_ahead())  // kept for the next interval: taken, not copied
     ahead_ = std::move(*results.mutable_advanced()->mutable_ahead());
-  accountRemoval(results.advanced(), *account);
-  for (std::size_t i = 0; i < terms.in_zone.size(); ++i)
-    if (terms.in_zone[i] != 0) account->add_zone_ids(state_.ids[i]);
+  if (link_.coating()) {
+    book(terms.in_zone, removal(results.advanced()), out, stepTime(start_time_, dt_, step - 1),
+         stepTime(start_time_, dt_, step));
+    report(*account);
+  }
   if (cmd.report_terms()) {
     toWire(samples, *account->mutable_samples());
     toWire(terms.forcing, *account->mutable_forcing());

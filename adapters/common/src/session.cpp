@@ -458,12 +458,64 @@ void savePeerTerms(ParticlePeer* peer, const fs::path& folder, wire::CheckpointW
   if (peer == nullptr) return;
   writeBytes(folder / kPeerTermsFile, peer->terms().saveState(), written);
   writeBytes(folder / kPeerAheadFile, peer->aheadBytes(), written);
+  if (peer->keepsLedger()) writeBytes(folder / kPeerLedgerFile, peer->ledgerBytes(), written);
 }
 
 void restorePeerTerms(ParticlePeer* peer, const fs::path& folder) {
   if (peer == nullptr) return;
   if (auto bytes = readBytes(folder / kPeerTermsFile)) peer->terms().restoreState(*bytes);
   if (auto bytes = readBytes(folder / kPeerAheadFile)) peer->restoreAhead(*bytes);
+  if (!peer->keepsLedger()) return;
+  if (auto bytes = readBytes(folder / kPeerLedgerFile)) {
+    peer->restoreLedger(*bytes);
+  } else {
+    throw InputError("the checkpoint " + folder.string() + " holds no " + kPeerLedgerFile +
+                     ": it was written by an older cosim, whose orchestrator kept the coating "
+                     "ledger on the peer path (coupling.data_path: peer); resume it with the "
+                     "cosim that wrote it, or start a new run");
+  }
+}
+
+// An Advance: the solver's step, or of zero length its state, and what the data path adds
+// around it (the peer link's interval, the particles' ledger); `adv` is the reply.
+void advanceSolver(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
+                   FluidPeer* fluid_peer, ParticlePeer* particle_peer, const PeerWatch& watch,
+                   wire::Advanced& adv) {
+  ParticleData state;
+  const bool interval = cmd.dt() > 0;
+  if (particle_peer && !cmd.peer_connect().empty()) particle_peer->connect(cmd.peer_connect());
+  if (fluid_peer && interval) {
+    fluid_peer->interval(solver, cmd, step, time, adv, watch);
+  } else if (particle_peer && interval) {
+    particle_peer->interval(solver, cmd, step, time, adv, state, watch);
+  } else if (particle_peer && cmd.pay_owed()) {  // the run's last uptake
+    // in the Advance too, as on the central path (an adapter with several ranks
+    // broadcasts the Advance as it is)
+    const ParticleData owed = particle_peer->zeroLengthTerms(cmd);
+    wire::Advance with_owed = cmd;
+    cosim::link::toWire(owed, *with_owed.mutable_terms());
+    solver.advance(with_owed, owed, adv, state);
+  } else {
+    solver.advance(cmd, cosim::link::fromWire(cmd.terms()), adv, state);
+  }
+  if (particle_peer && !interval) particle_peer->afterZeroLength(cmd, step, adv);
+  if (particle_peer) particle_peer->setState(state);
+  if (particle_peer && cmd.state_changes_only()) {
+    particle_peer->checkState(state);  // the checks the orchestrator cannot make
+    adv.mutable_particles()->set_particle_count(state.size());
+  } else if (particle_peer && cmd.state_ids_only()) {
+    particle_peer->checkState(state);
+    adv.mutable_state()->mutable_ids()->Assign(state.ids.begin(), state.ids.end());
+  } else if (particle_peer) {  // as recorded: the coating owed on the parcels
+    cosim::link::toWire(particle_peer->held(state), *adv.mutable_state());
+  } else {
+    cosim::link::toWire(state, *adv.mutable_state());
+  }
+  if (cmd.has_sample_ahead() && cmd.dt() > 0) {
+    // Scheme `overlapped`: the next interval's Sample, where the particles will be
+    sampleInto(solver, predictedAt(cosim::link::fromWire(cmd.sample_ahead()), cmd.dt()),
+               *adv.mutable_ahead());
+  }
 }
 
 }  // namespace
@@ -512,38 +564,9 @@ int runParticipant(Solver& solver, const ParticipantOptions& options, PeerTerms*
           break;
         }
         case wire::Envelope::kAdvance: {
-          ParticleData state;
           auto* adv = out.mutable_advanced();
-          const bool interval = cmd.advance().dt() > 0;
-          if (particle_peer && !cmd.advance().peer_connect().empty())
-            particle_peer->connect(cmd.advance().peer_connect());
-          if (fluid_peer && interval) {
-            fluid_peer->interval(solver, cmd.advance(), session.step(), session.time(), *adv,
-                                 watch);
-          } else if (particle_peer && interval) {
-            particle_peer->interval(solver, cmd.advance(), session.step(), session.time(), *adv,
-                                    state, watch);
-          } else {
-            solver.advance(cmd.advance(), cosim::link::fromWire(cmd.advance().terms()), *adv,
-                           state);
-          }
-          if (particle_peer) particle_peer->setState(state);
-          if (particle_peer && cmd.advance().state_changes_only()) {
-            particle_peer->checkState(state);  // the checks the orchestrator cannot make
-            adv->mutable_particles()->set_particle_count(state.size());
-          } else if (particle_peer && cmd.advance().state_ids_only()) {
-            particle_peer->checkState(state);
-            adv->mutable_state()->mutable_ids()->Assign(state.ids.begin(), state.ids.end());
-          } else {
-            cosim::link::toWire(state, *adv->mutable_state());
-          }
-          if (cmd.advance().has_sample_ahead() && cmd.advance().dt() > 0) {
-            // Scheme `overlapped`: the next interval's Sample, where the particles will be
-            sampleInto(solver,
-                       predictedAt(cosim::link::fromWire(cmd.advance().sample_ahead()),
-                                   cmd.advance().dt()),
-                       *adv->mutable_ahead());
-          }
+          advanceSolver(solver, cmd.advance(), session.step(), session.time(), fluid_peer.get(),
+                        particle_peer.get(), watch, *adv);
           adv->set_wall_seconds(
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
           break;

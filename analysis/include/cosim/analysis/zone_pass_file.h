@@ -1,5 +1,5 @@
-// zone_passes.csv: every pass of every parcel through the coating zone, recorded by the
-// orchestrator from the zone membership it decides at every coupling step (docs/analysis.md
+// zone_passes.csv: every pass of every parcel through the coating zone, recorded from the
+// zone membership the laws decide at every coupling step (docs/analysis.md
 // section 1). One row per pass, written when the pass ends:
 //
 //   parcel_id,entry_time,exit_time,coating_kg,entry,exit
@@ -23,21 +23,14 @@
 #include <string>
 #include <vector>
 
+#include "cosim/link/zone_pass_tracker.h"
+
 namespace cosim::analysis {
 
 inline constexpr const char* kZonePassesFile = "zone_passes.csv";
 
-struct ZonePass {
-  enum class Exit { left, run_end, deleted };
-  std::int64_t parcel_id = 0;
-  double entry_time = 0;   // [s]
-  double exit_time = 0;    // [s]
-  double coating = 0;      // [kg]
-  bool at_start = false;   // in the zone when the run started: the entry is not observed
-  Exit exit = Exit::left;  // run_end or deleted: the exit is not observed
-  double duration() const { return exit_time - entry_time; }
-  bool complete() const { return !at_start && exit == Exit::left; }  // entry and exit observed
-};
+// One row (cosim/link/zone_pass_tracker.h: where the passes are followed).
+using ZonePass = link::ZonePass;
 
 // Appends rows to zone_passes.csv; in append mode (resume) the existing header must match.
 // Throws std::runtime_error naming the file.

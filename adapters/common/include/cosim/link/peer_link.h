@@ -6,9 +6,12 @@
 //   particles            the scene's laws over their parcels (PeerTerms), the forcing kept
 //   particles -> fluid   Advance    the exchange terms; both solvers advance
 //   fluid -> particles   Advanced   the fluid's per-parcel results (precursor_removed)
-// and each answers the orchestrator with its report (the particles with their state and the
-// parcels the coating touched, wire::PeerInterval). The session runs this around the Solver
-// calls every adapter implements, so any adapter built on cosim_link has the path. C++17.
+// and each answers the orchestrator with its report (the particles with their count and the
+// parcels that came and went, and with a coating their part of the ledger: the coating owed to
+// each parcel, paid into its forcing, and the zone passes, of which the orchestrator gets the
+// running totals and the passes closed, wire::PeerInterval.ledger). The session runs this around
+// the Solver calls every adapter implements, so any adapter built on cosim_link has the path.
+// C++17.
 #pragma once
 
 #include <functional>
@@ -18,8 +21,10 @@
 #include <vector>
 
 #include "cosim.pb.h"
+#include "cosim/link/coating_ledger.h"
 #include "cosim/link/particle_data.h"
 #include "cosim/link/transport.h"
+#include "cosim/link/zone_pass_tracker.h"
 
 namespace cosim::link {
 
@@ -94,10 +99,10 @@ class ParticlePeer {
   void setState(const ParticleData& state) { state_ = state; }
   // Over tcp: the fluid's address, from Advance.peer_connect (again with the same: nothing).
   void connect(const std::string& endpoint);
-  // The orchestrator's Advance `cmd` (dt > 0; its terms: the coating owed, by id, only for the
-  // parcels owed any): samples the gas, evaluates the laws, sends the fluid its terms, advances
-  // the solver and waits for the fluid's results. `out` and `state` as Solver::advance gives
-  // them, with out.peer filled.
+  // The orchestrator's Advance `cmd` (dt > 0, no per-parcel terms): samples the gas, evaluates
+  // the laws, pays the coating owed into the forcing, sends the fluid its terms, advances the
+  // solver, waits for the fluid's results and books them (the ledger, the zone passes). `out`
+  // and `state` as Solver::advance gives them, with out.peer filled.
   void interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
                 wire::Advanced& out, ParticleData& state, const PeerWatch& watch);
   PeerTerms& terms() { return terms_; }
@@ -111,6 +116,19 @@ class ParticlePeer {
   std::string aheadBytes() const;
   void restoreAhead(const std::string& bytes);
 
+  // An Advance of zero length, before the solver's: with pay_owed, everything owed as the
+  // coating_increment of the parcels of the last state (the run's last uptake); else nothing.
+  ParticleData zeroLengthTerms(const wire::Advance& cmd);
+  // ... and after it: the payment delivered, with close_passes the open passes closed at the end
+  // of step `step`, and the ledger's report into out.peer.ledger.
+  void afterZeroLength(const wire::Advance& cmd, std::uint64_t step, wire::Advanced& out);
+  // A state as the orchestrator records it: the coating owed added to each parcel's coating.
+  ParticleData held(const ParticleData& state) const { return ledger_.held(state); }
+  // The ledger and the open passes for a checkpoint (a wire::PeerLedgerState), and back.
+  std::string ledgerBytes() const;
+  void restoreLedger(const std::string& bytes);
+  bool keepsLedger() const { return link_.coating(); }
+
  private:
   wire::Envelope request(wire::Envelope env, wire::Envelope::BodyCase expected, std::uint64_t step,
                          double time, const PeerWatch& watch);
@@ -118,10 +136,15 @@ class ParticlePeer {
   // end when the parcels are the same ones and none was placed outside the mesh (the central
   // path's overlapped rules), else sampled now.
   wire::Samples gasAtParcels(std::uint64_t step, double time, const PeerWatch& watch);
-  // The coating the orchestrator says is owed (cmd.terms, by id) into the forcing.
-  void addCoatingOwed(const wire::Advance& cmd, ParticleData& forcing) const;
-  // The fluid's per-parcel removal, of the parcels that took any, into the account.
-  void accountRemoval(const wire::Advanced& results, wire::PeerInterval& account) const;
+  // Everything owed, paid as the coating_increment of `forcing`'s parcels.
+  void payOwed(ParticleData& forcing);
+  // The fluid's per-parcel removal, of the parcels that took any.
+  ParticleData removal(const wire::Advanced& results) const;
+  // The interval's uptake booked: passes opened and closed at `start`, the removal owed and
+  // added to the open passes, parcels deleted by `end` gone from both.
+  void book(const std::vector<char>& in_zone, const ParticleData& taken, const wire::Advanced& out,
+            double start, double end);
+  void report(wire::PeerInterval& account);
   wire::PeerLink link_;
   std::vector<std::string> sample_fields_;   // Welcome.peer.sample_state
   std::vector<std::string> forcing_fields_;  // Welcome.receive
@@ -134,11 +157,18 @@ class ParticlePeer {
   std::optional<wire::Samples> ahead_;     // the gas where the parcels are now, sampled ahead
   std::optional<ParticleData> ahead_at_;   // where ahead_ was sampled
   std::optional<ParticleData> resume_at_;  // a resume's: sample there first
+  CoatingLedger ledger_;                   // the coating owed to the parcels, the totals
+  std::optional<ZonePassTracker> passes_;  // Welcome.peer.zone_passes
+  double start_time_ = 0;                  // Welcome.start_time: the run's step times
+  double dt_ = 0;                          // Welcome.cfd_dt
 };
 
 // The name of the file a particle participant keeps its laws' history in, in its checkpoint part.
 inline constexpr const char* kPeerTermsFile = "peer_terms.bin";
 // ... and where it had the gas sampled ahead (coupling.scheme overlapped): a wire::FieldSet.
 inline constexpr const char* kPeerAheadFile = "peer_ahead.pb";
+// ... and, with a coating, its part of the coating ledger and the open zone passes: a
+// wire::PeerLedgerState.
+inline constexpr const char* kPeerLedgerFile = "peer_ledger.pb";
 
 }  // namespace cosim::link

@@ -1,8 +1,8 @@
-#include "coating_ledger.h"
+#include "cosim/link/coating_ledger.h"
 
 #include "cosim/link/fields.h"
 
-namespace cosim::orchestrator {
+namespace cosim::link {
 
 namespace {
 double sum(const std::vector<double>& v) {
@@ -12,11 +12,11 @@ double sum(const std::vector<double>& v) {
 }
 }  // namespace
 
-void CoatingLedger::start(const link::ParticleData& initial) {
+void CoatingLedger::start(const ParticleData& initial) {
   b_.coating_initial = sum(initial.get(field::coating_mass));
 }
 
-void CoatingLedger::owe(const link::ParticleData& fr) {
+void CoatingLedger::owe(const ParticleData& fr) {
   if (!fr.has(field::precursor_removed)) return;
   const auto& rm = fr.get(field::precursor_removed);
   for (std::size_t i = 0; i < fr.size(); ++i) {
@@ -32,7 +32,7 @@ void CoatingLedger::addFlows(double in, double out) {
   b_.out += out;
 }
 
-void CoatingLedger::pay(link::ParticleData& forcing) {
+void CoatingLedger::pay(ParticleData& forcing) {
   auto& inc = forcing.field(field::coating_increment);
   for (std::size_t i = 0; i < forcing.size(); ++i) {
     auto it = pending_.find(forcing.ids[i]);
@@ -45,8 +45,8 @@ void CoatingLedger::pay(link::ParticleData& forcing) {
   }
 }
 
-link::ParticleData CoatingLedger::payOwed() {
-  link::ParticleData owed;
+ParticleData CoatingLedger::payOwed() {
+  ParticleData owed;
   std::vector<double> increment;
   owed.ids.reserve(pending_.size());
   increment.reserve(pending_.size());
@@ -83,15 +83,24 @@ void CoatingLedger::leave(const std::vector<std::int64_t>& deleted_ids,
   b_.deleted_coating += deleted_coating_mass;
 }
 
+void CoatingLedger::takeParticleTotals(const Balance& particles, double credited_including_owed) {
+  b_.removed = particles.removed;
+  b_.credited = particles.credited;
+  b_.left_domain = particles.left_domain;
+  b_.any_left = particles.any_left;
+  reported_including_owed_ = credited_including_owed;
+}
+
 double CoatingLedger::creditedIncludingOwed() const {
+  if (reported_including_owed_) return *reported_including_owed_;
   double c = b_.credited;
   for (const auto& [id, dm] : pending_) c += dm;
   return c;
 }
 
-link::ParticleData CoatingLedger::held(const link::ParticleData& state) const {
+ParticleData CoatingLedger::held(const ParticleData& state) const {
   if (pending_.empty() || !state.has(field::coating_mass)) return state;
-  link::ParticleData h = state;
+  ParticleData h = state;
   auto& m = h.field(field::coating_mass);
   for (std::size_t i = 0; i < h.size(); ++i) {
     if (auto it = pending_.find(h.ids[i]); it != pending_.end()) m[i] += it->second;
@@ -99,7 +108,7 @@ link::ParticleData CoatingLedger::held(const link::ParticleData& state) const {
   return h;
 }
 
-void CoatingLedger::totals(const link::ParticleData& final_state,
+void CoatingLedger::totals(const ParticleData& final_state,
                            std::map<std::string, double>& out) const {
   if (b_.any_left) out["coating_left_domain_kg"] = b_.left_domain;
   out["precursor_in_kg"] = b_.in;
@@ -118,4 +127,4 @@ void CoatingLedger::restore(const Balance& b, std::map<std::int64_t, double> pen
   pending_ = std::move(pending);
 }
 
-}  // namespace cosim::orchestrator
+}  // namespace cosim::link
