@@ -721,6 +721,36 @@ TEST(Pack, RefusalsNameTheReasonAndWriteNothing) {
         << "a partial copy was left: " << e.path();
 }
 
+// A job suspended and continued (SIGSTOP and SIGCONT: Slurm's scontrol suspend, Ctrl-Z and fg)
+// goes on: the time the orchestrator did not run is nobody's silence, even past the heartbeat
+// timeout; the run then stops on Ctrl-C as any run does, resumable.
+TEST(Suspend, ARunStoppedLongerThanTheHeartbeatTimeoutGoesOnWhenContinued) {
+  Workspace w;
+  auto run = start(w,
+                   {"run", "scene.yaml", "-o", "susp", "--quiet", "--set", "coupling.end_time=1e3",
+                    "--set", "transport.heartbeat_timeout=1"},
+                   "susp.out");
+  const auto stepping = [&] {
+    std::ifstream in(w.dir / "susp" / "timeseries.csv");
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) ++n;
+    return n > 5;
+  };
+  for (int i = 0; i < 400 && !stepping(); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_TRUE(stepping()) << text(w.dir / "susp.out");
+  ::kill(run.pid(), SIGSTOP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(3000));  // 3 heartbeat timeouts
+  ::kill(run.pid(), SIGCONT);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ASSERT_TRUE(run.running()) << text(w.dir / "susp.out");
+  ::kill(run.pid(), SIGINT);
+  EXPECT_EQ(finish(run), 130) << text(w.dir / "susp.out");
+  EXPECT_NE(text(w.dir / "susp" / "cosim.log").find("did not run for"), std::string::npos)
+      << text(w.dir / "susp" / "cosim.log");
+}
+
 // coupling.data_path: peer (docs/design.md section 5): the particles sample the gas from the fluid,
 // evaluate the laws over their parcels and keep the coating ledger and the zone passes of their
 // parcels; the orchestrator sends only the schedule and keeps the totals. The scene above (drag,
