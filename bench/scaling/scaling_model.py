@@ -20,12 +20,11 @@ Two data paths:
   work per parcel is peer_us_per_parcel_by_size where the inputs have it (measured on the peer
   path itself: the laws, packing, the wire between the two ranks and the checks, by the parcels a
   message carries), else the central path's serial_us_per_parcel plus its wire.
-As built, the rank-to-rank path (coupling.data_path: peer) still keeps the coating ledger and the
-zone passes parcel by parcel in the orchestrator: every step it takes the ids of the parcels in
-the coating zone and the precursor each took, and pays each its coating owed
-(peer_orchestrator_us_per_zone_parcel for zone_share of the parcels, on one core while both
-solvers wait). The tables give the path as built and with that bookkeeping on the particle ranks
-(the orchestrator keeping the totals only), where the issue puts it.
+As built, the rank-to-rank path (coupling.data_path: peer) keeps the coating ledger and the zone
+passes with the particles (their own parcels'; the orchestrator keeps the totals), and the
+orchestrator still writes every closed zone pass to zone_passes.csv as it comes, on one core
+while both solvers wait: peer_orchestrator_us_per_pass_row for passes_per_parcel_step rows per
+parcel and step. The tables give the path as built and without those rows (records by rank).
 The wire's cost per parcel depends on the parcels a message carries (measured at a few sizes):
 log-log between the measured sizes; below the smallest and beyond the largest the nearest
 measured value is held, beyond the largest an optimistic bound (the cost per parcel grew 27 times
@@ -99,18 +98,19 @@ def rank_to_rank_work_us(p, message_parcels):
     return p["serial_us_per_parcel"] + wire, held
 
 
-def rank_to_rank_seconds(p, n_parcels, nodes, net, ledger_central=False):
+def rank_to_rank_seconds(p, n_parcels, nodes, net, rows_central=False):
     """The coupling work, done by the particle ranks for their own parcels, with the cores split so
     that the particle ranks (with that work) and the gas ranks finish together: the work spreads
-    over all cores. ledger_central: the orchestrator's per-parcel ledger and zone passes of the
-    path as built, serial, on top."""
+    over all cores. rows_central: the orchestrator writing the closed zone passes of the path as
+    built, serial, on top."""
     cores = nodes * p["cores_per_node"]
     w, _ = rank_to_rank_work_us(p, rank_message_parcels(p, n_parcels, nodes))
     work = n_parcels * w * 1e-6 / cores
     messages = p.get("peer_messages_per_step", p["messages_per_step"])
     serial = 0.0
-    if ledger_central and "peer_orchestrator_us_per_zone_parcel" in p:
-        serial = (n_parcels * p["zone_share"] * p["peer_orchestrator_us_per_zone_parcel"] * 1e-6)
+    if rows_central and "peer_orchestrator_us_per_pass_row" in p:
+        serial = (n_parcels * p["passes_per_parcel_step"] * p["peer_orchestrator_us_per_pass_row"]
+                  * 1e-6)
     return work + serial + messages * net["latency_us"] * 1e-6
 
 
@@ -135,10 +135,10 @@ def tables(p):
     lines = []
     for name, net in p["networks"].items():
         lines.append(f"\n{name}: {net['gb_per_s']:g} GB/s, {net['latency_us']:g} us a message\n")
-        built = "peer_orchestrator_us_per_zone_parcel" in p
+        built = "peer_orchestrator_us_per_pass_row" in p
         lines.append("| parcels | nodes | solvers [ms/step] | central: outside [ms] | share "
                      + ("| rank to rank as built: outside [ms] | share " if built else "")
-                     + "| rank to rank: outside [ms] | share |")
+                     + "| rank to rank, records by rank: outside [ms] | share |")
         lines.append("|---:|---:|---:|---:|---:|" + ("---:|---:|" if built else "")
                      + "---:|---:|")
         for n in p["parcels"]:
@@ -146,7 +146,7 @@ def tables(p):
                 s = solver_seconds(p, n, nodes)
                 c = central_seconds(p, n, net)
                 r = rank_to_rank_seconds(p, n, nodes, net)
-                b = rank_to_rank_seconds(p, n, nodes, net, ledger_central=True)
+                b = rank_to_rank_seconds(p, n, nodes, net, rows_central=True)
                 lines.append(f"| {n:,} | {nodes} | {ms(1e3 * s, 4)} | {ms(1e3 * c, 4)} | "
                              f"{percent(share(c, s))} % | "
                              + (f"{ms(1e3 * b, 3)} | {percent(share(b, s))} % | " if built else "")
@@ -223,11 +223,11 @@ def self_test():
     p["peer_us_per_parcel_by_size"] = [{"parcels": 1e4, "us_per_parcel": 0.2}]
     p["peer_messages_per_step"] = 2
     assert abs(rank_to_rank_seconds(p, 1.6e5, 2, net) - 0.00162) < 1e-9
-    # as built: the orchestrator's ledger for the 5 % of 1.6 x 10^5 parcels in the zone at 0.3 us
-    # each, 2.4 ms, on top
-    p["zone_share"] = 0.05
-    p["peer_orchestrator_us_per_zone_parcel"] = 0.3
-    assert abs(rank_to_rank_seconds(p, 1.6e5, 2, net, ledger_central=True) - 0.00402) < 1e-9
+    # as built: the orchestrator writes 10^-4 closed passes per parcel and step, 16 rows for 1.6 x
+    # 10^5 parcels, at 0.5 us each: 8 us on top
+    p["passes_per_parcel_step"] = 1e-4
+    p["peer_orchestrator_us_per_pass_row"] = 0.5
+    assert abs(rank_to_rank_seconds(p, 1.6e5, 2, net, rows_central=True) - 0.001628) < 1e-9
     assert abs(rank_to_rank_seconds(p, 1.6e5, 2, net) - 0.00162) < 1e-9
     assert abs(central_seconds(p, 1.6e5, net) - 0.14404) < 1e-9
     # the measured tables of inputs.json: their own values at their measured sizes
