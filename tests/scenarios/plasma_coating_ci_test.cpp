@@ -32,6 +32,7 @@
 #include "cosim/analysis/zone_pass_file.h"
 #include "cosim/link/curve_keys.h"
 #include "cosim/link/fields.h"
+#include "cosim/link/peer_link.h"
 #include "cosim/util/child_process.h"
 #include "coupler.h"
 #include "run_pack.h"
@@ -921,8 +922,9 @@ TEST(PlasmaCoatingCi, CtrlCDuringACheckpointOrAReportStopsCleanly) {
 }
 
 // coupling.data_path: peer with the real solvers: LIGGGHTS' participant samples the gas from
-// OpenFOAM's and evaluates the scene's laws over its parcels, OpenFOAM takes its exchange terms
-// from the particles; the orchestrator sends the schedule and the coating owed. Both solvers get
+// OpenFOAM's, evaluates the scene's laws over its parcels and keeps their coating ledger and zone
+// passes, OpenFOAM takes its exchange terms from the particles; the orchestrator sends the
+// schedule and keeps the ledger's totals. Both solvers get
 // the same numbers as on the central path, so the run is the central one bit for bit: every
 // time-series column but the wall clock, every snapshot's fields, the zone passes, the totals.
 // `sets`: the layout (ranks) both runs share.
@@ -976,6 +978,49 @@ static void expectPeerPathIsTheCentralRun(const std::vector<std::string>& sets,
 
 TEST(PlasmaCoatingCi, PeerDataPathGivesTheCentralRunBitForBit) {
   expectPeerPathIsTheCentralRun({}, "1-");
+}
+
+// The peer path resumed with the real solvers: the coating owed to each parcel and the open zone
+// passes come back from LIGGGHTS' part of the checkpoint (peer_ledger.pb), so the ledger closes
+// across the resume (what the parcels took is what they hold, the passes hold what the parcels
+// hold) and the run agrees with the uninterrupted one as a central resume does.
+TEST(PlasmaCoatingCi, PeerDataPathResumedKeepsTheParticlesLedger) {
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml";
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-plasma-peer-resume-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  const std::vector<std::string> sets = {"checkpoint.interval=0.01", "coupling.data_path=peer"};
+  RunOptions o;
+  o.quiet = true;
+  o.output = base / "full";
+  const RunResult full = Coupler(loadScenario(scene, sets), o).run();
+  ASSERT_EQ(full.exit_code, 0) << full.message;
+  ASSERT_TRUE(fs::exists(base / "full/checkpoints/0.03/particles" / cosim::link::kPeerLedgerFile))
+      << "the particles' part holds their ledger";
+  fs::copy(base / "full", base / "cut", fs::copy_options::recursive);
+  fs::remove_all(base / "cut/checkpoints/0.04");
+  fs::remove_all(base / "cut/checkpoints/0.05");
+  fs::remove(base / "cut/particles/post/grains_10000.dump");  // written after 0.03 s
+  RunOptions ro;
+  ro.quiet = true;
+  ro.resume = base / "cut";
+  const RunResult resumed = Coupler(loadScenario(scene, sets), ro).run();
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.message;
+  const auto& t = resumed.totals;
+  const double in = t.at("precursor_in_kg");
+  ASSERT_GT(t.at("coating_credited_kg"), 0.0);
+  EXPECT_LT(std::fabs(t.at("precursor_removed_kg") - t.at("coating_credited_kg")), 1e-12 * in);
+  EXPECT_LT(std::fabs(t.at("coating_on_particles_kg") - t.at("coating_credited_kg")), 1e-12 * in);
+  const double coated = full.totals.at("coating_credited_kg");
+  EXPECT_NEAR(t.at("coating_credited_kg"), coated, 2e-6 * coated);
+  cosim::analysis::ReportOptions rep;
+  rep.runs = {base / "cut"};
+  rep.output = base / "report";
+  rep.plots = false;
+  ASSERT_EQ(cosim::analysis::runReport(rep), 0);
+  const auto report = cosim::analysis::readJsonFile(base / "report" / "report.json");
+  EXPECT_TRUE(report.at("zone_passes").at("ledgers_agree").get<bool>()) << report.dump();
+  fs::remove_all(base);
 }
 
 // Two OpenFOAM ranks and two LIGGGHTS ranks, each solver's first rank talking for its ranks.
