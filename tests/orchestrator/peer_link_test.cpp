@@ -199,6 +199,44 @@ TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
   EXPECT_EQ(ledger.passes(0).exit(), wire::ZonePass::RUN_END);
 }
 
+// A gas whose results name a parcel it was not sent: the particles refuse them, naming it.
+class ConfusedGas : public UniformGas {
+ public:
+  void advance(const wire::Advance& cmd, const ParticleData& terms, wire::Advanced& out,
+               ParticleData& state) override {
+    UniformGas::advance(cmd, terms, out, state);
+    state.ids = {3, 7, 99};  // 3 took nothing (not sent back); 99 was never sent
+    state.field(field::precursor_removed) = {0.0, 1e-12, 2e-12};
+  }
+};
+
+TEST(PeerLink, ResultsForAParcelNotSentAreRefusedNamingIt) {
+  Link l("confused");
+  FluidPeer fluid_peer(l.fluid_side, l.fluid, 10000, "ipc://unused");
+  UnitDragLaws laws;
+  ParticlePeer particle_peer(l.particle_side, l.particle_welcome, laws, l.particles, 10000);
+  ConfusedGas fluid;
+  RecordingParticles particles;
+  particles.start = parcels();
+  particle_peer.setState(parcels());
+  auto fluid_done = std::async(std::launch::async, [&] {
+    wire::Advanced out;
+    fluid_peer.interval(fluid, interval(1e-4), 1, 0.0, out, kNobodyGone);
+  });
+  wire::Advanced out;
+  ParticleData state;
+  try {
+    particle_peer.interval(particles, interval(1e-4), 1, 0.0, out, state, kNobodyGone);
+    FAIL() << "results for a parcel never sent were taken";
+  } catch (const ProtocolError& e) {
+    // only the parcels that took any travel: 7 and 99, and 99 was not sent
+    EXPECT_NE(std::string(e.what()).find("results for parcel 99, which it was not sent"),
+              std::string::npos)
+        << e.what();
+  }
+  fluid_done.get();
+}
+
 TEST(PeerLink, TheParticlesLedgerAndOpenPassesComeBackFromTheirCheckpointPart) {
   Link l("ledger");
   UnitDragLaws laws;

@@ -74,6 +74,30 @@ std::string firstNonFinite(const ParticleData& d) {
   return {};
 }
 
+// The parcels of `d` with any value that is not 0, in their order: of the fluid's per-parcel
+// results (precursor_removed) only the parcels the coating sink acted on, a few per cent of the
+// bed. A value that is not a number is kept, for the particles' check to name.
+ParticleData nonzeroParcels(const ParticleData& d) {
+  std::vector<char> keep(d.size(), 0);
+  for (const auto& [name, v] : d.fields()) {
+    const unsigned c = field::components(name);
+    for (std::size_t i = 0; i < v.size(); ++i)
+      if (v[i] != 0.0) keep[i / c] = 1;
+  }
+  ParticleData out;
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (keep[i] != 0) out.ids.push_back(d.ids[i]);
+  for (const auto& [name, v] : d.fields()) {
+    const unsigned c = field::components(name);
+    std::vector<double> kept;
+    kept.reserve(out.size() * c);
+    for (std::size_t i = 0; i < d.size(); ++i)
+      if (keep[i] != 0) kept.insert(kept.end(), v.begin() + i * c, v.begin() + (i + 1) * c);
+    out.put(name, std::move(kept));
+  }
+  return out;
+}
+
 }  // namespace
 
 // The local IPv4 address this host reaches `endpoint` (tcp://HOST:PORT) from: the address of the
@@ -172,7 +196,7 @@ void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t
   ParticleData results;
   solver.advance(with_terms, fromWire(terms.advance().terms()), out, results);
   wire::Envelope advanced;
-  toWire(results, *advanced.mutable_advanced()->mutable_state());
+  toWire(nonzeroParcels(results), *advanced.mutable_advanced()->mutable_state());
   if (terms.advance().has_sample_ahead())  // the next interval's samples, where they will be
     sampleInto(solver, predictedAt(fromWire(terms.advance().sample_ahead()), cmd.dt()),
                *advanced.mutable_advanced()->mutable_ahead());
@@ -301,10 +325,16 @@ ParticleData ParticlePeer::removal(const wire::Advanced& results) const {
   ParticleData taken;
   const ParticleData fr = fromWire(results.state());
   if (!fr.has(field::precursor_removed)) return taken;
-  if (fr.ids != state_.ids)
-    throw ProtocolError(
-        "the fluid returned results for other parcels than it was sent (ids differ; "
-        "coupling.data_path: peer)");
+  // The parcels that took any (the fluid sends no zeros), in the order they were sent
+  std::size_t j = 0;
+  for (const auto id : fr.ids) {
+    while (j < state_.ids.size() && state_.ids[j] != id) ++j;
+    if (j == state_.ids.size())
+      throw ProtocolError("the fluid returned results for parcel " + std::to_string(id) +
+                          ", which it was not sent, or not in the order it was sent "
+                          "(coupling.data_path: peer)");
+    ++j;
+  }
   const auto& rm = fr.get(field::precursor_removed);
   std::vector<double> values;
   for (std::size_t i = 0; i < fr.size(); ++i) {
