@@ -438,12 +438,25 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
                             double timeout) {
   Replies got;
   auto start = Clock::now();
-  auto watched = start;  // this wait's last wake-up
-  // Wake-ups come every 100 ms at most; a longer gap is time the orchestrator itself did not run
-  // (the job suspended: SIGSTOP, Slurm's scontrol suspend, Ctrl-Z; a virtual machine paused), in
-  // which nobody was silent: it counts neither against the heartbeats nor the wait's timeout.
+  // Wake-ups come every 100 ms at most; a longer gap, or a longer time since the last wait
+  // ended, is time the orchestrator did not listen: busy between two waits (a large record), or
+  // not running at all (the job suspended: SIGSTOP, Slurm's scontrol suspend, Ctrl-Z; a virtual
+  // machine paused). Nobody can have been heard then: it counts neither against the heartbeats
+  // nor the wait's timeout.
   const auto unwatched_after = std::chrono::duration_cast<Clock::duration>(
       std::chrono::duration<double>(std::min(5.0, sc_.transport.heartbeat_timeout / 2)));
+  auto watched = last_listened_.value_or(start);  // the last time the orchestrator listened
+  const auto notListening = [&](Clock::time_point now) {
+    if (now - watched <= unwatched_after) return;
+    const auto gap = now - watched;
+    start += std::min(gap, now - start);  // only what fell in this wait
+    for (auto& [name, p] : peers_) p->last_seen += gap;
+    log_.file("the orchestrator did not listen for " +
+              analysis::formatShortest(std::chrono::duration<double>(gap).count()) +
+              " s (busy, or suspended): not counted as the participants' silence");
+  };
+  notListening(start);
+  watched = start;
   while (got.size() < expected.size()) {
     if (stop_.count() >= 2)
       throw RunFailure("", "interrupted (signal " + std::to_string(stop_.signal()) + ")");
@@ -461,20 +474,14 @@ Replies Participants::await(const std::map<std::string, wire::Envelope::BodyCase
       if (const auto who = admit(*in)) take(*who, *in->envelope, expected, got);
     }
     logRefusals();
-    if (const auto now = Clock::now(); now - watched > unwatched_after) {
-      const auto gap = now - watched;
-      start += gap;
-      for (auto& [name, p] : peers_) p->last_seen += gap;
-      log_.file("the orchestrator did not run for " +
-                analysis::formatShortest(std::chrono::duration<double>(gap).count()) +
-                " s (suspended?): not counted as the participants' silence");
-    }
+    notListening(Clock::now());
     watched = Clock::now();
     // On every wake-up, message or not: no stream of messages may hide a dead or silent peer.
     checkAlive(expected, got, start, timeout);
     noteLongFirstWait(expected, got, start, timeout);
   }
   answered_once_ = true;
+  last_listened_ = Clock::now();
   return got;
 }
 

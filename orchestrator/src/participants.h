@@ -169,7 +169,9 @@ class Participants {
   void preparePeerLink();
   void checkPeerReady(std::chrono::steady_clock::time_point start);
   bool stop_noted_ = false;
-  bool answered_once_ = false;    // the first await of the run is over
+  bool answered_once_ = false;  // the first await of the run is over
+  // when the last await ended: the time until the next one is time nobody was listened to
+  std::optional<std::chrono::steady_clock::time_point> last_listened_;
   double next_wait_note_ = 15.0;  // seconds into the first await of the next "waiting" line
   void noteLongFirstWait(const std::map<std::string, wire::Envelope::BodyCase>& expected,
                          const Replies& got, std::chrono::steady_clock::time_point start,

@@ -747,7 +747,7 @@ TEST(Suspend, ARunStoppedLongerThanTheHeartbeatTimeoutGoesOnWhenContinued) {
   ASSERT_TRUE(run.running()) << text(w.dir / "susp.out");
   ::kill(run.pid(), SIGINT);
   EXPECT_EQ(finish(run), 130) << text(w.dir / "susp.out");
-  EXPECT_NE(text(w.dir / "susp" / "cosim.log").find("did not run for"), std::string::npos)
+  EXPECT_NE(text(w.dir / "susp" / "cosim.log").find("did not listen for"), std::string::npos)
       << text(w.dir / "susp" / "cosim.log");
 }
 

@@ -54,7 +54,11 @@ ParticleData CoatingLedger::payOwed() {
     owed.ids.push_back(id);
     increment.push_back(m);
     b_.credited += m;
-    in_flight_[id] += m;
+  }
+  if (in_flight_.empty()) {  // the usual case: what is paid is in flight as it was owed
+    in_flight_.swap(pending_);
+  } else {
+    for (const auto& [id, m] : pending_) in_flight_[id] += m;
   }
   pending_.clear();
   owed.put(field::coating_increment, std::move(increment));
