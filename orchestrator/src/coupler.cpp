@@ -564,6 +564,7 @@ void Coupler::takePeerLedger(const wire::PeerLedger& l) {
   b.left_domain = l.left_domain();
   b.any_left = l.any_left();
   ledger_.takeParticleTotals(b, l.credited_including_owed());
+  peer_coating_outside_ = l.coating_outside();
   if (!passes_ || l.passes_size() == 0) return;
   std::vector<analysis::ZonePass> rows;
   rows.reserve(static_cast<std::size_t>(l.passes_size()));
@@ -770,8 +771,9 @@ void Coupler::closeZonePasses(std::uint64_t steps_done) {
               "with them)");
   try {
     passes_->close(stepTime(sc_.coupling.start_time, sc_.coupling.dt, steps_done));
-    if (passes_->coatingOutsidePasses() != 0.0) {
-      log_.warn("zone passes: " + analysis::formatShortest(passes_->coatingOutsidePasses()) +
+    const double outside = plan_.peer ? peer_coating_outside_ : passes_->coatingOutsidePasses();
+    if (outside != 0.0) {
+      log_.warn("zone passes: " + analysis::formatShortest(outside) +
                 " kg of coating went to parcels outside the coating zone (expected 0)");
     }
   } catch (const std::exception& e) {

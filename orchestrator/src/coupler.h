@@ -148,7 +148,8 @@ class Coupler {
   link::CoatingLedger ledger_;
   StepMonitor monitor_;
   std::optional<ZonePassRecorder> passes_;
-  bool passes_closed_ = false;  // the peer path: the particles closed the open passes
+  bool passes_closed_ = false;       // the peer path: the particles closed the open passes
+  double peer_coating_outside_ = 0;  // the peer path: the particles' count (PeerLedger)
   Progress* progress_ = nullptr;
 
   std::optional<CheckpointStore> checkpoints_;

@@ -162,7 +162,8 @@ TEST(PeerLink, OneIntervalCarriesSamplesTermsAndRemovalEachTheirWay) {
   EXPECT_EQ(acc.ledger().removed(), 1e-12);  // parcel 7, the first, took 1e-12 (UniformGas)
   EXPECT_EQ(acc.ledger().credited(), 0.0);
   EXPECT_EQ(acc.ledger().credited_including_owed(), 1e-12);
-  EXPECT_EQ(acc.ledger().passes_size(), 0);  // 7 entered the zone, and is still there
+  EXPECT_EQ(acc.ledger().passes_size(), 0);        // 7 entered the zone, and is still there
+  EXPECT_EQ(acc.ledger().coating_outside(), 0.0);  // 7 took its 1e-12 inside its pass
   EXPECT_EQ(fromWire(acc.samples()).ids, (std::vector<std::int64_t>{7, 3, 9}));
 
   // The next interval pays parcel 7 what it took, from the particles' own ledger

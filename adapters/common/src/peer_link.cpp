@@ -377,6 +377,7 @@ void ParticlePeer::report(wire::PeerInterval& account) {
   l->set_left_domain(b.left_domain);
   l->set_any_left(b.any_left);
   if (!passes_) return;
+  l->set_coating_outside(passes_->coatingOutsidePasses());
   for (const auto& p : passes_->takeClosed()) {
     auto* r = l->add_passes();
     r->set_parcel_id(p.parcel_id);
