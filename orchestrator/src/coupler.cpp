@@ -558,12 +558,7 @@ void Coupler::takePeerLedger(const wire::PeerLedger& l) {
                        "reported a coating ledger total of " + analysis::formatShortest(v) +
                            " at step " + std::to_string(step_) + " (PeerLedger)",
                        ErrorKind::peer);
-  link::CoatingLedger::Balance b;
-  b.removed = l.removed();
-  b.credited = l.credited();
-  b.left_domain = l.left_domain();
-  b.any_left = l.any_left();
-  ledger_.takeParticleTotals(b, l.credited_including_owed());
+  ledger_.takeParticleTotals(link::fromWire(l), l.credited_including_owed());
   peer_coating_outside_ = l.coating_outside();
   if (!passes_ || l.passes_size() == 0) return;
   std::vector<analysis::ZonePass> rows;
@@ -578,10 +573,7 @@ void Coupler::takePeerLedger(const wire::PeerLedger& l) {
                            analysis::formatShortest(r.coating()) +
                            " kg: expected finite times in order and a coating of at least 0",
                        ErrorKind::peer);
-    rows.push_back({r.parcel_id(), r.entry_time(), r.exit_time(), r.coating(), r.at_start(),
-                    r.exit() == wire::ZonePass::RUN_END   ? analysis::ZonePass::Exit::run_end
-                    : r.exit() == wire::ZonePass::DELETED ? analysis::ZonePass::Exit::deleted
-                                                          : analysis::ZonePass::Exit::left});
+    rows.push_back(link::fromWire(r));
   }
   passes_->write(rows);
 }

@@ -57,4 +57,35 @@ ParticleData fromWire(const wire::FieldSet& in) {
   return d;
 }
 
+void toWire(const ZonePass& p, wire::ZonePass& out) {
+  out.set_parcel_id(p.parcel_id);
+  out.set_entry_time(p.entry_time);
+  out.set_exit_time(p.exit_time);
+  out.set_coating(p.coating);
+  out.set_at_start(p.at_start);
+  out.set_exit(p.exit == ZonePass::Exit::left      ? wire::ZonePass::LEFT
+               : p.exit == ZonePass::Exit::run_end ? wire::ZonePass::RUN_END
+                                                   : wire::ZonePass::DELETED);
+}
+
+ZonePass fromWire(const wire::ZonePass& in) {
+  return {in.parcel_id(),
+          in.entry_time(),
+          in.exit_time(),
+          in.coating(),
+          in.at_start(),
+          in.exit() == wire::ZonePass::RUN_END   ? ZonePass::Exit::run_end
+          : in.exit() == wire::ZonePass::DELETED ? ZonePass::Exit::deleted
+                                                 : ZonePass::Exit::left};
+}
+
+CoatingLedger::Balance fromWire(const wire::PeerLedger& in) {
+  CoatingLedger::Balance b;
+  b.removed = in.removed();
+  b.credited = in.credited();
+  b.left_domain = in.left_domain();
+  b.any_left = in.any_left();
+  return b;
+}
+
 }  // namespace cosim::link

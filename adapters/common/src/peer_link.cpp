@@ -353,13 +353,7 @@ ParticleData ParticlePeer::removal(const wire::Advanced& results) const {
 // payment delivered, the uptake owed and added to the passes, then the parcels that left.
 void ParticlePeer::book(const std::vector<char>& in_zone, const ParticleData& taken,
                         const wire::Advanced& out, double start, double end) {
-  if (passes_) {
-    std::vector<std::int64_t> inside;
-    for (std::size_t i = 0; i < in_zone.size(); ++i)
-      if (in_zone[i] != 0) inside.push_back(state_.ids[i]);
-    std::sort(inside.begin(), inside.end());
-    passes_->updateInside(start, std::move(inside));
-  }
+  if (passes_) passes_->update(start, state_.ids, in_zone);
   ledger_.delivered();
   ledger_.owe(taken);
   if (passes_) passes_->credit(taken);
@@ -368,27 +362,21 @@ void ParticlePeer::book(const std::vector<char>& in_zone, const ParticleData& ta
   if (passes_ && !deleted.empty()) passes_->leave(deleted, end);
 }
 
+void ParticlePeer::totals(wire::PeerLedger& l) const {
+  const auto& b = ledger_.balance();
+  l.set_removed(b.removed);
+  l.set_credited(b.credited);
+  l.set_credited_including_owed(ledger_.creditedIncludingOwed());
+  l.set_left_domain(b.left_domain);
+  l.set_any_left(b.any_left);
+  if (passes_) l.set_coating_outside(passes_->coatingOutsidePasses());
+}
+
 void ParticlePeer::report(wire::PeerInterval& account) {
   auto* l = account.mutable_ledger();
-  const auto& b = ledger_.balance();
-  l->set_removed(b.removed);
-  l->set_credited(b.credited);
-  l->set_credited_including_owed(ledger_.creditedIncludingOwed());
-  l->set_left_domain(b.left_domain);
-  l->set_any_left(b.any_left);
+  totals(*l);
   if (!passes_) return;
-  l->set_coating_outside(passes_->coatingOutsidePasses());
-  for (const auto& p : passes_->takeClosed()) {
-    auto* r = l->add_passes();
-    r->set_parcel_id(p.parcel_id);
-    r->set_entry_time(p.entry_time);
-    r->set_exit_time(p.exit_time);
-    r->set_coating(p.coating);
-    r->set_at_start(p.at_start);
-    r->set_exit(p.exit == ZonePass::Exit::left      ? wire::ZonePass::LEFT
-                : p.exit == ZonePass::Exit::run_end ? wire::ZonePass::RUN_END
-                                                    : wire::ZonePass::DELETED);
-  }
+  for (const auto& p : passes_->takeClosed()) toWire(p, *l->add_passes());
 }
 
 ParticleData ParticlePeer::zeroLengthTerms(const wire::Advance& cmd) {
@@ -409,27 +397,16 @@ void ParticlePeer::afterZeroLength(const wire::Advance& cmd, std::uint64_t step,
 
 std::string ParticlePeer::ledgerBytes() const {
   wire::PeerLedgerState s;
-  const auto& b = ledger_.balance();
-  auto* t = s.mutable_totals();
-  t->set_removed(b.removed);
-  t->set_credited(b.credited);
-  t->set_credited_including_owed(ledger_.creditedIncludingOwed());
-  t->set_left_domain(b.left_domain);
-  t->set_any_left(b.any_left);
+  totals(*s.mutable_totals());
   for (const auto& [id, m] : ledger_.pending()) {
     s.add_owed_ids(id);
     s.add_owed(m);
   }
   if (passes_) {
     const auto st = passes_->state();
-    for (const auto& [id, p] : st.open) {
-      auto* r = s.add_open();
-      r->set_parcel_id(id);
-      r->set_entry_time(p.entry_time);
-      r->set_coating(p.coating);
-      r->set_at_start(p.at_start);
-    }
-    s.set_coating_outside(st.coating_outside);
+    for (const auto& [id, p] : st.open)
+      toWire(ZonePass{id, p.entry_time, p.entry_time, p.coating, p.at_start, ZonePass::Exit::left},
+             *s.add_open());
     s.set_passes_started(st.started);
   }
   return s.SerializeAsString();
@@ -440,19 +417,16 @@ void ParticlePeer::restoreLedger(const std::string& bytes) {
   if (!s.ParseFromString(bytes) || s.owed_ids_size() != s.owed_size())
     throw ProtocolError(std::string(kPeerLedgerFile) +
                         " is not a PeerLedgerState: the checkpoint is damaged");
-  CoatingLedger::Balance b;
-  b.removed = s.totals().removed();
-  b.credited = s.totals().credited();
-  b.left_domain = s.totals().left_domain();
-  b.any_left = s.totals().any_left();
   std::map<std::int64_t, double> owed;
   for (int i = 0; i < s.owed_ids_size(); ++i) owed[s.owed_ids(i)] = s.owed(i);
-  ledger_.restore(b, std::move(owed));
+  ledger_.restore(fromWire(s.totals()), std::move(owed));
   if (passes_) {
     ZonePassTracker::State st;
-    for (const auto& r : s.open())
-      st.open[r.parcel_id()] = {r.entry_time(), r.coating(), r.at_start()};
-    st.coating_outside = s.coating_outside();
+    for (const auto& r : s.open()) {
+      const ZonePass p = fromWire(r);
+      st.open[p.parcel_id] = {p.entry_time, p.coating, p.at_start};
+    }
+    st.coating_outside = s.totals().coating_outside();
     st.started = s.passes_started();
     passes_->restore(std::move(st));
   }

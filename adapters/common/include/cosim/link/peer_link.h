@@ -145,6 +145,7 @@ class ParticlePeer {
   void book(const std::vector<char>& in_zone, const ParticleData& taken, const wire::Advanced& out,
             double start, double end);
   void report(wire::PeerInterval& account);
+  void totals(wire::PeerLedger& ledger) const;  // the ledger's running totals
   wire::PeerLink link_;
   std::vector<std::string> sample_fields_;   // Welcome.peer.sample_state
   std::vector<std::string> forcing_fields_;  // Welcome.receive
