@@ -1,5 +1,6 @@
 // ParticleData, a zone pass and the particles' ledger totals to and from their wire forms
-// (cosim.proto): the link's side of the contract, kept out of cosim_contract so that what only reads particles needs no protobuf.
+// (cosim.proto): the link's side of the contract, kept out of cosim_contract so that what only
+// reads particles needs no protobuf.
 #pragma once
 
 #include <string>
@@ -13,7 +14,7 @@ namespace cosim::wire {
 class FieldSet;
 class PeerLedger;
 class ZonePass;
-}
+}  // namespace cosim::wire
 
 namespace cosim::link {
 
