@@ -333,3 +333,19 @@ TEST(Protocol, ParticleDataTakeMovesAFieldOutWhole) {
   EXPECT_TRUE(d.take(field::drag_coefficient).empty());
   EXPECT_EQ(ids.size(), 2U);
 }
+
+TEST(Protocol, ParticleDataSelectedFromATemporaryMovesTheFieldsAsACopyWouldHoldThem) {
+  link::ParticleData d;
+  d.ids = {4, 5};
+  d.field(field::fluid_velocity) = {1, 2, 3, 4, 5, 6};
+  d.field(field::drag_coefficient) = {7, 8};
+  const std::vector<std::string> names = {field::drag_coefficient, field::voidage};
+  const link::ParticleData copied = d.select(names);
+  const double* storage = d.get(field::drag_coefficient).data();
+  const link::ParticleData moved = std::move(d).select(names);
+  EXPECT_EQ(moved.ids, copied.ids);
+  EXPECT_EQ(moved.names(), copied.names());
+  EXPECT_EQ(moved.get(field::drag_coefficient), (std::vector<double>{7, 8}));
+  EXPECT_EQ(moved.get(field::drag_coefficient).data(), storage);  // the same array, not a copy
+  EXPECT_FALSE(moved.has(field::fluid_velocity));
+}

@@ -39,13 +39,25 @@ std::vector<std::string> ParticleData::names() const {
   return v;
 }
 
-ParticleData ParticleData::select(const std::vector<std::string>& wanted) const {
+ParticleData ParticleData::select(const std::vector<std::string>& wanted) const& {
   ParticleData out;
   out.ids = ids;
   for (const auto& n : wanted) {
     auto it = fields_.find(n);
     if (it != fields_.end()) out.fields_[n] = it->second;
   }
+  return out;
+}
+
+ParticleData ParticleData::select(const std::vector<std::string>& wanted) && {
+  ParticleData out;
+  out.ids = std::move(ids);
+  for (const auto& n : wanted) {
+    auto it = fields_.find(n);
+    if (it != fields_.end()) out.fields_[n] = std::move(it->second);
+  }
+  fields_.clear();
+  ids.clear();
   return out;
 }
 

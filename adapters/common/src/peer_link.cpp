@@ -179,7 +179,7 @@ void FluidPeer::send(wire::Envelope& env, std::uint64_t step, double time) {
 void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t step, double time,
                          wire::Advanced& out, const PeerWatch& watch) {
   // The gas at the parcels, unless the particles use the samples of the last interval's end
-  const wire::Envelope sample = await(wire::Envelope::BODY_NOT_SET, step, watch);
+  wire::Envelope sample = await(wire::Envelope::BODY_NOT_SET, step, watch);
   if (!sample.has_sample() && !sample.has_advance())
     throw ProtocolError("the particles participant sent an unexpected message during step " +
                         std::to_string(step) + " (coupling.data_path: peer)");
@@ -189,12 +189,15 @@ void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t
     send(samples, step, time);
   }
   // The exchange terms (the particles sent them at once when they had the gas sampled ahead)
-  const wire::Envelope terms =
-      sample.has_advance() ? sample : await(wire::Envelope::kAdvance, step, watch);
+  wire::Envelope terms =
+      sample.has_advance() ? std::move(sample) : await(wire::Envelope::kAdvance, step, watch);
+  // The solver gets the terms as on the central path: in the Advance (which an adapter with
+  // several ranks broadcasts as it is) and as ParticleData; moved into the Advance, not copied
+  const ParticleData exchange = fromWire(terms.advance().terms());
   wire::Advance with_terms = cmd;
-  *with_terms.mutable_terms() = terms.advance().terms();
+  with_terms.mutable_terms()->Swap(terms.mutable_advance()->mutable_terms());
   ParticleData results;
-  solver.advance(with_terms, fromWire(terms.advance().terms()), out, results);
+  solver.advance(with_terms, exchange, out, results);
   wire::Envelope advanced;
   toWire(nonzeroParcels(results), *advanced.mutable_advanced()->mutable_state());
   if (terms.advance().has_sample_ahead())  // the next interval's samples, where they will be
@@ -239,9 +242,9 @@ void ParticlePeer::checkState(const ParticleData& state) const {
 }
 
 std::string ParticlePeer::aheadBytes() const {
-  if (!ahead_ || !ahead_at_) return {};
+  if (!ahead_ || !ahead_sent_) return {};
   wire::FieldSet at;
-  toWire(*ahead_at_, at);
+  toWire(predictedAt(fromWire(*ahead_sent_), ahead_dt_), at);
   return at.SerializeAsString();
 }
 
@@ -266,7 +269,7 @@ void ParticlePeer::connect(const std::string& endpoint) {
   connected_to_ = endpoint;
 }
 
-wire::Envelope ParticlePeer::request(wire::Envelope env, wire::Envelope::BodyCase expected,
+wire::Envelope ParticlePeer::request(wire::Envelope& env, wire::Envelope::BodyCase expected,
                                      std::uint64_t step, double time, const PeerWatch& watch) {
   if (env.body_case() != wire::Envelope::BODY_NOT_SET) {
     fillHeader(env.mutable_header(), who_, step, time);
@@ -292,7 +295,7 @@ wire::Samples ParticlePeer::gasAtParcels(std::uint64_t step, double time, const 
     wire::Envelope sample;
     toWire(at, *sample.mutable_sample()->mutable_particles(), sample_fields_);
     return std::move(
-        *request(std::move(sample), wire::Envelope::kSamples, step, time, watch).mutable_samples());
+        *request(sample, wire::Envelope::kSamples, step, time, watch).mutable_samples());
   };
   if (resume_at_) {  // the first interval after a resume: the gas where it was sampled ahead
     ahead_ = sampleAt(*resume_at_);
@@ -311,12 +314,22 @@ void ParticlePeer::payOwed(ParticleData& forcing) {
   auto& inc = forcing.field(field::coating_increment);
   const ParticleData owed = ledger_.payOwed();  // in id order, as the orchestrator's would be
   if (owed.ids.empty()) return;
-  // Each parcel looks itself up among the owed ones, with no index of every parcel built on
-  // every step
+  // No index of every parcel built on every step: the owed parcels (a few per cent) look
+  // themselves up among the parcels when these are in id order (LIGGGHTS' state is), else each
+  // parcel among the owed ones
   const auto& m = owed.get(field::coating_increment);
+  const auto& ids = forcing.ids;
+  if (std::is_sorted(ids.begin(), ids.end())) {
+    for (std::size_t j = 0; j < owed.size(); ++j) {
+      const auto it = std::lower_bound(ids.begin(), ids.end(), owed.ids[j]);
+      if (it != ids.end() && *it == owed.ids[j])
+        inc[static_cast<std::size_t>(it - ids.begin())] = m[j];
+    }
+    return;
+  }
   for (std::size_t i = 0; i < forcing.size(); ++i) {
-    const auto it = std::lower_bound(owed.ids.begin(), owed.ids.end(), forcing.ids[i]);
-    if (it != owed.ids.end() && *it == forcing.ids[i])
+    const auto it = std::lower_bound(owed.ids.begin(), owed.ids.end(), ids[i]);
+    if (it != owed.ids.end() && *it == ids[i])
       inc[i] = m[static_cast<std::size_t>(it - owed.ids.begin())];
   }
 }
@@ -474,23 +487,31 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   fa->set_substeps(1);
   toWire(terms.exchange, *fa->mutable_terms(),
          std::vector<std::string>(link_.exchange().begin(), link_.exchange().end()));
-  ahead_at_.reset();
-  if (link_.sample_ahead()) {  // the gas where the parcels will be, sampled in the fluid's step
+  ahead_sent_.reset();
+  if (link_.sample_ahead())  // the gas where the parcels will be, sampled in the fluid's step
     toWire(state_, *fa->mutable_sample_ahead(), sample_fields_);
-    ahead_at_ = predictedAt(state_.select(sample_fields_), cmd.dt());
+  request(fluid_terms, wire::Envelope::BODY_NOT_SET, step, time, watch);
+  if (fa->has_sample_ahead()) {  // kept, not copied, for a checkpoint's aheadBytes()
+    ahead_sent_.emplace();
+    ahead_sent_->Swap(fa->mutable_sample_ahead());
+    ahead_dt_ = cmd.dt();
   }
-  request(std::move(fluid_terms), wire::Envelope::BODY_NOT_SET, step, time, watch);
+  if (cmd.report_terms()) {
+    toWire(samples, *account->mutable_samples());
+    toWire(terms.forcing, *account->mutable_forcing());
+  }
   // The solver gets the forcing as on the central path: in the Advance (which an adapter with
-  // several ranks broadcasts as it is) and as its terms
+  // several ranks broadcasts as it is) and as its terms, moved out of the laws' result
   wire::Advance with_forcing = cmd;
   with_forcing.clear_report_terms();
   toWire(terms.forcing, *with_forcing.mutable_terms(), forcing_fields_);
-  const ParticleData forcing = terms.forcing.select(forcing_fields_);
+  const ParticleData forcing = std::move(terms.forcing).select(forcing_fields_);
   solver.advance(with_forcing, forcing, out, state);
 
   // What the fluid's step took from the gas, parcel by parcel
   t0 = Clock::now();
-  wire::Envelope results = request(wire::Envelope(), wire::Envelope::kAdvanced, step, time, watch);
+  wire::Envelope none;
+  wire::Envelope results = request(none, wire::Envelope::kAdvanced, step, time, watch);
   account->set_fluid_seconds(secondsSince(t0));
   if (results.advanced().has_ahead())  // kept for the next interval: taken, not copied
     ahead_ = std::move(*results.mutable_advanced()->mutable_ahead());
@@ -498,10 +519,6 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
     book(terms.in_zone, removal(results.advanced()), out, stepTime(start_time_, dt_, step - 1),
          stepTime(start_time_, dt_, step));
     report(*account);
-  }
-  if (cmd.report_terms()) {
-    toWire(samples, *account->mutable_samples());
-    toWire(terms.forcing, *account->mutable_forcing());
   }
 }
 

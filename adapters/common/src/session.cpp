@@ -499,7 +499,6 @@ void advanceSolver(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
     solver.advance(cmd, cosim::link::fromWire(cmd.terms()), adv, state);
   }
   if (particle_peer && !interval) particle_peer->afterZeroLength(cmd, step, adv);
-  if (particle_peer) particle_peer->setState(state);
   if (particle_peer && cmd.state_changes_only()) {
     particle_peer->checkState(state);  // the checks the orchestrator cannot make
     adv.mutable_particles()->set_particle_count(state.size());
@@ -516,6 +515,8 @@ void advanceSolver(Solver& solver, const wire::Advance& cmd, std::uint64_t step,
     sampleInto(solver, predictedAt(cosim::link::fromWire(cmd.sample_ahead()), cmd.dt()),
                *adv.mutable_ahead());
   }
+  // Where the next interval samples the gas, as the orchestrator would from the same reply
+  if (particle_peer) particle_peer->setState(std::move(state));
 }
 
 }  // namespace

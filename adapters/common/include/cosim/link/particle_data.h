@@ -32,8 +32,10 @@ class ParticleData {
   // Every field by name, for a pass over all of them without copying the names.
   const std::map<std::string, std::vector<double>>& fields() const { return fields_; }
 
-  // Keep only the named fields (packets carry what the scene uses, nothing else).
-  ParticleData select(const std::vector<std::string>& names) const;
+  // Keep only the named fields (packets carry what the scene uses, nothing else); from a
+  // temporary (std::move(d).select(...)) the fields are moved, not copied.
+  ParticleData select(const std::vector<std::string>& names) const&;
+  ParticleData select(const std::vector<std::string>& names) &&;
 
   // Map id -> index (built on demand).
   std::map<std::int64_t, std::size_t> index() const;

@@ -96,7 +96,7 @@ class ParticlePeer {
                PeerIdentity who, int timeout_ms);
   // The state the particles last reported (any Advance, dt = 0 included): where the next
   // interval samples the gas, as the orchestrator would from the same reply.
-  void setState(const ParticleData& state) { state_ = state; }
+  void setState(ParticleData state) { state_ = std::move(state); }
   // Over tcp: the fluid's address, from Advance.peer_connect (again with the same: nothing).
   void connect(const std::string& endpoint);
   // The orchestrator's Advance `cmd` (dt > 0, no per-parcel terms): samples the gas, evaluates
@@ -130,7 +130,7 @@ class ParticlePeer {
   bool keepsLedger() const { return link_.coating(); }
 
  private:
-  wire::Envelope request(wire::Envelope env, wire::Envelope::BodyCase expected, std::uint64_t step,
+  wire::Envelope request(wire::Envelope& env, wire::Envelope::BodyCase expected, std::uint64_t step,
                          double time, const PeerWatch& watch);
   // The gas at the parcels where the last reply left them: sampled ahead at the last interval's
   // end when the parcels are the same ones and none was placed outside the mesh (the central
@@ -155,13 +155,14 @@ class ParticlePeer {
   std::unique_ptr<Channel> channel_;
   std::string connected_to_;
   ParticleData state_;
-  std::optional<wire::Samples> ahead_;     // the gas where the parcels are now, sampled ahead
-  std::optional<ParticleData> ahead_at_;   // where ahead_ was sampled
-  std::optional<ParticleData> resume_at_;  // a resume's: sample there first
-  CoatingLedger ledger_;                   // the coating owed to the parcels, the totals
-  std::optional<ZonePassTracker> passes_;  // Welcome.peer.zone_passes
-  double start_time_ = 0;                  // Welcome.start_time: the run's step times
-  double dt_ = 0;                          // Welcome.cfd_dt
+  std::optional<wire::Samples> ahead_;        // the gas where the parcels are now, sampled ahead
+  std::optional<wire::FieldSet> ahead_sent_;  // the parcels ahead_ was sampled from (moved by
+  double ahead_dt_ = 0;                       // velocity ahead_dt_: where it was sampled)
+  std::optional<ParticleData> resume_at_;     // a resume's: sample there first
+  CoatingLedger ledger_;                      // the coating owed to the parcels, the totals
+  std::optional<ZonePassTracker> passes_;     // Welcome.peer.zone_passes
+  double start_time_ = 0;                     // Welcome.start_time: the run's step times
+  double dt_ = 0;                             // Welcome.cfd_dt
 };
 
 // The name of the file a particle participant keeps its laws' history in, in its checkpoint part.
