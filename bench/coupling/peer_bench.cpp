@@ -1,14 +1,15 @@
 // What the rank-to-rank data path (coupling.data_path: peer; docs/design.md section 5) costs per
 // parcel and interval outside the solvers, for the coating bed's laws and fields with the
 // overlapped scheme as it ships (scenarios/plasma-coating-bed with coupling.data_path=peer):
-//   PeerInterval/N   one interval between a ParticlePeer (this thread) and a FluidPeer (another
-//                    thread) over ipc://, with the Welcome the orchestrator gives each side and
-//                    the scene's own laws (ScenePeerTerms): the particles' terms and positions
-//                    to the fluid, the fluid's removal and the gas sampled ahead back, the laws
-//                    over N parcels, the session's check of the state it reports as ids only.
-//                    Both solvers do nothing (the gas is a fixed field, the parcels stay where
-//                    they are), so the wall time is the path's own work: packing, the wire,
-//                    unpacking, the laws and the checks.
+//   PeerInterval/parcels:N/shared:S
+//       one interval between a ParticlePeer (this thread) and a FluidPeer (another thread) over
+//       ipc://, with the Welcome the orchestrator gives each side and the scene's own laws
+//       (ScenePeerTerms): the particles' terms and positions to the fluid, the fluid's removal
+//       and the gas sampled ahead back, the laws over N parcels, the session's check of the
+//       state it reports as ids only; S = 1: the per-parcel values through shared memory (what
+//       two peers of one machine do, shared_arrays.h), S = 0: in the messages (across nodes).
+//       Both solvers do nothing (the gas is a fixed field, the parcels stay where they are), so
+//       the wall time is the path's own work: packing, the wire, unpacking, the laws, the checks.
 // This is the coupling work per parcel (w) of a rank in bench/scaling's rank-to-rank model.
 // Run: build/bin/cosim_peer_bench
 #include <benchmark/benchmark.h>
@@ -29,6 +30,7 @@
 #include "cosim/link/peer_link.h"
 #include "cosim/link/peer_terms.h"
 #include "cosim/link/session.h"
+#include "cosim/link/shared_arrays.h"
 #include "participants.h"
 #include "plan.h"
 #include "scenario.h"
@@ -136,7 +138,11 @@ void BM_PeerInterval(benchmark::State& state) {
   }
   const std::string endpoint = "ipc:///tmp/cosim-peer-bench-" + std::to_string(::getpid()) + "-" +
                                std::to_string(n) + ".ipc";
-  const orch::PeerKeys keys{endpoint, {}, {}};
+  // /1: the per-parcel values through shared memory, as the peers of one machine (ipc://)
+  const std::string shared =
+      state.range(1) != 0 ? cosim::link::sharedArraysPrefix("bench-" + std::to_string(::getpid()))
+                          : "";
+  const orch::PeerKeys keys{endpoint, {}, {}, shared};
   const wire::Welcome fluid_welcome = orch::welcomeFor(
       sc, plan, sc.participants.at("fluid"), std::filesystem::temp_directory_path(), "", keys);
   const wire::Welcome particle_welcome = orch::welcomeFor(
@@ -178,8 +184,8 @@ void BM_PeerInterval(benchmark::State& state) {
     ParticleData now;
     particle_peer.interval(particles, cmd, step, static_cast<double>(step) * cmd.dt(), out, now,
                            nobody_gone);
-    particle_peer.checkState(now);  // the session's check of a state sent as ids only
-    particle_peer.setState(now);
+    particle_peer.checkState(now);           // the session's check of a state sent as ids only
+    particle_peer.setState(std::move(now));  // as the session does
     benchmark::DoNotOptimize(out.peer().ledger().passes_size());
   };
   // Untimed: the first interval samples the gas where the parcels are (nothing sampled ahead
@@ -189,15 +195,14 @@ void BM_PeerInterval(benchmark::State& state) {
   over = true;
   fluid_thread.join();
   std::remove(endpoint.c_str() + 6);  // ZeroMQ leaves the ipc:// socket file behind
+  if (!shared.empty()) cosim::link::removeSharedArrays(shared);
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) *
                           static_cast<std::int64_t>(n));
 }
 
 BENCHMARK(BM_PeerInterval)
-    ->Arg(1000)
-    ->Arg(4000)
-    ->Arg(16000)
-    ->Arg(65536)
+    ->ArgNames({"parcels", "shared"})
+    ->ArgsProduct({{1000, 4000, 16000, 65536}, {0, 1}})
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 

@@ -16,6 +16,7 @@
 #include "cosim/link/file_transfer.h"
 #include "cosim/link/models_wire.h"
 #include "cosim/link/session.h"
+#include "cosim/link/shared_arrays.h"
 #include "cosim/util/cpu_binding.h"
 #include "launchers.h"
 #include "link_security.h"
@@ -643,6 +644,7 @@ void Participants::checkAlive(const std::map<std::string, wire::Envelope::BodyCa
 void Participants::preparePeerLink() {
   if (!isTcp(hub_->endpoint())) {
     peer_.bind = "ipc://" + (privateSocketFolder() / (run_id_ + "-peer.ipc")).string();
+    peer_.shared_memory = link::sharedArraysPrefix(run_id_);
     return;
   }
   peer_.bind = "tcp";
@@ -739,11 +741,13 @@ wire::PeerLink peerLinkFor(const Scenario& sc, const Plan& plan, const std::stri
   link.set_particles_public(keys.particles.public_key);
   if (who == "fluid") {
     link.set_bind(keys.bind);
+    link.set_shared_memory(keys.shared_memory);
     link.set_fluid_secret(keys.fluid.secret_key);
     return link;
   }
   link.set_particles_secret(keys.particles.secret_key);
   if (keys.bind != "tcp") link.set_connect(keys.bind);
+  link.set_shared_memory(keys.shared_memory);
   link::toWire(sc.models.choices(), sc.constants, *link.mutable_models());
   for (const auto& f : plan.sample_state) link.add_sample_state(f);
   for (const auto& f : plan.fluid_advance_terms) link.add_exchange(f);
@@ -881,6 +885,7 @@ void Participants::shutdown(bool clean) {
     std::error_code ec;
     fs::remove(peer_.bind.substr(std::string("ipc://").size()), ec);
   }
+  if (!peer_.shared_memory.empty()) link::removeSharedArrays(peer_.shared_memory);
   if (!token_file_.empty()) {
     std::error_code ec;
     fs::remove(token_file_, ec);

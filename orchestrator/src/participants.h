@@ -42,6 +42,7 @@ using Replies = std::map<std::string, wire::Envelope>;
 struct PeerKeys {
   std::string bind;
   link::CurveKeyPair fluid, particles;
+  std::string shared_memory;  // ipc://: the prefix of the peers' shared memory objects
 };
 
 // The Welcome a participant gets: its fields, options, folder, the run's clock and parameters;
@@ -51,7 +52,7 @@ struct PeerKeys {
 wire::Welcome welcomeFor(const Scenario& sc, const Plan& plan, const ParticipantSpec& spec,
                          const std::filesystem::path& workdir,
                          const std::filesystem::path& restart_from,
-                         const PeerKeys& peer = {"ipc://peer", {}, {}});
+                         const PeerKeys& peer = {"ipc://peer", {}, {}, {}});
 
 class Participants {
  public:

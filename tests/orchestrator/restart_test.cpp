@@ -721,15 +721,57 @@ TEST(Pack, RefusalsNameTheReasonAndWriteNothing) {
         << "a partial copy was left: " << e.path();
 }
 
-// A job suspended and continued (SIGSTOP and SIGCONT: Slurm's scontrol suspend, Ctrl-Z and fg)
-// goes on: the time the orchestrator did not run is nobody's silence, even past the heartbeat
-// timeout; the run then stops on Ctrl-C as any run does, resumable.
-TEST(Suspend, ARunStoppedLongerThanTheHeartbeatTimeoutGoesOnWhenContinued) {
+// The process groups of the participants a run started (each its own, child_process.cpp).
+std::vector<pid_t> participantGroups(pid_t orchestrator) {
+  std::vector<pid_t> groups;
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(e.path() / "stat");
+    std::string stat;
+    std::getline(in, stat);
+    const auto close = stat.rfind(')');
+    if (close == std::string::npos) continue;
+    std::istringstream rest(stat.substr(close + 2));
+    char state = 0;
+    pid_t ppid = 0, pgrp = 0;
+    rest >> state >> ppid >> pgrp;
+    if (ppid == orchestrator) groups.push_back(pgrp);
+  }
+  return groups;
+}
+
+// A job suspended and continued (SIGSTOP and SIGCONT) goes on: the time the orchestrator did
+// not run is nobody's silence, even past the heartbeat timeout and ZeroMQ's 5 s heartbeat; the
+// run then stops on Ctrl-C as any run does, resumable. Suspended whole (Slurm's scontrol
+// suspend, a paused virtual machine) or the orchestrator alone (Ctrl-Z and fg in a terminal
+// stop only the foreground group; the participants run in groups of their own).
+// Over tcp:// (across nodes) only the whole job: a link ZeroMQ's heartbeat finds silent for 5 s
+// is taken for cut there, as a stopped orchestrator's is (docs/cluster.md).
+enum class Stopped { orchestrator_alone, whole, whole_over_tcp };
+class Suspend : public ::testing::TestWithParam<Stopped> {};
+
+TEST_P(Suspend, ARunStoppedLongerThanTheHeartbeatTimeoutsGoesOnWhenContinued) {
   Workspace w;
-  auto run = start(w,
-                   {"run", "scene.yaml", "-o", "susp", "--quiet", "--set", "coupling.end_time=1e3",
-                    "--set", "transport.heartbeat_timeout=1"},
-                   "susp.out");
+  std::vector<std::string> args = {"run",
+                                   "scene.yaml",
+                                   "-o",
+                                   "susp",
+                                   "--quiet",
+                                   "--set",
+                                   "coupling.end_time=1e3",
+                                   "--set",
+                                   "transport.heartbeat_timeout=1"};
+  if (GetParam() == Stopped::whole_over_tcp) {
+    const fs::path key_file = w.dir / "run.key";
+    link::writeKeyPairFile(key_file, link::newCurveKeyPair());
+    for (const std::string& a :
+         {std::string("--set"),
+          "transport.bind=tcp://127.0.0.1:" + std::to_string(test::freeLoopbackPort()),
+          std::string("--set"), "transport.key_file=" + key_file.string()})
+      args.push_back(a);
+  }
+  auto run = start(w, args, "susp.out");
   const auto stepping = [&] {
     std::ifstream in(w.dir / "susp" / "timeseries.csv");
     std::string line;
@@ -740,16 +782,41 @@ TEST(Suspend, ARunStoppedLongerThanTheHeartbeatTimeoutGoesOnWhenContinued) {
   for (int i = 0; i < 400 && !stepping(); ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   ASSERT_TRUE(stepping()) << text(w.dir / "susp.out");
+  const bool whole = GetParam() != Stopped::orchestrator_alone;
+  const std::vector<pid_t> groups = whole ? participantGroups(run.pid()) : std::vector<pid_t>{};
+  if (whole) ASSERT_EQ(groups.size(), 2U) << "the fluid's and the particles' groups";
   ::kill(run.pid(), SIGSTOP);
-  std::this_thread::sleep_for(std::chrono::milliseconds(3000));  // 3 heartbeat timeouts
+  for (const pid_t g : groups) ::kill(-g, SIGSTOP);
+  // 7 heartbeat timeouts, and longer than ZeroMQ's 5 s heartbeat on the links
+  std::this_thread::sleep_for(std::chrono::milliseconds(7000));
+  for (const pid_t g : groups) ::kill(-g, SIGCONT);
   ::kill(run.pid(), SIGCONT);
-  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  std::this_thread::sleep_for(std::chrono::milliseconds(2500));
   ASSERT_TRUE(run.running()) << text(w.dir / "susp.out");
+  const auto steps_then = [&] {
+    std::ifstream in(w.dir / "susp" / "timeseries.csv");
+    std::string line;
+    int n = 0;
+    while (std::getline(in, line)) ++n;
+    return n;
+  };
+  const int before = steps_then();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_GT(steps_then(), before) << "the run does not step after it was continued";
   ::kill(run.pid(), SIGINT);
   EXPECT_EQ(finish(run), 130) << text(w.dir / "susp.out");
   EXPECT_NE(text(w.dir / "susp" / "cosim.log").find("did not listen for"), std::string::npos)
       << text(w.dir / "susp" / "cosim.log");
 }
+
+INSTANTIATE_TEST_SUITE_P(Stopped, Suspend,
+                         ::testing::Values(Stopped::orchestrator_alone, Stopped::whole,
+                                           Stopped::whole_over_tcp),
+                         [](const auto& info) {
+                           return info.param == Stopped::orchestrator_alone ? "TheOrchestratorAlone"
+                                  : info.param == Stopped::whole            ? "Whole"
+                                                                            : "WholeOverTcp";
+                         });
 
 // coupling.data_path: peer (docs/design.md section 5): the particles sample the gas from the fluid,
 // evaluate the laws over their parcels and keep the coating ledger and the zone passes of their

@@ -147,6 +147,10 @@ FluidPeer::FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_m
     hub_ = std::make_unique<Hub>("tcp://" + localAddressToward(orchestrator) + ":*", security);
   } else if (link.bind().rfind("ipc://", 0) == 0) {
     hub_ = std::make_unique<Hub>(link.bind(), security);
+    if (!link.shared_memory().empty()) {  // the per-parcel values through shared memory
+      out_ = std::make_unique<SharedArrayWriter>(link.shared_memory(), "fluid");
+      in_ = std::make_unique<SharedArrayReader>(link.shared_memory());
+    }
   } else {
     throw ProtocolError("Welcome.peer.bind '" + link.bind() +
                         "': expected an ipc:// address or 'tcp' (coupling.data_path: peer)");
@@ -166,6 +170,7 @@ wire::Envelope FluidPeer::await(wire::Envelope::BodyCase expected, std::uint64_t
     if (!route_.empty() && in->peer != route_) continue;  // one particle rank: the first one
     route_ = in->peer;
     checkPeerMessage(*in->envelope, expected, step, "particles");
+    if (in_) in_->newMessage();
     return std::move(*in->envelope);
   }
   throw TimeoutError(silence("particles", timeout_ms_));
@@ -185,24 +190,31 @@ void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t
                         std::to_string(step) + " (coupling.data_path: peer)");
   if (sample.has_sample()) {
     wire::Envelope samples;
-    sampleInto(solver, fromWire(sample.sample().particles()), *samples.mutable_samples());
+    if (out_) out_->beginMessage();
+    sampleInto(solver, fromWire(sample.sample().particles(), in_.get()), *samples.mutable_samples(),
+               out_.get());
     send(samples, step, time);
   }
   // The exchange terms (the particles sent them at once when they had the gas sampled ahead)
   wire::Envelope terms =
       sample.has_advance() ? std::move(sample) : await(wire::Envelope::kAdvance, step, watch);
   // The solver gets the terms as on the central path: in the Advance (which an adapter with
-  // several ranks broadcasts as it is) and as ParticleData; moved into the Advance, not copied
-  const ParticleData exchange = fromWire(terms.advance().terms());
+  // several ranks broadcasts as it is) and as ParticleData; moved into the Advance, not copied,
+  // when they came in the message
+  const ParticleData exchange = fromWire(terms.advance().terms(), in_.get());
   wire::Advance with_terms = cmd;
-  with_terms.mutable_terms()->Swap(terms.mutable_advance()->mutable_terms());
+  if (in_)  // the values came through shared memory: into the Advance, as the wire has them
+    toWire(exchange, *with_terms.mutable_terms());
+  else
+    with_terms.mutable_terms()->Swap(terms.mutable_advance()->mutable_terms());
   ParticleData results;
   solver.advance(with_terms, exchange, out, results);
   wire::Envelope advanced;
-  toWire(nonzeroParcels(results), *advanced.mutable_advanced()->mutable_state());
+  if (out_) out_->beginMessage();
+  toWire(nonzeroParcels(results), *advanced.mutable_advanced()->mutable_state(), out_.get());
   if (terms.advance().has_sample_ahead())  // the next interval's samples, where they will be
-    sampleInto(solver, predictedAt(fromWire(terms.advance().sample_ahead()), cmd.dt()),
-               *advanced.mutable_advanced()->mutable_ahead());
+    sampleInto(solver, predictedAt(fromWire(terms.advance().sample_ahead(), in_.get()), cmd.dt()),
+               *advanced.mutable_advanced()->mutable_ahead(), out_.get());
   send(advanced, step, time);
 }
 
@@ -220,6 +232,10 @@ ParticlePeer::ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welc
       dt_(welcome.cfd_dt()) {
   terms_.configure(link_);
   if (link_.coating() && link_.zone_passes()) passes_.emplace();
+  if (!link_.shared_memory().empty() && !link_.connect().empty()) {  // one machine: ipc://
+    out_ = std::make_unique<SharedArrayWriter>(link_.shared_memory(), "particles");
+    in_ = std::make_unique<SharedArrayReader>(link_.shared_memory());
+  }
   if (!link.connect().empty()) connect(link.connect());
 }
 
@@ -243,8 +259,19 @@ void ParticlePeer::checkState(const ParticleData& state) const {
 
 std::string ParticlePeer::aheadBytes() const {
   if (!ahead_ || !ahead_sent_) return {};
+  wire::FieldSet sent = *ahead_sent_;
+  for (auto& f : *sent.mutable_fields()) {  // values this side put in its shared memory
+    if (!f.has_shared()) continue;
+    const std::size_t n = static_cast<std::size_t>(sent.ids_size()) * f.components();
+    const double* v = out_ ? out_->at(f.shared(), n) : nullptr;
+    if (v == nullptr)
+      throw ProtocolError("the parcels the gas was sampled ahead at are no longer in " +
+                          f.shared().region() + " (a bug: report it with the scenario)");
+    f.mutable_values()->Assign(v, v + n);
+    f.clear_shared();
+  }
   wire::FieldSet at;
-  toWire(predictedAt(fromWire(*ahead_sent_), ahead_dt_), at);
+  toWire(predictedAt(fromWire(sent), ahead_dt_), at);
   return at.SerializeAsString();
 }
 
@@ -285,6 +312,7 @@ wire::Envelope ParticlePeer::request(wire::Envelope& env, wire::Envelope::BodyCa
     }
     if (!fromThisRun(*in, who_)) continue;
     checkPeerMessage(*in, expected, step, "fluid");
+    if (in_) in_->newMessage();
     return std::move(*in);
   }
   throw TimeoutError(silence("fluid", timeout_ms_));
@@ -293,7 +321,8 @@ wire::Envelope ParticlePeer::request(wire::Envelope& env, wire::Envelope::BodyCa
 wire::Samples ParticlePeer::gasAtParcels(std::uint64_t step, double time, const PeerWatch& watch) {
   auto sampleAt = [&](const ParticleData& at) {
     wire::Envelope sample;
-    toWire(at, *sample.mutable_sample()->mutable_particles(), sample_fields_);
+    if (out_) out_->beginMessage();
+    toWire(at, *sample.mutable_sample()->mutable_particles(), sample_fields_, out_.get());
     return std::move(
         *request(sample, wire::Envelope::kSamples, step, time, watch).mutable_samples());
   };
@@ -336,7 +365,7 @@ void ParticlePeer::payOwed(ParticleData& forcing) {
 
 ParticleData ParticlePeer::removal(const wire::Advanced& results) const {
   ParticleData taken;
-  const ParticleData fr = fromWire(results.state());
+  const ParticleData fr = fromWire(results.state(), in_.get());
   if (!fr.has(field::precursor_removed)) return taken;
   // The parcels that took any (the fluid sends no zeros), in the order they were sent
   std::size_t j = 0;
@@ -456,7 +485,7 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   // The gas at the parcels
   auto t0 = Clock::now();
   const wire::Samples answer = gasAtParcels(step, time, watch);
-  const ParticleData samples = fromWire(answer.at_particles());
+  const ParticleData samples = fromWire(answer.at_particles(), in_.get());
   if (samples.ids != state_.ids)
     throw ProtocolError(
         "the fluid returned samples for other parcels than it was sent (ids differ; "
@@ -485,11 +514,12 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   auto* fa = fluid_terms.mutable_advance();
   fa->set_dt(cmd.dt());
   fa->set_substeps(1);
+  if (out_) out_->beginMessage();
   toWire(terms.exchange, *fa->mutable_terms(),
-         std::vector<std::string>(link_.exchange().begin(), link_.exchange().end()));
+         std::vector<std::string>(link_.exchange().begin(), link_.exchange().end()), out_.get());
   ahead_sent_.reset();
   if (link_.sample_ahead())  // the gas where the parcels will be, sampled in the fluid's step
-    toWire(state_, *fa->mutable_sample_ahead(), sample_fields_);
+    toWire(state_, *fa->mutable_sample_ahead(), sample_fields_, out_.get());
   request(fluid_terms, wire::Envelope::BODY_NOT_SET, step, time, watch);
   if (fa->has_sample_ahead()) {  // kept, not copied, for a checkpoint's aheadBytes()
     ahead_sent_.emplace();

@@ -414,13 +414,14 @@ int checkSceneOptions(const ParticipantOptions& options, const SceneCheck& check
   return 0;
 }
 
-void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& s) {
+void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& s,
+                SharedArrayWriter* shared) {
   const auto t0 = std::chrono::steady_clock::now();
   ParticleData samples;
   samples.ids = in.ids;
   std::vector<std::int64_t> lost;
   solver.sample(in, samples, lost);
-  cosim::link::toWire(samples, *s.mutable_at_particles());
+  cosim::link::toWire(samples, *s.mutable_at_particles(), shared);
   s.mutable_lost_ids()->Assign(lost.begin(), lost.end());
   s.set_wall_seconds(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }

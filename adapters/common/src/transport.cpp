@@ -28,11 +28,17 @@ zmq::context_t& context() {
   return ctx;
 }
 
-void configure(zmq::socket_t& s) {
+void configure(zmq::socket_t& s, const std::string& endpoint) {
   s.set(zmq::sockopt::linger, 0);
-  // Connection-level liveness (ZMTP heartbeats) on top of our own application heartbeats.
-  s.set(zmq::sockopt::heartbeat_ivl, 1000);
-  s.set(zmq::sockopt::heartbeat_timeout, 5000);
+  // Across a network (tcp://), connection-level liveness (ZMTP heartbeats) on top of our own
+  // application heartbeats: a cut link is dropped after 5 s. Not on one machine (ipc://), where
+  // no link can be cut and a process that ends closes its end at once, but a process can be
+  // stopped (Ctrl-Z, kill -STOP): there the heartbeats would drop the link of the process that
+  // did not answer while it was stopped, and the run with it when it is continued.
+  if (endpoint.rfind("tcp://", 0) == 0) {
+    s.set(zmq::sockopt::heartbeat_ivl, 1000);
+    s.set(zmq::sockopt::heartbeat_timeout, 5000);
+  }
 }
 }  // namespace
 
@@ -129,7 +135,7 @@ Channel::Channel(const std::string& endpoint, const std::string& identity,
                  const CurveClientKeys& curve)
     : impl_(std::make_unique<Impl>()) {
   silenceProtobufLog();
-  configure(impl_->socket);
+  configure(impl_->socket, endpoint);
   if (!identity.empty()) impl_->socket.set(zmq::sockopt::routing_id, identity);
   if (!curve.empty()) {
     requireCurve();
@@ -336,7 +342,7 @@ Hub::Hub(const std::string& endpoint, const HubSecurity& security)
                       "not exist");
     }
   }
-  configure(impl_->socket);
+  configure(impl_->socket, endpoint);
   // Fail loudly when sending to a peer that is not (or no longer) connected.
   impl_->socket.set(zmq::sockopt::router_mandatory, true);
   if (security.enabled()) {

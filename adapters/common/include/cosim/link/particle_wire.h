@@ -18,11 +18,21 @@ class ZonePass;
 
 namespace cosim::link {
 
+class SharedArrayWriter;
+class SharedArrayReader;
+
 void toWire(const ParticleData& d, wire::FieldSet& out);
 // Only the named fields (those it holds), as toWire(d.select(names), out) without the copy.
 void toWire(const ParticleData& d, wire::FieldSet& out, const std::vector<std::string>& names);
 // Validates lengths and component counts; throws ProtocolError with the field name.
 ParticleData fromWire(const wire::FieldSet& in);
+
+// The same through shared memory (the peers of one machine, shared_arrays.h): the values go to
+// `shared` (in the message when it has none to give), and come from it where a field says so.
+void toWire(const ParticleData& d, wire::FieldSet& out, SharedArrayWriter* shared);
+void toWire(const ParticleData& d, wire::FieldSet& out, const std::vector<std::string>& names,
+            SharedArrayWriter* shared);
+ParticleData fromWire(const wire::FieldSet& in, SharedArrayReader* shared);
 
 // One pass through the coating zone (a row of zone_passes.csv) and its wire form.
 void toWire(const ZonePass& p, wire::ZonePass& out);

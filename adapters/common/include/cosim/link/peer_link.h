@@ -23,6 +23,7 @@
 #include "cosim.pb.h"
 #include "cosim/link/coating_ledger.h"
 #include "cosim/link/particle_data.h"
+#include "cosim/link/shared_arrays.h"
 #include "cosim/link/transport.h"
 #include "cosim/link/zone_pass_tracker.h"
 
@@ -87,6 +88,8 @@ class FluidPeer {
   int timeout_ms_;
   std::unique_ptr<Hub> hub_;
   std::string route_;  // the particles' routing id, from their first valid message
+  std::unique_ptr<SharedArrayWriter> out_;  // Welcome.peer.shared_memory: the values out
+  std::unique_ptr<SharedArrayReader> in_;   // ... and in
 };
 
 // The particles' side: connects to the fluid, evaluates the laws, keeps the last state.
@@ -154,6 +157,8 @@ class ParticlePeer {
   int timeout_ms_;
   std::unique_ptr<Channel> channel_;
   std::string connected_to_;
+  std::unique_ptr<SharedArrayWriter> out_;  // Welcome.peer.shared_memory: the values out
+  std::unique_ptr<SharedArrayReader> in_;   // ... and in
   ParticleData state_;
   std::optional<wire::Samples> ahead_;        // the gas where the parcels are now, sampled ahead
   std::optional<wire::FieldSet> ahead_sent_;  // the parcels ahead_ was sampled from (moved by

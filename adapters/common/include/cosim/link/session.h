@@ -130,7 +130,9 @@ bool checkOptionsRequested(int argc, char** argv);
 ParticleData predictedAt(ParticleData at, double dt);
 
 // The solver's Sample of `in` as the Samples message (lost ids, the time it took).
-void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& out);
+// With `shared`, the samples' values go through the peers' shared memory (shared_arrays.h).
+void sampleInto(Solver& solver, const ParticleData& in, wire::Samples& out,
+                SharedArrayWriter* shared = nullptr);
 
 // Runs the whole participant life: connect, Hello, Welcome, command loop, Goodbye.
 // Returns the process exit code (0 on a clean Shutdown). `peer_terms`: a particle adapter's
