@@ -3,7 +3,9 @@
 Foam::cosim::ParticleLocator::ParticleLocator(const polyMesh& mesh)
 :
     mesh_(mesh),
-    bounds_(mesh.bounds()),
+    // This processor's own box: mesh.bounds() is the whole mesh's on every processor, which
+    // sent every parcel of the others into the octree search
+    bounds_(boundBox(mesh.points(), false)),
     maxSteps_(max(label(100), label(4*Foam::cbrt(scalar(mesh.nCells())))))
 {
     // Small tolerance so points on the outer faces are not dropped by the box test
