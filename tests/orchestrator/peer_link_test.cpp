@@ -368,7 +368,6 @@ TEST(SharedArrays, CarryValuesGrowPastTheFirstObjectAndUnlinkWhatThePeerHasHad) 
   SharedArrayReader in(prefix);
   // One message: a small array, then one larger than the first object (1 MiB), which moves the
   // writer to a second object while the first still holds the small one
-  out.beginMessage();
   const auto small = ramp(3, 1.0), large = ramp(200000, 0.5);
   wire::SharedExtent a, b;
   ASSERT_TRUE(out.put(small.data(), small.size(), a)) << out.failure();
@@ -379,11 +378,14 @@ TEST(SharedArrays, CarryValuesGrowPastTheFirstObjectAndUnlinkWhatThePeerHasHad) 
   EXPECT_EQ(std::vector<double>(in.at(a, 3), in.at(a, 3) + 3), small);
   EXPECT_EQ(in.at(b, large.size())[199999], 200000 - 0.5);
   EXPECT_EQ(sharedObjectsOf(prefix).size(), 2U);  // named until the peer has answered
-  // The peer answered: the names go, the newest object is written again from its start
-  out.beginMessage();
-  EXPECT_TRUE(sharedObjectsOf(prefix).empty());
+  // The peer answered: the next message's first array unlinks the names and writes the newest
+  // object again from its start
+  out.answered();
+  EXPECT_NE(out.at(b, large.size()), nullptr) << "what was put is there until the next put";
   wire::SharedExtent c;
   ASSERT_TRUE(out.put(small.data(), small.size(), c));
+  EXPECT_TRUE(sharedObjectsOf(prefix).empty());
+  EXPECT_EQ(out.at(a, 3), nullptr) << "the first object is gone";
   EXPECT_EQ(c.region(), b.region());
   EXPECT_EQ(c.offset(), 0U);
   in.newMessage();  // the reader drops the first object and keeps the one still written

@@ -147,10 +147,8 @@ FluidPeer::FluidPeer(const wire::PeerLink& link, PeerIdentity who, int timeout_m
     hub_ = std::make_unique<Hub>("tcp://" + localAddressToward(orchestrator) + ":*", security);
   } else if (link.bind().rfind("ipc://", 0) == 0) {
     hub_ = std::make_unique<Hub>(link.bind(), security);
-    if (!link.shared_memory().empty()) {  // the per-parcel values through shared memory
-      out_ = std::make_unique<SharedArrayWriter>(link.shared_memory(), "fluid");
-      in_ = std::make_unique<SharedArrayReader>(link.shared_memory());
-    }
+    if (!link.shared_memory().empty())  // the per-parcel values through shared memory
+      shared_ = std::make_unique<SharedArrays>(link.shared_memory(), "fluid");
   } else {
     throw ProtocolError("Welcome.peer.bind '" + link.bind() +
                         "': expected an ipc:// address or 'tcp' (coupling.data_path: peer)");
@@ -170,7 +168,7 @@ wire::Envelope FluidPeer::await(wire::Envelope::BodyCase expected, std::uint64_t
     if (!route_.empty() && in->peer != route_) continue;  // one particle rank: the first one
     route_ = in->peer;
     checkPeerMessage(*in->envelope, expected, step, "particles");
-    if (in_) in_->newMessage();
+    if (shared_) shared_->received();
     return std::move(*in->envelope);
   }
   throw TimeoutError(silence("particles", timeout_ms_));
@@ -190,9 +188,8 @@ void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t
                         std::to_string(step) + " (coupling.data_path: peer)");
   if (sample.has_sample()) {
     wire::Envelope samples;
-    if (out_) out_->beginMessage();
-    sampleInto(solver, fromWire(sample.sample().particles(), in_.get()), *samples.mutable_samples(),
-               out_.get());
+    sampleInto(solver, fromWire(sample.sample().particles(), sharedIn()),
+               *samples.mutable_samples(), sharedOut());
     send(samples, step, time);
   }
   // The exchange terms (the particles sent them at once when they had the gas sampled ahead)
@@ -201,20 +198,19 @@ void FluidPeer::interval(Solver& solver, const wire::Advance& cmd, std::uint64_t
   // The solver gets the terms as on the central path: in the Advance (which an adapter with
   // several ranks broadcasts as it is) and as ParticleData; moved into the Advance, not copied,
   // when they came in the message
-  const ParticleData exchange = fromWire(terms.advance().terms(), in_.get());
+  const ParticleData exchange = fromWire(terms.advance().terms(), sharedIn());
   wire::Advance with_terms = cmd;
-  if (in_)  // the values came through shared memory: into the Advance, as the wire has them
+  if (shared_)  // the values came through shared memory: into the Advance, as the wire has them
     toWire(exchange, *with_terms.mutable_terms());
   else
     with_terms.mutable_terms()->Swap(terms.mutable_advance()->mutable_terms());
   ParticleData results;
   solver.advance(with_terms, exchange, out, results);
   wire::Envelope advanced;
-  if (out_) out_->beginMessage();
-  toWire(nonzeroParcels(results), *advanced.mutable_advanced()->mutable_state(), out_.get());
+  toWire(nonzeroParcels(results), *advanced.mutable_advanced()->mutable_state(), sharedOut());
   if (terms.advance().has_sample_ahead())  // the next interval's samples, where they will be
-    sampleInto(solver, predictedAt(fromWire(terms.advance().sample_ahead(), in_.get()), cmd.dt()),
-               *advanced.mutable_advanced()->mutable_ahead(), out_.get());
+    sampleInto(solver, predictedAt(fromWire(terms.advance().sample_ahead(), sharedIn()), cmd.dt()),
+               *advanced.mutable_advanced()->mutable_ahead(), sharedOut());
   send(advanced, step, time);
 }
 
@@ -232,10 +228,8 @@ ParticlePeer::ParticlePeer(const wire::PeerLink& link, const wire::Welcome& welc
       dt_(welcome.cfd_dt()) {
   terms_.configure(link_);
   if (link_.coating() && link_.zone_passes()) passes_.emplace();
-  if (!link_.shared_memory().empty() && !link_.connect().empty()) {  // one machine: ipc://
-    out_ = std::make_unique<SharedArrayWriter>(link_.shared_memory(), "particles");
-    in_ = std::make_unique<SharedArrayReader>(link_.shared_memory());
-  }
+  if (!link_.shared_memory().empty() && !link_.connect().empty())  // one machine: ipc://
+    shared_ = std::make_unique<SharedArrays>(link_.shared_memory(), "particles");
   if (!link.connect().empty()) connect(link.connect());
 }
 
@@ -263,7 +257,7 @@ std::string ParticlePeer::aheadBytes() const {
   for (auto& f : *sent.mutable_fields()) {  // values this side put in its shared memory
     if (!f.has_shared()) continue;
     const std::size_t n = static_cast<std::size_t>(sent.ids_size()) * f.components();
-    const double* v = out_ ? out_->at(f.shared(), n) : nullptr;
+    const double* v = shared_ ? shared_->out.at(f.shared(), n) : nullptr;
     if (v == nullptr)
       throw ProtocolError("the parcels the gas was sampled ahead at are no longer in " +
                           f.shared().region() + " (a bug: report it with the scenario)");
@@ -312,7 +306,7 @@ wire::Envelope ParticlePeer::request(wire::Envelope& env, wire::Envelope::BodyCa
     }
     if (!fromThisRun(*in, who_)) continue;
     checkPeerMessage(*in, expected, step, "fluid");
-    if (in_) in_->newMessage();
+    if (shared_) shared_->received();
     return std::move(*in);
   }
   throw TimeoutError(silence("fluid", timeout_ms_));
@@ -321,8 +315,7 @@ wire::Envelope ParticlePeer::request(wire::Envelope& env, wire::Envelope::BodyCa
 wire::Samples ParticlePeer::gasAtParcels(std::uint64_t step, double time, const PeerWatch& watch) {
   auto sampleAt = [&](const ParticleData& at) {
     wire::Envelope sample;
-    if (out_) out_->beginMessage();
-    toWire(at, *sample.mutable_sample()->mutable_particles(), sample_fields_, out_.get());
+    toWire(at, *sample.mutable_sample()->mutable_particles(), sample_fields_, sharedOut());
     return std::move(
         *request(sample, wire::Envelope::kSamples, step, time, watch).mutable_samples());
   };
@@ -365,7 +358,7 @@ void ParticlePeer::payOwed(ParticleData& forcing) {
 
 ParticleData ParticlePeer::removal(const wire::Advanced& results) const {
   ParticleData taken;
-  const ParticleData fr = fromWire(results.state(), in_.get());
+  const ParticleData fr = fromWire(results.state(), sharedIn());
   if (!fr.has(field::precursor_removed)) return taken;
   // The parcels that took any (the fluid sends no zeros), in the order they were sent
   std::size_t j = 0;
@@ -485,7 +478,7 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   // The gas at the parcels
   auto t0 = Clock::now();
   const wire::Samples answer = gasAtParcels(step, time, watch);
-  const ParticleData samples = fromWire(answer.at_particles(), in_.get());
+  const ParticleData samples = fromWire(answer.at_particles(), sharedIn());
   if (samples.ids != state_.ids)
     throw ProtocolError(
         "the fluid returned samples for other parcels than it was sent (ids differ; "
@@ -514,12 +507,11 @@ void ParticlePeer::interval(Solver& solver, const wire::Advance& cmd, std::uint6
   auto* fa = fluid_terms.mutable_advance();
   fa->set_dt(cmd.dt());
   fa->set_substeps(1);
-  if (out_) out_->beginMessage();
   toWire(terms.exchange, *fa->mutable_terms(),
-         std::vector<std::string>(link_.exchange().begin(), link_.exchange().end()), out_.get());
+         std::vector<std::string>(link_.exchange().begin(), link_.exchange().end()), sharedOut());
   ahead_sent_.reset();
   if (link_.sample_ahead())  // the gas where the parcels will be, sampled in the fluid's step
-    toWire(state_, *fa->mutable_sample_ahead(), sample_fields_, out_.get());
+    toWire(state_, *fa->mutable_sample_ahead(), sample_fields_, sharedOut());
   request(fluid_terms, wire::Envelope::BODY_NOT_SET, step, time, watch);
   if (fa->has_sample_ahead()) {  // kept, not copied, for a checkpoint's aheadBytes()
     ahead_sent_.emplace();

@@ -19,8 +19,8 @@ namespace cosim::link {
 
 namespace {
 
-constexpr std::size_t kAlign = 64;             // each array on its own cache lines
-constexpr std::size_t kSmallest = 1U << 20;    // bytes of the first object
+constexpr std::size_t kAlign = 64;           // each array on its own cache lines
+constexpr std::size_t kSmallest = 1U << 20;  // bytes of the first object
 constexpr std::size_t kPage = 4096;
 
 std::size_t aligned(std::size_t bytes) { return (bytes + kAlign - 1) / kAlign * kAlign; }
@@ -43,7 +43,7 @@ void SharedArrayWriter::release(Region& r) {
   r.base = nullptr;
 }
 
-void SharedArrayWriter::beginMessage() {
+void SharedArrayWriter::startOver() {
   // The peer has answered the message that named these objects: it has them open
   for (auto& r : regions_) {
     if (r.linked) shm_unlink(r.name.c_str());
@@ -94,6 +94,10 @@ bool SharedArrayWriter::grow(std::size_t at_least) {
 
 bool SharedArrayWriter::put(const double* values, std::size_t n, wire::SharedExtent& where) {
   if (!failure_.empty()) return false;
+  if (answered_) {
+    startOver();
+    answered_ = false;
+  }
   const std::size_t bytes = n * sizeof(double);
   if (regions_.empty() || used_ + bytes > regions_.back().capacity) {
     if (!grow(bytes)) {  // said once, in the participant's log; the run goes on without it
@@ -141,8 +145,8 @@ void SharedArrayReader::newMessage() {
 const double* SharedArrayReader::at(const wire::SharedExtent& where, std::size_t n) {
   const std::string& name = where.region();
   if (name.rfind(prefix_ + "-", 0) != 0 || name.find('/', 1) != std::string::npos)
-    throw ProtocolError("the peer named shared memory '" + name +
-                        "', which is not this run's (" + prefix_ + "-...)");
+    throw ProtocolError("the peer named shared memory '" + name + "', which is not this run's (" +
+                        prefix_ + "-...)");
   auto it = mapped_.find(name);
   if (it == mapped_.end()) {
     const int fd = shm_open(name.c_str(), O_RDONLY, 0);

@@ -88,8 +88,9 @@ class FluidPeer {
   int timeout_ms_;
   std::unique_ptr<Hub> hub_;
   std::string route_;  // the particles' routing id, from their first valid message
-  std::unique_ptr<SharedArrayWriter> out_;  // Welcome.peer.shared_memory: the values out
-  std::unique_ptr<SharedArrayReader> in_;   // ... and in
+  std::unique_ptr<SharedArrays> shared_;  // Welcome.peer.shared_memory: the values through it
+  SharedArrayWriter* sharedOut() const { return shared_ ? &shared_->out : nullptr; }
+  SharedArrayReader* sharedIn() const { return shared_ ? &shared_->in : nullptr; }
 };
 
 // The particles' side: connects to the fluid, evaluates the laws, keeps the last state.
@@ -157,8 +158,9 @@ class ParticlePeer {
   int timeout_ms_;
   std::unique_ptr<Channel> channel_;
   std::string connected_to_;
-  std::unique_ptr<SharedArrayWriter> out_;  // Welcome.peer.shared_memory: the values out
-  std::unique_ptr<SharedArrayReader> in_;   // ... and in
+  std::unique_ptr<SharedArrays> shared_;  // Welcome.peer.shared_memory: the values through it
+  SharedArrayWriter* sharedOut() const { return shared_ ? &shared_->out : nullptr; }
+  SharedArrayReader* sharedIn() const { return shared_ ? &shared_->in : nullptr; }
   ParticleData state_;
   std::optional<wire::Samples> ahead_;        // the gas where the parcels are now, sampled ahead
   std::optional<wire::FieldSet> ahead_sent_;  // the parcels ahead_ was sampled from (moved by
