@@ -105,7 +105,7 @@ void checkInputs(const std::string& owner, const std::vector<std::string>& field
       for (std::size_t i = 0; i < p.n; ++i) {
         if (p.isLost(i)) continue;
         for (std::size_t j = 0; j < k; ++j) {
-          if (!ok(v[i * k + j])) fail(owner, f, i, v[i * k + j], expected);
+          if (!ok(v[i * k + j])) fail(owner, f, p.first + i, v[i * k + j], expected);
         }
       }
     };

@@ -17,6 +17,10 @@ SceneModels makeSceneModels(const SceneModelChoices& c) {
   if (c.mass_transfer)
     m.mass_transfer = r.makeMassTransfer(c.mass_transfer->law, c.mass_transfer->params);
   if (c.coating_zone) m.zone = r.makeZone(c.coating_zone->law, c.coating_zone->params);
+  m.splittable = c.plugins.empty() && !(m.drag && m.drag->carriesAcrossParcels()) &&
+                 !(m.mass_transfer && m.mass_transfer->carriesAcrossParcels()) &&
+                 !(m.zone && m.zone->carriesAcrossParcels());
+  for (const auto& f : m.forces) m.splittable = m.splittable && !f->carriesAcrossParcels();
   return m;
 }
 

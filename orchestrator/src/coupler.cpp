@@ -1,6 +1,7 @@
 #include "coupler.h"
 
 #include <fmt/format.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +33,15 @@ Plan planOf(const Scenario& sc, const models::SceneModels& m, const RunOptions& 
   Plan p = makePlan(sc, m);
   if (o.record_terms || o.replay_terms || o.scheme.rfind("frozen", 0) == 0) p.peer = false;
   return p;
+}
+
+// The threads for the laws: the CPUs this process may run on (coupling.cpus may have bound it
+// to one), at most 8; both solvers wait while the laws run, so their cores are free.
+unsigned lawThreads() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) != 0) return 1;
+  return static_cast<unsigned>(std::clamp(CPU_COUNT(&set), 1, 8));
 }
 
 std::string newRunId() {
@@ -468,7 +478,7 @@ link::ParticleData Coupler::samplesOf(const wire::Samples& sm, std::vector<char>
 models::CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
                                               const std::vector<char>& lost) {
   models::CouplingTerms terms = models::evaluateTerms(models_, plan_.coating, sc_.constants, state_,
-                                                      samples, lost, sc_.coupling.dt);
+                                                      samples, lost, sc_.coupling.dt, lawThreads());
   check(terms.forcing, "models (forcing)");
   if (step_ == 1) refuseOrWarn(checkFirstStep(sc_, state_, samples, terms.forcing));
   if (plan_.coating) ledger_.pay(terms.forcing);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -308,6 +309,75 @@ TEST(ModelsWire, RefusesWhatNoSceneGives) {
           << e.what();
     }
   }
+}
+
+// The laws over 50,000 parcels split into parts on several threads (the orchestrator's models
+// phase) give every number of the laws over them on one, bit for bit, with lost parcels in
+// every part; an input error in a later part names its parcel among all.
+TEST(CouplingTerms, PartsOnThreadsAreTheTermsOfOneEvaluation) {
+  SceneModelChoices c = coatingScene();
+  c.drag->params = Parameters("drag 'beetstra' (models.drag)");  // no wake: splittable
+  const SceneModels m = makeSceneModels(c);
+  ASSERT_TRUE(m.splittable);
+  const auto k = constants();
+  const std::size_t n = 50000;
+  link::ParticleData state;
+  link::ParticleData samples;
+  bed(n, 1, state, samples);
+  std::vector<char> lost(n, 0);
+  for (std::size_t i = 5; i < n; i += 4999) lost[i] = 1;
+  const auto one = evaluateTerms(m, true, k, state, samples, lost, 1e-4, 1);
+  std::size_t inside = 0;
+  for (char z : one.in_zone) inside += z != 0 ? 1 : 0;
+  ASSERT_GT(inside, 0U);  // the bed straddles the zone
+  ASSERT_LT(inside, n);
+  for (unsigned threads : {2U, 3U, 8U}) {
+    const auto split = evaluateTerms(m, true, k, state, samples, lost, 1e-4, threads);
+    for (const auto* terms : {&one.forcing, &one.exchange}) {
+      const auto& other = terms == &one.forcing ? split.forcing : split.exchange;
+      ASSERT_EQ(terms->names(), other.names());
+      EXPECT_EQ(terms->ids, other.ids);
+      for (const auto& name : terms->names()) {
+        const auto& a = terms->get(name);
+        const auto& b = other.get(name);
+        ASSERT_EQ(a.size(), b.size()) << name;
+        EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0)
+            << name << " on " << threads << " threads";
+      }
+    }
+    EXPECT_EQ(split.in_zone, one.in_zone) << threads << " threads";
+  }
+  // a voidage out of range in the last part is named by its place among all the parcels
+  auto bad = samples;
+  bad.field(field::voidage)[n - 3] = 1.7;
+  try {
+    evaluateTerms(m, true, k, state, bad, lost, 1e-4, 4);
+    ADD_FAILURE() << "a voidage of 1.7 passed";
+  } catch (const ModelError& e) {
+    EXPECT_NE(std::string(e.what()).find("of parcel " + std::to_string(n - 3) + " "),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A law that carries work from one parcel to the next (the filtered Beetstra with the gas at
+// each parcel) and a scene with plugins are evaluated in one part.
+TEST(CouplingTerms, LawsCarryingWorkAcrossParcelsAndPluginsAreNotSplit) {
+  SceneModelChoices c;
+  Parameters filtered("drag 'beetstra' (models.drag)");
+  filtered.setText("filtered", "true");
+  filtered.set("particle_density", 1500.0);
+  c.drag = ModelChoice{"beetstra", filtered};
+  EXPECT_FALSE(makeSceneModels(c).splittable);
+  Parameters reference = filtered;
+  reference.set("reference_fluid_density", 1.2);
+  reference.set("reference_fluid_viscosity", 1.8e-5);
+  c.drag = ModelChoice{"beetstra", reference};
+  EXPECT_TRUE(makeSceneModels(c).splittable);  // one terminal velocity for the whole batch
+  c.drag = ModelChoice{"beetstra", Parameters("drag 'beetstra' (models.drag)")};
+  EXPECT_TRUE(makeSceneModels(c).splittable);
+  c.plugins = {"/nonexistent/libmy_drag.so"};  // not loaded: no law of the scene names it
+  EXPECT_FALSE(makeSceneModels(c).splittable);
 }
 
 }  // namespace

@@ -28,9 +28,12 @@ struct CouplingTerms {
 // `dt`: the coupling interval the terms are for [s]. With models.wake (a drag with
 // undisturbed_velocity 'self_disturbance_transient') every call advances each parcel's force
 // history over the last interval and records this one: call it once per interval.
+// `threads`: the parcels split into up to that many contiguous parts of at least 8,192, each
+// on a thread of its own (the same numbers as on one: a parcel's terms are its own), when the
+// scene's laws allow it (SceneModels::splittable); the wake's history stays on this thread.
 CouplingTerms evaluateTerms(const SceneModels& models, bool coating,
                             const SceneConstants& constants, const link::ParticleData& state,
                             const link::ParticleData& samples, const std::vector<char>& lost,
-                            double dt);
+                            double dt, unsigned threads = 1);
 
 }  // namespace cosim::models

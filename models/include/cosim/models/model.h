@@ -20,6 +20,10 @@ class Model {
   virtual std::string name() const = 0;
   // Per-particle fields this model reads (e.g. "voidage", "fluid_velocity").
   virtual std::vector<std::string> requiredFields() const = 0;
+  // True for a law whose numbers for a parcel may depend on the parcels before it in the batch
+  // (work carried from one parcel to the next, as the filtered Beetstra's Newton start): its
+  // batch is then never split into parts evaluated at once (evaluateTerms' threads).
+  virtual bool carriesAcrossParcels() const { return false; }
 };
 
 // Drag: K per parcel [kg/s] so that the force on the parcel is F = K (u_f - v).

@@ -19,6 +19,7 @@ struct SceneConstants {
 // scene does not carry that field (a model must declare the fields it needs, see Model).
 struct ParcelBatch {
   std::size_t n = 0;
+  std::size_t first = 0;  // the index of the batch's first parcel among all (for messages)
   const double* position = nullptr;            // [m] 3n
   const double* velocity = nullptr;            // [m/s] 3n
   const double* radius = nullptr;              // [m] n, parcel (simulated) radius

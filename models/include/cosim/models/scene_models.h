@@ -39,6 +39,10 @@ struct SceneModels {
   // With undisturbed_velocity 'self_disturbance_transient': every parcel's force history, kept
   // between steps (and in checkpoints) by whoever evaluates the terms; null otherwise.
   std::unique_ptr<WakeBuildup> wake;
+  // The parcels may be split into parts evaluated at once (evaluateTerms' threads): no law
+  // carries work across parcels, and no law comes from a plugin (whose methods are not known to
+  // run safely at once).
+  bool splittable = false;
 };
 
 // Builds every law, the plugins' included once loaded (Registry::loadPlugin: the orchestrator

@@ -26,6 +26,9 @@ class BeetstraDrag final : public DragLaw {
   std::string name() const override { return "beetstra"; }
   std::vector<std::string> requiredFields() const override;
   void coefficients(const ParcelBatch& p, const SceneConstants& c, double* K) const override;
+  // Filtered with the gas at each parcel: the terminal velocity's Newton starts from the last
+  // parcel's (the reference gas has one terminal velocity for the whole batch)
+  bool carriesAcrossParcels() const override { return filtered_ && reference_density_ <= 0.0; }
 
   bool filtered() const { return filtered_; }
   bool parcelFactor() const { return parcel_factor_; }

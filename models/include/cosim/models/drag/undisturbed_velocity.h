@@ -116,6 +116,7 @@ class UndisturbedVelocityDrag final : public DragLaw {
                                    Estimate estimate = Estimate::steady, double gamma = 1.0,
                                    double beta = 0.0);
   std::string name() const override { return inner_->name(); }
+  bool carriesAcrossParcels() const override { return inner_->carriesAcrossParcels(); }
   std::vector<std::string> requiredFields() const override;
   void coefficients(const ParcelBatch& p, const SceneConstants& c, double* K) const override;
   const DragLaw& inner() const { return *inner_; }
