@@ -1,5 +1,7 @@
 #include "ParcelDeposition.H"
 #include "Pstream.H"
+#include "IPstream.H"
+#include "OPstream.H"
 #include "ops.H"
 #include "mathematicalConstants.H"
 
@@ -16,7 +18,15 @@ Foam::cosim::ParcelDeposition::ParcelDeposition(const fvMesh& mesh, label divisi
     (
         label(std::min(4u, std::max(1u, std::thread::hardware_concurrency())))
     )
-{}
+{
+    if (Pstream::parRun())
+    {
+        procBounds_.setSize(Pstream::nProcs());
+        procBounds_[Pstream::myProcNo()] = locator_.bounds();
+        Pstream::gatherList(procBounds_);
+        Pstream::scatterList(procBounds_);
+    }
+}
 
 
 Foam::cosim::ParcelDeposition::~ParcelDeposition()
@@ -41,6 +51,10 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
     const label nSat = satellites_.size();
     out.n = n;
 
+    if (Pstream::parRun())
+    {
+        divideByProcessor(position, radius, out);
+    }
     locateCentres(ids, position, out);
 
     // 2. satellite points, seeded by the centre cell. Independent per parcel, so on one
@@ -66,12 +80,78 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
     }
     if (Pstream::parRun())
     {
-        Pstream::listCombineGather(satOwner, minEqOp<label>());
-        Pstream::listCombineScatter(satOwner);
+        agreeOnShared(out.shared, nSat, satOwner);
     }
 
     collectDeposits(satCell, satOwner, out);
     return out;
+}
+
+
+void Foam::cosim::ParcelDeposition::divideByProcessor
+(
+    const std::vector<double>& position,
+    const std::vector<double>& radius,
+    Placement& out
+) const
+{
+    const label n = out.n;
+    const label me = Pstream::myProcNo();
+    out.mayHold.setSize(n);
+    out.holder.setSize(n);
+    DynamicList<label> shared;
+    for (label i = 0; i < n; ++i)
+    {
+        const point c(position[3*i], position[3*i + 1], position[3*i + 2]);
+        // Every satellite point lies within the radius of the centre (1e-12 m for rounding)
+        const scalar margin = radius[i] + 1e-12;
+        label holders = 0;
+        label holder = -1;
+        bool mine = false;
+        forAll(procBounds_, proc)
+        {
+            if (ParticleLocator::inBox(procBounds_[proc], c, margin))
+            {
+                ++holders;
+                holder = proc;
+                mine = mine || proc == me;
+            }
+        }
+        out.mayHold[i] = mine;
+        out.holder[i] = holders > 1 ? label(-2) : holder;
+        if (holders > 1)
+        {
+            shared.append(i);
+        }
+    }
+    out.shared.transfer(shared);
+}
+
+
+void Foam::cosim::ParcelDeposition::agreeOnShared
+(
+    const labelList& shared,
+    label width,
+    labelList& owner
+) const
+{
+    labelList compact(shared.size()*width);
+    forAll(shared, k)
+    {
+        for (label j = 0; j < width; ++j)
+        {
+            compact[k*width + j] = owner[shared[k]*width + j];
+        }
+    }
+    Pstream::listCombineGather(compact, minEqOp<label>());
+    Pstream::listCombineScatter(compact);
+    forAll(shared, k)
+    {
+        for (label j = 0; j < width; ++j)
+        {
+            owner[shared[k]*width + j] = compact[k*width + j];
+        }
+    }
 }
 
 
@@ -111,27 +191,63 @@ void Foam::cosim::ParcelDeposition::locateCentres
         cursor = std::lower_bound(cursor, lastCell_.cend(), id, less);
         return (cursor != lastCell_.cend() && cursor->first == id) ? cursor->second : -1;
     };
+    const bool parallel = Pstream::parRun();
     for (label i = 0; i < n; ++i)
     {
+        if (parallel && !out.mayHold[i])
+        {
+            centreCell[i] = -1;  // outside this processor's box: in none of its cells
+            continue;
+        }
         centreCell[i] = locator_.locate(centreOf(i), seedOf(ids[i]));
         if (centreCell[i] >= 0)
         {
             centreOwner[i] = me;
         }
     }
-    if (Pstream::parRun())
-    {
-        Pstream::listCombineGather(centreOwner, minEqOp<label>());
-        Pstream::listCombineScatter(centreOwner);
-    }
     lost.setSize(n);
+    if (parallel)
+    {
+        agreeOnShared(out.shared, 1, centreOwner);
+        // A parcel one processor alone may hold is found there or nowhere: the others learn
+        // which of its parcels it did not find (few: those outside the mesh)
+        List<labelList> notFound(Pstream::nProcs());
+        DynamicList<label> mine;
+        for (label i = 0; i < n; ++i)
+        {
+            if (out.holder[i] == me && centreOwner[i] == nobody)
+            {
+                mine.append(i);
+            }
+        }
+        notFound[me].transfer(mine);
+        Pstream::gatherList(notFound);
+        Pstream::scatterList(notFound);
+        for (label i = 0; i < n; ++i)
+        {
+            lost[i] = out.holder[i] == -1 || (out.holder[i] == -2 && centreOwner[i] == nobody);
+        }
+        for (const labelList& some : notFound)
+        {
+            for (const label i : some)
+            {
+                lost[i] = true;
+            }
+        }
+    }
+    else
+    {
+        for (label i = 0; i < n; ++i)
+        {
+            lost[i] = (centreOwner[i] == nobody);
+        }
+    }
     for (label i = 0; i < n; ++i)
     {
         if (centreOwner[i] != me)
         {
             centreCell[i] = -1;
         }
-        lost[i] = (centreOwner[i] == nobody);
         if (centreCell[i] >= 0)
         {
             seeds.emplace_back(ids[i], centreCell[i]);
@@ -308,6 +424,59 @@ void Foam::cosim::ParcelDeposition::adopt(Placement&& p)
     depCell_.transfer(p.depCell);
     depWeight_.transfer(p.depWeight);
     lastCell_ = std::move(p.seeds);
+    if (Pstream::parRun())
+    {
+        DynamicList<label> held;
+        for (label i = 0; i < nParticles_; ++i)
+        {
+            if (start_[i + 1] > start_[i] || centreCell_[i] >= 0)
+            {
+                held.append(i);
+            }
+        }
+        held_.transfer(held);
+    }
+}
+
+
+void Foam::cosim::ParcelDeposition::sumOnMaster(List<scalar>& values) const
+{
+    if (!Pstream::parRun())
+    {
+        return;
+    }
+    const label width = nParticles_ > 0 ? values.size()/nParticles_ : 0;
+    if (Pstream::master())
+    {
+        // In rank order: on two processors the sums listCombineGather gave, bit for bit
+        for (label proc = 1; proc < Pstream::nProcs(); ++proc)
+        {
+            IPstream from(Pstream::commsTypes::scheduled, proc);
+            labelList which;
+            List<scalar> part;
+            from >> which >> part;
+            forAll(which, k)
+            {
+                for (label j = 0; j < width; ++j)
+                {
+                    values[which[k]*width + j] += part[k*width + j];
+                }
+            }
+        }
+    }
+    else
+    {
+        List<scalar> part(held_.size()*width);
+        forAll(held_, k)
+        {
+            for (label j = 0; j < width; ++j)
+            {
+                part[k*width + j] = values[held_[k]*width + j];
+            }
+        }
+        OPstream to(Pstream::commsTypes::scheduled, Pstream::masterNo());
+        to << held_ << part;
+    }
 }
 
 

@@ -108,10 +108,15 @@ Foam::label Foam::cosim::ParticleLocator::firstBeyond
 }
 
 
-bool Foam::cosim::ParticleLocator::inBounds(const point& p, scalar margin) const
+bool Foam::cosim::ParticleLocator::inBox
+(
+    const treeBoundBox& box,
+    const point& p,
+    scalar margin
+)
 {
-    const point& lo = bounds_.min();
-    const point& hi = bounds_.max();
+    const point& lo = box.min();
+    const point& hi = box.max();
     return
         p.x() >= lo.x() - margin && p.x() <= hi.x() + margin
      && p.y() >= lo.y() - margin && p.y() <= hi.y() + margin

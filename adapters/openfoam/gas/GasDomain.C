@@ -50,17 +50,6 @@ auto guarded(const char* what, F&& f) -> decltype(f())
     }
 }
 
-// Sum a list over processors (every rank ends with the total)
-template<class T>
-void sumOverRanks(Foam::List<T>& list)
-{
-    if (Foam::Pstream::parRun())
-    {
-        Foam::Pstream::listCombineGather(list, Foam::plusEqOp<T>());
-        Foam::Pstream::listCombineScatter(list);
-    }
-}
-
 bool hasPatch(const std::vector<std::string>& names, const Foam::word& patchName)
 {
     for (const auto& n : names)
@@ -354,7 +343,7 @@ public:
                         "pressure_gradient, precursor_fraction, cell_size)"
                     );
                 }
-                sumOverRanks(values);
+                parcels.sumOnMaster(values);  // the master answers for all processors
                 out[name].assign(values.begin(), values.end());
             }
             return out;
@@ -586,7 +575,7 @@ public:
         // What each parcel removed: k_i dt sum_j w_ij Y(cell_j), the sink's own terms
         List<scalar> Yavg;
         parcels.gatherAverage(Y.primitiveField(), Yavg);
-        sumOverRanks(Yavg);
+        parcels.sumOnMaster(Yavg);  // the master reports the parcels' removal
         result.precursor_removed.assign(std::size_t(n), 0.0);
         scalar removedTotal = 0;
         if (!kp.empty())
