@@ -129,28 +129,15 @@ TEST(OpenFoamParticleLocation, SamplesAheadAreThoseOfASampleWhereTheParcelsWillB
 
 TEST(OpenFoamParticleLocation, SameOnTwoRanksAcrossTheProcessorBoundary) { moveAndCheck(2); }
 
-// Parcels across the processor boundary: the column's 625 cells go 313 to processor 0 and 312 to
-// processor 1 by height, so the boundary runs along z = 48 mm, z = 52 mm and up the side faces of
-// cells in the layer between. Parcels across the faces at 48 and 52 mm in every column of cells,
-// across side faces in that layer, through the side wall, and outside the mesh within reach of
-// one processor's box, of both and of neither. Decomposed, each processor works on the parcels
-// within their radius of its box and the two agree on the points of the parcels both may hold;
-// the samples are the serial run's (to round-off: the processors' parts are added on the master)
-// and the same parcels are lost, whichever processor alone could have held them.
-TEST(OpenFoamParticleLocation, ParcelsAcrossTheProcessorBoundarySampledAsOnOneRank) {
-  const double mm = 1e-3;
-  std::vector<double> xyz;
-  for (double z : {48.3 * mm, 51.7 * mm})  // across the cell faces at 48 and 52 mm
-    for (int j = 0; j < 5; ++j)
-      for (int i = 0; i < 5; ++i) xyz.insert(xyz.end(), {(i + 0.5) * kCell, (j + 0.5) * kCell, z});
-  for (int i = 1; i < 5; ++i)  // across side faces of the layer between
-    xyz.insert(xyz.end(), {i * kCell + 0.3 * mm, 2 * mm, 50 * mm});
-  xyz.insert(xyz.end(), {0.5 * mm, 10 * mm, 48.3 * mm});  // ... and through the side wall
-  const std::size_t inside = xyz.size() / 3;
-  xyz.insert(xyz.end(), {-0.5 * mm, 10 * mm, 30 * mm,    // outside; in reach of the lower box
-                         -0.5 * mm, 10 * mm, 70 * mm,    // ... of the upper box
-                         -0.5 * mm, 10 * mm, 50 * mm,    // ... of both
-                         -9.0 * mm, 10 * mm, 50 * mm});  // ... of neither
+// The samples of `inside` parcels at xyz (then parcels outside the mesh) on `ranks` processors
+// (the column split n = `split` by decomposeParDict's simple method) against the serial run's,
+// over two samples with a step between, the parcels exerting drag (different for each, strong
+// enough to slow the gas in their cells by a tenth: terms that reached the wrong parcels would
+// show). Decomposed, each processor works on the parcels that reach its box; the samples must
+// be the serial run's to round-off (the processors' parts are added on the master), the gas
+// after the step to its linear solvers' tolerance, and the same parcels lost.
+void sampledAsOnOneRank(const std::vector<double>& xyz, std::size_t inside, int ranks,
+                        const std::string& split, int mostInACell) {
   auto particles = makeParticles(xyz, kR);
   std::vector<std::int64_t> expectedLost;
   for (std::size_t p = inside; p < particles.size(); ++p) expectedLost.push_back(particles.ids[p]);
@@ -158,8 +145,12 @@ TEST(OpenFoamParticleLocation, ParcelsAcrossTheProcessorBoundarySampledAsOnOneRa
     std::vector<std::int64_t> lost;
     std::map<std::string, std::vector<double>> at;
   };
-  auto seenOn = [&](int ranks) {
-    FoamRun run(columnConfig(ranks));
+  auto seenOn = [&](int n) {
+    FoamRunConfig cfg = columnConfig(n);
+    cfg.edits = {{"system/decomposeParDict", "numberOfSubdomains 2;",
+                  "numberOfSubdomains " + std::to_string(ranks) + ";"},
+                 {"system/decomposeParDict", "n (1 1 2);", "n " + split + ";"}};
+    FoamRun run(cfg);
     std::vector<Seen> steps;
     for (int step = 0; step < 2; ++step) {  // the second seeded by the first's cells
       const auto s = run.sample(particles);
@@ -168,35 +159,80 @@ TEST(OpenFoamParticleLocation, ParcelsAcrossTheProcessorBoundarySampledAsOnOneRa
       for (const char* name : {"voidage", "cell_size", "fluid_velocity"})
         seen.at[name] = s.at.get(name);
       steps.push_back(std::move(seen));
-      run.advance(1e-3, cosim::link::ParticleData{});
+      cosim::link::ParticleData terms;
+      terms.ids = particles.ids;
+      std::vector<double> K;
+      for (std::size_t p = 0; p < particles.size(); ++p) K.push_back(1e-5 * double(1 + p % 7));
+      terms.field("drag_coefficient") = K;
+      run.advance(1e-3, terms);
     }
     EXPECT_EQ(run.shutdown(), 0);
     return steps;
   };
   const auto serial = seenOn(1);
-  const auto decomposed = seenOn(2);
+  const auto decomposed = seenOn(ranks);
   ASSERT_EQ(serial.size(), decomposed.size());
   const double alone = 1 - 4.0 / 3.0 * std::numbers::pi * kR * kR * kR / (kCell * kCell * kCell);
   for (std::size_t step = 0; step < serial.size(); ++step) {
     EXPECT_EQ(serial[step].lost, expectedLost) << "step " << step;
     EXPECT_EQ(decomposed[step].lost, expectedLost) << "step " << step;
     for (const auto& [name, values] : serial[step].at) {
-      // once stepped, the decomposed gas differs from the serial by its linear solvers' tolerance
-      if (step > 0 && name == "fluid_velocity") continue;
+      // the gas after the step: its linear solvers leave 1e-11 m/s between the two runs, where
+      // the drag moved it by 1e-4 m/s or more
+      const double tolerance = step > 0 && name == "fluid_velocity" ? 1e-9 : 1e-12;
       const auto& other = decomposed[step].at.at(name);
       ASSERT_EQ(values.size(), other.size()) << name;
       for (std::size_t k = 0; k < values.size(); ++k)
-        EXPECT_NEAR(other[k], values[k], 1e-12 * std::max(1.0, std::abs(values[k])))
+        EXPECT_NEAR(other[k], values[k], tolerance * std::max(1.0, std::abs(values[k])))
             << name << " value " << k << " step " << step;
     }
-    // At most three parcels' parts in a cell; none lost
+    // At most mostInACell parcels' parts in a cell; none lost
     const auto& eps = decomposed[step].at.at("voidage");
     for (std::size_t p = 0; p < inside; ++p) {
-      EXPECT_GE(eps[p], 3 * alone - 2) << "parcel " << p;
+      EXPECT_GE(eps[p], 1 - mostInACell * (1 - alone)) << "parcel " << p;
       EXPECT_LT(eps[p], 1.0) << "parcel " << p;
     }
     for (std::size_t p = inside; p < particles.size(); ++p) EXPECT_EQ(eps[p], 0.0) << p;
   }
+}
+
+constexpr double kMm = 1e-3;
+
+// Two processors: the column's 625 cells go 313 to processor 0 and 312 to processor 1 by height,
+// so the boundary runs along z = 48 mm, z = 52 mm and up the side faces of cells in the layer
+// between. Parcels across the faces at 48 and 52 mm in every column of cells, across side faces
+// in that layer, through the side wall, and outside the mesh within reach of one processor's
+// box, of both and of neither.
+TEST(OpenFoamParticleLocation, ParcelsAcrossTheProcessorBoundarySampledAsOnOneRank) {
+  std::vector<double> xyz;
+  for (double z : {48.3 * kMm, 51.7 * kMm})  // across the cell faces at 48 and 52 mm
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i) xyz.insert(xyz.end(), {(i + 0.5) * kCell, (j + 0.5) * kCell, z});
+  for (int i = 1; i < 5; ++i)  // across side faces of the layer between
+    xyz.insert(xyz.end(), {i * kCell + 0.3 * kMm, 2 * kMm, 50 * kMm});
+  xyz.insert(xyz.end(), {0.5 * kMm, 10 * kMm, 48.3 * kMm});  // ... and through the side wall
+  const std::size_t inside = xyz.size() / 3;
+  xyz.insert(xyz.end(), {-0.5 * kMm, 10 * kMm, 30 * kMm,    // outside; in reach of the lower box
+                         -0.5 * kMm, 10 * kMm, 70 * kMm,    // ... of the upper box
+                         -0.5 * kMm, 10 * kMm, 50 * kMm,    // ... of both
+                         -9.0 * kMm, 10 * kMm, 50 * kMm});  // ... of neither
+  sampledAsOnOneRank(xyz, inside, 2, "(1 1 2)", 3);
+}
+
+// Four processors side by side (x and y split in two): a cluster of 25 overlapping parcels at
+// three heights where two, three or four of the processors meet, so that processors other than
+// the master share parcels with each other.
+TEST(OpenFoamParticleLocation, ParcelsWhereFourProcessorsMeetSampledAsOnOneRank) {
+  std::vector<double> xyz;
+  for (int k = 0; k < 3; ++k)
+    for (double y : {7.7, 8.3, 10.0, 11.7, 12.3})
+      for (double x : {7.7, 8.3, 10.0, 11.7, 12.3})
+        // none exactly on a cell face (where two cells' claims are a tie either way)
+        xyz.insert(xyz.end(), {x * kMm, y * kMm, (20 + 30 * k + (x + y) / 10 + 0.037) * kMm});
+  const std::size_t inside = xyz.size() / 3;
+  xyz.insert(xyz.end(), {10 * kMm, -0.5 * kMm, 50 * kMm,      // outside, in reach of two boxes
+                         -0.5 * kMm, -0.5 * kMm, 50 * kMm});  // ... of one
+  sampledAsOnOneRank(xyz, inside, 4, "(2 2 1)", 25);
 }
 
 }  // namespace

@@ -17,16 +17,9 @@ Foam::cosim::ParcelDeposition::ParcelDeposition(const fvMesh& mesh, label divisi
     threads_
     (
         label(std::min(4u, std::max(1u, std::thread::hardware_concurrency())))
-    )
-{
-    if (Pstream::parRun())
-    {
-        procBounds_.setSize(Pstream::nProcs());
-        procBounds_[Pstream::myProcNo()] = locator_.bounds();
-        Pstream::gatherList(procBounds_);
-        Pstream::scatterList(procBounds_);
-    }
-}
+    ),
+    routing_(locator_.bounds())
+{}
 
 
 Foam::cosim::ParcelDeposition::~ParcelDeposition()
@@ -103,14 +96,12 @@ void Foam::cosim::ParcelDeposition::divideByProcessor
     for (label i = 0; i < n; ++i)
     {
         const point c(position[3*i], position[3*i + 1], position[3*i + 2]);
-        // Every satellite point lies within the radius of the centre (1e-12 m for rounding)
-        const scalar margin = radius[i] + 1e-12;
         label holders = 0;
         label holder = -1;
         bool mine = false;
-        forAll(procBounds_, proc)
+        for (label proc = 0; proc < routing_.nProcs(); ++proc)
         {
-            if (ParticleLocator::inBox(procBounds_[proc], c, margin))
+            if (routing_.reaches(proc, c, radius[i]))
             {
                 ++holders;
                 holder = proc;
@@ -135,22 +126,101 @@ void Foam::cosim::ParcelDeposition::agreeOnShared
     labelList& owner
 ) const
 {
-    labelList compact(shared.size()*width);
-    forAll(shared, k)
+    if (Pstream::master())
     {
-        for (label j = 0; j < width; ++j)
+        // The master has every parcel: the least over its own and what each processor found
+        List<labelList> asked(Pstream::nProcs());
+        for (label proc = 1; proc < Pstream::nProcs(); ++proc)
         {
-            compact[k*width + j] = owner[shared[k]*width + j];
+            IPstream in(Pstream::commsTypes::scheduled, proc);
+            labelList values;
+            in >> asked[proc] >> values;
+            forAll(asked[proc], k)
+            {
+                for (label j = 0; j < width; ++j)
+                {
+                    label& o = owner[asked[proc][k]*width + j];
+                    o = min(o, values[k*width + j]);
+                }
+            }
+        }
+        for (label proc = 1; proc < Pstream::nProcs(); ++proc)
+        {
+            const labelList& which = asked[proc];
+            labelList agreed(which.size()*width);
+            forAll(which, k)
+            {
+                for (label j = 0; j < width; ++j)
+                {
+                    agreed[k*width + j] = owner[which[k]*width + j];
+                }
+            }
+            OPstream out(Pstream::commsTypes::scheduled, proc);
+            out << agreed;
         }
     }
-    Pstream::listCombineGather(compact, minEqOp<label>());
-    Pstream::listCombineScatter(compact);
-    forAll(shared, k)
+    else
     {
-        for (label j = 0; j < width; ++j)
+        labelList which(shared.size());
+        labelList values(shared.size()*width);
+        forAll(shared, k)
         {
-            owner[shared[k]*width + j] = compact[k*width + j];
+            which[k] = routing_.global(shared[k]);
+            for (label j = 0; j < width; ++j)
+            {
+                values[k*width + j] = owner[shared[k]*width + j];
+            }
         }
+        {
+            OPstream out(Pstream::commsTypes::scheduled, Pstream::masterNo());
+            out << which << values;
+        }
+        IPstream in(Pstream::commsTypes::scheduled, Pstream::masterNo());
+        labelList agreed;
+        in >> agreed;
+        forAll(shared, k)
+        {
+            for (label j = 0; j < width; ++j)
+            {
+                owner[shared[k]*width + j] = agreed[k*width + j];
+            }
+        }
+    }
+}
+
+
+void Foam::cosim::ParcelDeposition::reportNotFound
+(
+    const labelList& centreOwner,
+    Placement& out
+) const
+{
+    const label nobody = labelMax;
+    if (Pstream::master())
+    {
+        for (label proc = 1; proc < Pstream::nProcs(); ++proc)
+        {
+            IPstream in(Pstream::commsTypes::scheduled, proc);
+            labelList notFound;
+            in >> notFound;
+            for (const label i : notFound)
+            {
+                out.lost[i] = true;
+            }
+        }
+    }
+    else
+    {
+        DynamicList<label> notFound;
+        for (label i = 0; i < out.n; ++i)
+        {
+            if (out.holder[i] == Pstream::myProcNo() && centreOwner[i] == nobody)
+            {
+                notFound.append(routing_.global(i));
+            }
+        }
+        OPstream to(Pstream::commsTypes::scheduled, Pstream::masterNo());
+        to << labelList(notFound);
     }
 }
 
@@ -209,31 +279,14 @@ void Foam::cosim::ParcelDeposition::locateCentres
     if (parallel)
     {
         agreeOnShared(out.shared, 1, centreOwner);
-        // A parcel one processor alone may hold is found there or nowhere: the others learn
-        // which of its parcels it did not find (few: those outside the mesh)
-        List<labelList> notFound(Pstream::nProcs());
-        DynamicList<label> mine;
+        // A parcel one processor alone reaches is found there or nowhere; the master, which
+        // answers for all, learns which of those it did not find (few: outside the mesh)
         for (label i = 0; i < n; ++i)
         {
-            if (out.holder[i] == me && centreOwner[i] == nobody)
-            {
-                mine.append(i);
-            }
+            const label h = out.holder[i];
+            lost[i] = h == -1 || ((h == -2 || h == me) && centreOwner[i] == nobody);
         }
-        notFound[me].transfer(mine);
-        Pstream::gatherList(notFound);
-        Pstream::scatterList(notFound);
-        for (label i = 0; i < n; ++i)
-        {
-            lost[i] = out.holder[i] == -1 || (out.holder[i] == -2 && centreOwner[i] == nobody);
-        }
-        for (const labelList& some : notFound)
-        {
-            for (const label i : some)
-            {
-                lost[i] = true;
-            }
-        }
+        reportNotFound(centreOwner, out);
     }
     else
     {
@@ -466,16 +519,18 @@ void Foam::cosim::ParcelDeposition::sumOnMaster(List<scalar>& values) const
     }
     else
     {
+        labelList which(held_.size());
         List<scalar> part(held_.size()*width);
         forAll(held_, k)
         {
+            which[k] = routing_.global(held_[k]);
             for (label j = 0; j < width; ++j)
             {
                 part[k*width + j] = values[held_[k]*width + j];
             }
         }
         OPstream to(Pstream::commsTypes::scheduled, Pstream::masterNo());
-        to << held_ << part;
+        to << which << part;
     }
 }
 

@@ -178,13 +178,28 @@ public:
         });
     }
 
-    std::vector<std::size_t> place(const ParticleSet& particles) override
+    std::vector<std::size_t> place(const ParticleSet& all) override
     {
         return guarded("placing particles", [&]
         {
             const fvMesh& mesh = mesh_();
-            const label n = label(particles.size());
             Foam::cosim::ParcelDeposition& parcels = parcels_();
+            // Decomposed: the master works on every parcel, the others on those it sends them
+            ParticleSet received;
+            const bool elsewhere = Pstream::parRun() && !Pstream::master();
+            if (elsewhere)
+            {
+                parcels.routing().receive
+                (
+                    received.ids, received.position, received.radius, received.velocity
+                );
+            }
+            else if (Pstream::parRun())
+            {
+                parcels.routing().send(all.ids, all.position, all.radius, all.velocity);
+            }
+            const ParticleSet& particles = elsewhere ? received : all;
+            const label n = label(particles.size());
             parcels.place(particles.ids, particles.position, particles.radius);
 
             // Parcel volume per cell -> voidage, bounded below
@@ -360,6 +375,23 @@ public:
     {
         return guarded("advancing the gas", [&]
         {
+            // Decomposed: the terms of the parcels each processor placed, from the master
+            if (Pstream::parRun())
+            {
+                const Foam::cosim::ParcelRouting& routing = parcels_().routing();
+                if (Pstream::master())
+                {
+                    routing.send(K, 1);
+                    routing.send(k, 1);
+                }
+                else
+                {
+                    std::vector<double> myK, myk;
+                    routing.receive(myK);
+                    routing.receive(myk);
+                    return step(dt, myK, myk);
+                }
+            }
             return step(dt, K, k);
         });
     }

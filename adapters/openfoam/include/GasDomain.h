@@ -1,7 +1,9 @@
 // The narrow interface between the protocol side of cosimFoam (no OpenFOAM header) and its
 // OpenFOAM side (mesh, fields, equations). Every method is collective: under MPI all ranks call
-// it with the same arguments (RankBridge forwards them from rank 0); results are complete on
-// rank 0. C++17, plain standard types only.
+// it (RankBridge forwards rank 0's commands and small arguments); the particles and their terms
+// are rank 0's, which sends each other rank those that reach its part of the mesh (place,
+// advance: the others pass none); results are complete on rank 0. C++17, plain standard types
+// only.
 #pragma once
 
 #include <cstdint>

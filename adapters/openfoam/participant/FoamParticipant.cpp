@@ -233,11 +233,7 @@ void FoamParticipant::sample(const cosim::link::ParticleData& particles,
 
   const auto t0 = std::chrono::steady_clock::now();
   bridge_.command(RankCommand::sample);
-  bridge_.share(set.ids);
-  bridge_.share(set.position);
-  bridge_.share(set.radius);
-  bridge_.share(set.velocity);
-  bridge_.share(names);
+  bridge_.share(names);  // the parcels: each processor those that concern it (GasDomain::place)
   const auto lost = gas_->place(set);
   const auto values = gas_->sample(names);
   sampleSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -303,9 +299,7 @@ void FoamParticipant::advance(const wire::Advance& cmd, const cosim::link::Parti
   }
 
   bridge_.command(RankCommand::advance);
-  bridge_.share(dt);
-  bridge_.share(K);
-  bridge_.share(k);
+  bridge_.share(dt);  // the terms: each processor its parcels' (GasDomain::advance)
   const StepResult r = gas_->advance(dt, K, k);
 
   auto& report = *out.mutable_fluid();
@@ -351,7 +345,6 @@ void FoamParticipant::finish() {
 
 int serveRanks(const RankBridge& bridge, std::vector<std::string> foamArgs) {
   std::unique_ptr<GasDomain> gas;
-  ParticleSet set;
   while (true) {
     switch (bridge.command()) {
       case RankCommand::configure: {
@@ -363,22 +356,15 @@ int serveRanks(const RankBridge& bridge, std::vector<std::string> foamArgs) {
       case RankCommand::place:
       case RankCommand::sample: {
         std::vector<std::string> names;
-        bridge.share(set.ids);
-        bridge.share(set.position);
-        bridge.share(set.radius);
-        bridge.share(set.velocity);
         bridge.share(names);
-        gas->place(set);
+        gas->place(ParticleSet{});  // this processor's parcels come from the master
         gas->sample(names);
         break;
       }
       case RankCommand::advance: {
         double dt = 0;
-        std::vector<double> K, k;
         bridge.share(dt);
-        bridge.share(K);
-        bridge.share(k);
-        gas->advance(dt, K, k);
+        gas->advance(dt, {}, {});  // ... and their terms
         break;
       }
       case RankCommand::checkpoint: {

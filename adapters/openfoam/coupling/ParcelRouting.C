@@ -1,0 +1,126 @@
+#include "ParcelRouting.H"
+#include "ParticleLocator.H"
+#include "Pstream.H"
+#include "IPstream.H"
+#include "OPstream.H"
+
+namespace
+{
+
+// The entries of `from` (width a parcel) of the parcels `which`
+template<class T>
+Foam::List<T> pick(const std::vector<T>& from, const Foam::labelList& which, Foam::label width)
+{
+    Foam::List<T> out(from.empty() ? 0 : which.size()*width);
+    if (!from.empty())
+    {
+        forAll(which, k)
+        {
+            for (Foam::label j = 0; j < width; ++j)
+            {
+                out[k*width + j] = from[which[k]*width + j];
+            }
+        }
+    }
+    return out;
+}
+
+template<class T>
+std::vector<T> toVector(const Foam::List<T>& list)
+{
+    return std::vector<T>(list.cbegin(), list.cend());
+}
+
+} // namespace
+
+
+Foam::cosim::ParcelRouting::ParcelRouting(const treeBoundBox& myBounds)
+{
+    if (Pstream::parRun())
+    {
+        master_ = Pstream::master();
+        bounds_.setSize(Pstream::nProcs());
+        bounds_[Pstream::myProcNo()] = myBounds;
+        Pstream::gatherList(bounds_);
+        Pstream::scatterList(bounds_);
+    }
+}
+
+
+bool Foam::cosim::ParcelRouting::reaches(label proc, const point& c, scalar r) const
+{
+    return ParticleLocator::inBox(bounds_[proc], c, r + 1e-12);
+}
+
+
+void Foam::cosim::ParcelRouting::send
+(
+    const std::vector<std::int64_t>& ids,
+    const std::vector<double>& position,
+    const std::vector<double>& radius,
+    const std::vector<double>& velocity
+)
+{
+    const label n = label(ids.size());
+    List<DynamicList<label>> to(nProcs());
+    for (label i = 0; i < n; ++i)
+    {
+        const point c(position[3*i], position[3*i + 1], position[3*i + 2]);
+        for (label proc = 1; proc < nProcs(); ++proc)
+        {
+            if (reaches(proc, c, radius[i]))
+            {
+                to[proc].append(i);
+            }
+        }
+    }
+    const std::vector<double> none;
+    const std::vector<double>& v = velocity.size() == 3*ids.size() ? velocity : none;
+    sent_.setSize(nProcs());
+    for (label proc = 1; proc < nProcs(); ++proc)
+    {
+        sent_[proc].transfer(to[proc]);
+        const labelList& which = sent_[proc];
+        OPstream out(Pstream::commsTypes::scheduled, proc);
+        out << which << pick(ids, which, 1) << pick(position, which, 3)
+            << pick(radius, which, 1) << pick(v, which, 3);
+    }
+}
+
+
+void Foam::cosim::ParcelRouting::receive
+(
+    std::vector<std::int64_t>& ids,
+    std::vector<double>& position,
+    std::vector<double>& radius,
+    std::vector<double>& velocity
+)
+{
+    IPstream in(Pstream::commsTypes::scheduled, Pstream::masterNo());
+    List<std::int64_t> id;
+    List<double> x, r, v;
+    in >> global_ >> id >> x >> r >> v;
+    ids = toVector(id);
+    position = toVector(x);
+    radius = toVector(r);
+    velocity = toVector(v);
+}
+
+
+void Foam::cosim::ParcelRouting::send(const std::vector<double>& values, label width) const
+{
+    for (label proc = 1; proc < nProcs(); ++proc)
+    {
+        OPstream out(Pstream::commsTypes::scheduled, proc);
+        out << pick(values, sent_[proc], width);  // none (empty) stays none
+    }
+}
+
+
+void Foam::cosim::ParcelRouting::receive(std::vector<double>& values) const
+{
+    IPstream in(Pstream::commsTypes::scheduled, Pstream::masterNo());
+    List<double> part;
+    in >> part;
+    values = toVector(part);
+}
