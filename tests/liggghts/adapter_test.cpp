@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -356,6 +357,47 @@ TEST_P(ErrorDuringRun, LiggghtsMessageReachesOrchestrator) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Ranks, ErrorDuringRun, ::testing::Values(1, 2), rankName);
+
+// Forcing that names a parcel LIGGGHTS does not have, or carries a NaN, is refused by name and
+// the process ends, on any number of ranks: with several, each rank gets only its own parcels'
+// terms, so rank 0 checks all of them before any rank applies its part.
+class BadForcing : public ::testing::TestWithParam<int> {};
+
+TEST_P(BadForcing, RefusedByNameAndTheRanksEnd) {
+  struct Case {
+    const char* what;
+    std::function<void(ParticleData&)> spoil;
+    const char* expected;
+  };
+  const std::vector<Case> cases{
+      {"an unknown id", [](ParticleData& t) { t.ids.back() = 999999; }, "does not have: 999999"},
+      {"a NaN", [](ParticleData& t) { t.field(field::drag_coefficient)[7] = std::nan(""); },
+       "contains a NaN"},
+  };
+  for (const auto& c : cases) {
+    ScratchDir dir;
+    const auto pdir = participantDir(dir.path(), "particles", "in.settling_bed");
+    AdapterRun run(pdir, GetParam());
+    run.handshake("script: in.settling_bed\n", 1.5e-3, 50, kState, kForcing);
+    ParticleData s = stateOf(run.advance(0, 0, ParticleData{}));
+    s = stateOf(run.advance(1.5e-3, 50, ParticleData{}));  // insertion
+    ASSERT_EQ(s.size(), 1000u) << c.what;
+    ParticleData terms;
+    terms.ids = s.ids;
+    terms.field(field::drag_coefficient).assign(s.size(), 1e-6);
+    terms.field(field::fluid_velocity).assign(3 * s.size(), 0.0);
+    ASSERT_TRUE(run.advance(1.5e-3, 50, terms).has_advanced()) << c.what;  // a good one first
+    c.spoil(terms);
+    const auto reply = run.advance(1.5e-3, 50, terms);
+    ASSERT_TRUE(reply.has_error()) << c.what;
+    EXPECT_NE(reply.error().message().find(c.expected), std::string::npos)
+        << c.what << ": " << reply.error().message();
+    const int rc = run.waitExit(30);
+    EXPECT_NE(rc, -1) << c.what << ": adapter still running 30 s after the error";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Ranks, BadForcing, ::testing::Values(1, 2), rankName);
 
 // Particles inserted after start-up are checked when they appear: a 3 mm bead (t_R = 1.836e-4 s)
 // with a DEM step of 1e-4 s is refused at the first interval that inserts it.

@@ -371,6 +371,13 @@ TimestepReport Engine::timestepReport(double impact_speed) const {
 }
 
 void Engine::applyTerms(const Terms& terms) {
+  checkTerms(terms);
+  applyCheckedTerms(terms, false);
+}
+
+void Engine::applyOwnTerms(const Terms& terms) { applyCheckedTerms(terms, true); }
+
+void Engine::checkTerms(const Terms& terms) {
   const std::size_t n = terms.ids.size();
   auto check_size = [&](const std::vector<double>& v, std::size_t per, const char* name) {
     if (!v.empty() && v.size() != n * per)
@@ -417,6 +424,10 @@ void Engine::applyTerms(const Terms& terms) {
     const auto again = std::adjacent_find(ids->begin(), ids->end());
     if (again != ids->end()) throw twice(*again);
   }
+}
+
+void Engine::applyCheckedTerms(const Terms& terms, bool own) {
+  const std::size_t n = terms.ids.size();
 
   LAMMPS_NS::Modify* modify = lmp_->modify;
   double* K =
@@ -464,6 +475,17 @@ void Engine::applyTerms(const Terms& terms) {
     }
   }
   guarded("applying the forcing", [&] { drag_fix_->refreshForces(); });
+  if (own) {
+    // Each rank was sent the terms of the parcels it reported last: it holds every one of them
+    // (no DEM step moved a parcel in between); a parcel that is not here is an error on every rank
+    const int here = static_cast<int>(std::count(found.begin(), found.end(), 1));
+    int missing = static_cast<int>(n) - here;
+    if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, &missing, 1, MPI_INT, MPI_SUM, comm_);
+    if (missing > 0)
+      throw PeerError("forcing for " + std::to_string(missing) +
+                      " particle(s) reached a LIGGGHTS rank that no longer holds them");
+    return;
+  }
   std::vector<int> found_anywhere;
   if (size_ > 1) {
     found_anywhere.assign(n, 0);
@@ -514,11 +536,12 @@ State Engine::state() const {
     p[10] = atom->type[i];
   }
   std::vector<double> all;
+  std::vector<int> counts(rank_ == 0 && size_ > 1 ? size_ : 0);  // values gathered from each rank
   if (size_ == 1) {
     all = std::move(local);  // one rank: nothing to gather
   } else {
     int count = static_cast<int>(local.size());
-    std::vector<int> counts(rank_ == 0 ? size_ : 0), offsets(rank_ == 0 ? size_ : 0);
+    std::vector<int> offsets(rank_ == 0 ? size_ : 0);
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_);
     if (rank_ == 0) {
       std::exclusive_scan(counts.begin(), counts.end(), offsets.begin(), 0);
@@ -532,6 +555,14 @@ State Engine::state() const {
   if (rank_ != 0) return s;
   const std::size_t n = all.size() / kPer;
   const std::vector<std::size_t> order = orderById(all, kPer);
+  if (size_ > 1) {
+    // the rank of each parcel, by its place in the gathered blocks
+    std::vector<int> from(n);
+    for (int r = 0, j = 0; r < size_; ++r)
+      for (int c = 0; c < counts[r] / kPer; ++c) from[j++] = r;
+    s.rank.resize(n);
+    for (std::size_t k = 0; k < n; ++k) s.rank[k] = from[order[k]];
+  }
   s.ids.resize(n);
   s.position.resize(3 * n);
   s.velocity.resize(3 * n);

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <numeric>
 #include <stdexcept>
 #include <thread>
 
@@ -76,8 +77,24 @@ void LiggghtsSolver::configure(const cosim::wire::Welcome& welcome) {
 
 void LiggghtsSolver::advance(const cosim::wire::Advance& cmd, const ParticleData& terms,
                              cosim::wire::Advanced& out, ParticleData& state) {
-  broadcast(kAdvance, cmd.SerializeAsString());
-  collective([&] { doAdvance(cmd); });
+  if (!last_state_.rank.empty() && terms.size() > 0) {
+    // Several ranks: each gets the terms of the parcels it reported last, not the whole bed's,
+    // checked here first so that a bad term stops every rank alike
+    Terms all = termsOf(terms);
+    Engine::checkTerms(all);
+    std::vector<int> to = ranksOf(all.ids);
+    cosim::wire::Advance header;  // what the ranks need of the command besides their terms
+    header.set_dt(cmd.dt());
+    header.set_substeps(cmd.substeps());
+    broadcast(kAdvanceOwnTerms, header.SerializeAsString());
+    collective([&] {
+      const Terms mine = scatterTerms(&all, &to);
+      doAdvance(header, &mine);
+    });
+  } else {
+    broadcast(kAdvance, cmd.SerializeAsString());
+    collective([&] { doAdvance(cmd); });
+  }
   // the coating credited now belongs to a particle even if it leaves during this interval
   if (terms.has(field::coating_increment)) {
     const auto& inc = terms.get(field::coating_increment);
@@ -175,6 +192,13 @@ int LiggghtsSolver::serve() {
           cosim::wire::Advance a;
           a.ParseFromString(payload);
           doAdvance(a);
+          break;
+        }
+        case kAdvanceOwnTerms: {
+          cosim::wire::Advance a;
+          a.ParseFromString(payload);
+          const Terms mine = scatterTerms(nullptr, nullptr);
+          doAdvance(a, &mine);
           break;
         }
         case kCheckpoint:
@@ -278,17 +302,100 @@ void LiggghtsSolver::checkTimestep() {
   }
 }
 
-void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
-  if (!engine_) throw cosim::link::ProtocolError("Advance before configure");
-  ParticleData terms = cosim::link::fromWire(cmd.terms());
+Terms LiggghtsSolver::termsOf(ParticleData terms) {
   Terms t;
-  t.ids = std::move(terms.ids);  // moved out of the packet, not copied
+  t.ids = std::move(terms.ids);
   t.drag_coefficient = terms.take(field::drag_coefficient);
   t.fluid_velocity = terms.take(field::fluid_velocity);
   t.explicit_force = terms.take(field::explicit_force);
   t.coating_increment = terms.take(field::coating_increment);
   if (!t.drag_coefficient.empty() && t.fluid_velocity.empty())
     throw cosim::link::ProtocolError("Advance carries drag_coefficient without fluid_velocity");
+  return t;
+}
+
+std::vector<int> LiggghtsSolver::ranksOf(const std::vector<std::int64_t>& ids) const {
+  const std::vector<std::int64_t>& known = last_state_.ids;
+  std::vector<int> to(ids.size());
+  std::string missing;
+  int count = 0;
+  auto cursor = known.begin();
+  for (std::size_t k = 0; k < ids.size(); ++k) {
+    // ascending ids (the usual order): the next one is at or after the cursor
+    if (cursor == known.end() || *cursor > ids[k]) cursor = known.begin();
+    cursor = std::lower_bound(cursor, known.end(), ids[k]);
+    if (cursor == known.end() || *cursor != ids[k]) {
+      if (count++ < 10) missing.append(" ").append(std::to_string(ids[k]));
+      continue;
+    }
+    to[k] = last_state_.rank[static_cast<std::size_t>(cursor - known.begin())];
+  }
+  if (count > 0)
+    throw PeerError("forcing names " + std::to_string(count) +
+                    " particle id(s) that LIGGGHTS does not have:" + missing +
+                    (count > 10 ? " ..." : ""));
+  return to;
+}
+
+// Collective: rank 0 sends each rank the terms `all` of the parcels `to` names it for (ids and
+// fields packed as doubles, one block a rank); every rank returns its own.
+Terms LiggghtsSolver::scatterTerms(const Terms* all, const std::vector<int>* to) {
+  int size = 1;
+  MPI_Comm_size(comm_, &size);
+  int has[4] = {0, 0, 0, 0};  // drag_coefficient, fluid_velocity, explicit_force, coating
+  std::vector<int> counts(rank_ == 0 ? size : 0), offsets(rank_ == 0 ? size : 0);
+  std::vector<double> packed;
+  if (rank_ == 0) {
+    has[0] = !all->drag_coefficient.empty();
+    has[1] = !all->fluid_velocity.empty();
+    has[2] = !all->explicit_force.empty();
+    has[3] = !all->coating_increment.empty();
+  }
+  MPI_Bcast(has, 4, MPI_INT, 0, comm_);
+  const int width = 1 + has[0] + 3 * has[1] + 3 * has[2] + has[3];
+  if (rank_ == 0) {
+    const std::size_t n = all->ids.size();
+    for (std::size_t k = 0; k < n; ++k) counts[static_cast<std::size_t>((*to)[k])] += width;
+    std::exclusive_scan(counts.begin(), counts.end(), offsets.begin(), 0);
+    packed.resize(n * static_cast<std::size_t>(width));
+    std::vector<int> next = offsets;
+    for (std::size_t k = 0; k < n; ++k) {
+      double* p = &packed[static_cast<std::size_t>(next[static_cast<std::size_t>((*to)[k])])];
+      next[static_cast<std::size_t>((*to)[k])] += width;
+      *p++ = static_cast<double>(all->ids[k]);  // LIGGGHTS' ids are ints: exact
+      if (has[0]) *p++ = all->drag_coefficient[k];
+      for (int d = 0; d < 3 && has[1]; ++d) *p++ = all->fluid_velocity[3 * k + d];
+      for (int d = 0; d < 3 && has[2]; ++d) *p++ = all->explicit_force[3 * k + d];
+      if (has[3]) *p++ = all->coating_increment[k];
+    }
+  }
+  int mine = 0;
+  MPI_Scatter(counts.data(), 1, MPI_INT, &mine, 1, MPI_INT, 0, comm_);
+  std::vector<double> part(static_cast<std::size_t>(mine));
+  MPI_Scatterv(packed.data(), counts.data(), offsets.data(), MPI_DOUBLE, part.data(), mine,
+               MPI_DOUBLE, 0, comm_);
+  Terms t;
+  const std::size_t n = part.size() / static_cast<std::size_t>(width);
+  t.ids.resize(n);
+  if (has[0]) t.drag_coefficient.resize(n);
+  if (has[1]) t.fluid_velocity.resize(3 * n);
+  if (has[2]) t.explicit_force.resize(3 * n);
+  if (has[3]) t.coating_increment.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double* p = &part[k * static_cast<std::size_t>(width)];
+    t.ids[k] = static_cast<std::int64_t>(*p++);
+    if (has[0]) t.drag_coefficient[k] = *p++;
+    for (int d = 0; d < 3 && has[1]; ++d) t.fluid_velocity[3 * k + d] = *p++;
+    for (int d = 0; d < 3 && has[2]; ++d) t.explicit_force[3 * k + d] = *p++;
+    if (has[3]) t.coating_increment[k] = *p++;
+  }
+  return t;
+}
+
+void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd, const Terms* own) {
+  if (!engine_) throw cosim::link::ProtocolError("Advance before configure");
+  Terms parsed;
+  if (!own) parsed = termsOf(cosim::link::fromWire(cmd.terms()));
 
   int steps = 0;
   if (cmd.dt() > 0) {
@@ -307,7 +414,10 @@ void LiggghtsSolver::doAdvance(const cosim::wire::Advance& cmd) {
   } else if (cmd.dt() < 0) {
     throw cosim::link::ProtocolError(fmt::format("Advance with negative dt {:.6g}", cmd.dt()));
   }
-  engine_->applyTerms(t);
+  if (own)
+    engine_->applyOwnTerms(*own);
+  else
+    engine_->applyTerms(parsed);
   engine_->advance(steps);
   checkTimestep();
   last_state_ = engine_->state();

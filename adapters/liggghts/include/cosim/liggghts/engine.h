@@ -37,6 +37,7 @@ struct Terms {
 // Particle state sorted by id (rank 0).
 struct State {
   std::vector<std::int64_t> ids;
+  std::vector<int> rank;         // the rank that holds each parcel (several ranks only)
   std::vector<double> position;  // 3 per id
   std::vector<double> velocity;  // 3 per id
   std::vector<double> radius;
@@ -97,6 +98,12 @@ class Engine {
   // increments are added to the listed particles' coating mass. Throws std::runtime_error naming
   // the particle for unknown or duplicate ids and non-finite or negative K.
   void applyTerms(const Terms& terms);
+  // The checks of applyTerms alone (no LIGGGHTS needed): rank 0 makes them over every parcel
+  // before it sends each rank its part.
+  static void checkTerms(const Terms& terms);
+  // The forcing of this rank's own parcels, checked already (checkTerms on rank 0): every id
+  // must be a parcel this rank holds, else PeerError on every rank.
+  void applyOwnTerms(const Terms& terms);
   // Runs `steps` DEM steps.
   void advance(int steps);
   // Gathers the state to rank 0 (sorted by id); other ranks get an empty State.
@@ -110,6 +117,8 @@ class Engine {
   bool broken() const { return broken_; }
 
  private:
+  // own: the terms are this rank's parcels' (applyOwnTerms), else every rank's (applyTerms)
+  void applyCheckedTerms(const Terms& terms, bool own);
   template <class F>
   void guarded(const std::string& what, F&& f);
   [[noreturn]] void failWithLiggghtsMessage(const std::string& what, bool aborted);

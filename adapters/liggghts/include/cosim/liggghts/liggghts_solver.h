@@ -1,8 +1,10 @@
 // LiggghtsSolver: the particles participant backed by an embedded LIGGGHTS.
 //
 // MPI: rank 0 runs the protocol session (cosim::link::runParticipant) and broadcasts every
-// command (as the serialized protobuf message) to the other ranks, which wait in serve().
-// All ranks then execute the command collectively; the state is gathered to rank 0 sorted by id.
+// command (as the serialized protobuf message) to the other ranks, which wait in serve();
+// the terms of an Advance go to each rank for its own parcels only (by the rank each parcel was
+// on at the last state). All ranks then execute the command collectively; the state is gathered
+// to rank 0 sorted by id.
 #pragma once
 
 #include <mpi.h>
@@ -43,13 +45,27 @@ class LiggghtsSolver : public cosim::link::Solver {
   bool mustAbort() const { return must_abort_; }
 
  private:
-  enum Op : int { kConfigure = 1, kAdvance = 2, kCheckpoint = 3, kFinish = 4, kQuit = 5 };
+  // kAdvanceOwnTerms: an Advance without terms, each rank's terms following (scatterTerms)
+  enum Op : int {
+    kConfigure = 1,
+    kAdvance = 2,
+    kCheckpoint = 3,
+    kFinish = 4,
+    kQuit = 5,
+    kAdvanceOwnTerms = 6
+  };
   void broadcast(Op op, const std::string& payload);
   template <class F>
   void collective(F&& f);
 
   void doConfigure(const cosim::wire::Welcome& welcome);
-  void doAdvance(const cosim::wire::Advance& cmd);
+  // own: this rank's terms (kAdvanceOwnTerms); else those of cmd, every rank all of them
+  void doAdvance(const cosim::wire::Advance& cmd, const Terms* own = nullptr);
+  static Terms termsOf(cosim::link::ParticleData terms);
+  // rank 0: the rank that holds each of these parcels, by the last state; PeerError naming ids
+  // LIGGGHTS does not have
+  std::vector<int> ranksOf(const std::vector<std::int64_t>& ids) const;
+  Terms scatterTerms(const Terms* all, const std::vector<int>* to);
   std::vector<std::string> doCheckpoint(const std::string& path);
   void doFinish();
   void checkTimestep();
