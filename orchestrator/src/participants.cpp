@@ -75,6 +75,10 @@ std::string shown(const std::string& claimed) {
 // At most this many lines in cosim.log about dropped messages, whatever a stranger sends.
 constexpr std::size_t kMaxIgnoredLines = 20;
 
+// Open MPI's shared-memory transport (btl vader) keeps a backing file a rank in /dev/shm, and
+// ranks that are killed leave theirs behind, run after run.
+constexpr const char* kVaderFolderVariable = "OMPI_MCA_btl_vader_backing_directory";
+
 // The command line that starts a participant cosim launches itself.
 std::vector<std::string> commandLine(const std::string& name, const ParticipantSpec& spec,
                                      const std::string& endpoint, const std::string& run_id,
@@ -112,6 +116,24 @@ long commandTimeout(const std::map<std::string, ParticipantSpec>& participants) 
 }
 
 }  // namespace
+
+std::optional<fs::path> Participants::mpiShmFolder(const ParticipantSpec& spec) {
+  // Only for ranks mpirun starts on this host (a host file's other nodes have no such folder;
+  // under Slurm the job's own cleanup applies), and not against the user's own choice
+  const bool here = spec.launch != "slurm" && spec.launch != "external" && spec.hostfile.empty() &&
+                    (spec.mpi > 1 || spec.launch == "mpirun");
+  if (!here || std::getenv(kVaderFolderVariable) != nullptr) return std::nullopt;
+  if (mpi_shm_folder_.empty()) {
+    std::error_code ec;
+    if (!fs::is_directory("/dev/shm", ec)) return std::nullopt;
+    const fs::path folder =
+        fs::path("/dev/shm") / ("cosim-" + std::to_string(getuid()) + "-" + run_id_ + "-mpi");
+    if (!fs::create_directory(folder, ec) && ec) return std::nullopt;  // Open MPI's default then
+    fs::permissions(folder, fs::perms::owner_all, fs::perm_options::replace, ec);
+    mpi_shm_folder_ = folder;
+  }
+  return mpi_shm_folder_;
+}
 
 Participants::Participants(const Scenario& sc, const Plan& plan, std::string run_id, RunLog& log,
                            const util::StopRequest& stop)
@@ -237,6 +259,7 @@ void Participants::start(const fs::path& run_folder) {
         env["OMPI_ALLOW_RUN_AS_ROOT"] = "1";
         env["OMPI_ALLOW_RUN_AS_ROOT_CONFIRM"] = "1";
       }
+      if (const auto folder = mpiShmFolder(spec)) env[kVaderFolderVariable] = folder->string();
       try {
         const auto bound = cpus.find(name);
         peer->process.emplace(argv, peer->workdir, peer->log, env,
@@ -886,6 +909,12 @@ void Participants::shutdown(bool clean) {
     fs::remove(peer_.bind.substr(std::string("ipc://").size()), ec);
   }
   if (!peer_.shared_memory.empty()) link::removeSharedArrays(peer_.shared_memory);
+  if (!mpi_shm_folder_.empty()) {
+    // Open MPI's backing files, which ranks that were killed leave behind
+    std::error_code ec;
+    fs::remove_all(mpi_shm_folder_, ec);
+    mpi_shm_folder_.clear();
+  }
   if (!token_file_.empty()) {
     std::error_code ec;
     fs::remove(token_file_, ec);

@@ -151,6 +151,10 @@ class Participants {
   const Scenario& sc_;
   const Plan& plan_;
   std::string run_id_;
+  // The folder in /dev/shm that the ranks mpirun starts here keep Open MPI's backing files in
+  // (removed at the end, with what killed ranks left); empty: none made
+  std::filesystem::path mpi_shm_folder_;
+  std::optional<std::filesystem::path> mpiShmFolder(const ParticipantSpec& spec);
   RunLog& log_;
   // After the first request a step under way finishes (the coupler then writes a checkpoint and
   // stops), one not begun (start-up) stops at once; after the second, every wait stops.

@@ -266,6 +266,43 @@ TEST(KilledOrchestrator, LocalLiggghtsUnderMpirunDiesWithItRanksAndAll) {
   cosim.wait();
 }
 
+// Open MPI's shared-memory backing files (a few MB a rank in /dev/shm) stay behind when ranks are
+// killed; the ranks cosim starts with mpirun on this host keep them in a folder of the run's,
+// which the run removes when it ends, however it ends.
+TEST(KilledRanks, LeaveNoSharedMemoryBehind) {
+  const std::string exe = std::string(COSIM_BIN_DIR) + "/cosim-liggghts";
+  if (!fs::exists(exe)) GTEST_SKIP() << exe << " not built (COSIM_BUILD_LIGGGHTS=OFF)";
+  if (!fs::is_directory("/dev/shm")) GTEST_SKIP() << "no /dev/shm";
+  const fs::path run = freshFolder("liggghts-mpi-shm") / "run";
+  auto cosim = startCosim(run, {"participants.particles.mpi=2"}, kLiggghtsSphere);
+  ASSERT_TRUE(waitFor(60, [&] { return rows(run) > 5; })) << readFile(run.string() + ".out");
+  std::string run_id;
+  {
+    const std::string log = readFile(run / "cosim.log");
+    const std::string flag = "--run-id, ";
+    const auto at = log.find(flag);
+    ASSERT_NE(at, std::string::npos) << log;
+    run_id =
+        log.substr(at + flag.size(), log.find_first_of(",\n", at + flag.size()) - at - flag.size());
+  }
+  const fs::path folder =
+      fs::path("/dev/shm") / ("cosim-" + std::to_string(getuid()) + "-" + run_id + "-mpi");
+  std::size_t segments = 0;
+  for (const auto& e : fs::directory_iterator(folder))
+    segments += e.path().filename().string().rfind("vader_segment", 0) == 0;
+  EXPECT_EQ(segments, 2u) << "one backing file a LIGGGHTS rank in " << folder;
+
+  // The ranks killed (as an out-of-memory kill would): nothing cleans up after them but cosim
+  std::vector<pid_t> ranks;
+  for (pid_t child : childrenOf(cosim.pid()))
+    for (pid_t grandchild : childrenOf(child)) ranks.push_back(grandchild);
+  ASSERT_EQ(ranks.size(), 2u) << "expected mpirun's two LIGGGHTS ranks";
+  for (pid_t r : ranks) ::kill(r, SIGKILL);
+  EXPECT_TRUE(waitFor(60, [&] { return !cosim.running(); })) << "cosim still running";
+  cosim.wait();
+  EXPECT_FALSE(fs::exists(folder)) << folder << " left behind";
+}
+
 // Only sockets nothing listens on and older than a minute are removed; a live run's socket and
 // files that are not sockets are kept, however old.
 TEST(SocketFolder, RemovesOnlyDeadOldSockets) {
