@@ -151,6 +151,10 @@ void sampledAsOnOneRank(const std::vector<double>& xyz, std::size_t inside, int 
                   "numberOfSubdomains " + std::to_string(ranks) + ";"},
                  {"system/decomposeParDict", "n (1 1 2);", "n " + split + ";"}};
     FoamRun run(cfg);
+    // an empty bed first: every processor takes part in the exchanges with nothing to send
+    const auto none = run.sample(makeParticles({}, kR));
+    EXPECT_TRUE(none.lost.empty());
+    EXPECT_TRUE(none.at.get("voidage").empty());
     std::vector<Seen> steps;
     for (int step = 0; step < 2; ++step) {  // the second seeded by the first's cells
       const auto s = run.sample(particles);
