@@ -483,7 +483,9 @@ void Engine::applyCheckedTerms(const Terms& terms, bool own) {
     if (size_ > 1) MPI_Allreduce(MPI_IN_PLACE, &missing, 1, MPI_INT, MPI_SUM, comm_);
     if (missing > 0)
       throw PeerError("forcing for " + std::to_string(missing) +
-                      " particle(s) reached a LIGGGHTS rank that no longer holds them");
+                      " particle(s) reached a LIGGGHTS rank that no longer holds them (something "
+                      "moved parcels between ranks after the state was gathered: a bug of "
+                      "cosim-liggghts; the run continues on one rank, participants.NAME.mpi: 1)");
     return;
   }
   std::vector<int> found_anywhere;

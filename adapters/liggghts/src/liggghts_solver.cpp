@@ -427,6 +427,9 @@ std::vector<std::string> LiggghtsSolver::doCheckpoint(const std::string& path) {
   if (!engine_) throw cosim::link::ProtocolError("Checkpoint before configure");
   std::filesystem::path dir(path.empty() ? "." : path);
   const auto file = engine_->writeRestart(dir / "liggghts.restart");
+  // write_restart moves the parcels that left their rank's sub-domain (LIGGGHTS' exchange): the
+  // ranks that hold them, for the next terms, are gathered again
+  last_state_ = engine_->state();  // collective: every rank gathers
   return {file.string()};
 }
 
