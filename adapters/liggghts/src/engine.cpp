@@ -485,7 +485,8 @@ void Engine::applyCheckedTerms(const Terms& terms, bool own) {
       throw PeerError("forcing for " + std::to_string(missing) +
                       " particle(s) reached a LIGGGHTS rank that no longer holds them (something "
                       "moved parcels between ranks after the state was gathered: a bug of "
-                      "cosim-liggghts; the run continues on one rank, participants.NAME.mpi: 1)");
+                      "cosim-liggghts to report; one LIGGGHTS rank, participants.NAME.mpi: 1, "
+                      "avoids it)");
     return;
   }
   std::vector<int> found_anywhere;
