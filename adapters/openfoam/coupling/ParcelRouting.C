@@ -112,7 +112,14 @@ void Foam::cosim::ParcelRouting::send(const std::vector<double>& values, label w
     for (label proc = 1; proc < nProcs(); ++proc)
     {
         OPstream out(Pstream::commsTypes::scheduled, proc);
-        out << pick(values, sent_[proc], width);  // none (empty) stays none
+        if (proc < sent_.size())
+        {
+            out << pick(values, sent_[proc], width);  // none (empty) stays none
+        }
+        else
+        {
+            out << List<double>();  // nothing placed yet: no parcel is this processor's
+        }
     }
 }
 
