@@ -12,6 +12,14 @@ snapshots at t >= --after (default: the first quarter of the run is skipped):
     window and the CV of the coating mass there (population standard deviation / mean);
   - pressure drop: mean and relative standard deviation (bubbling beds swing, fixed beds do not).
 Prints one Markdown table, one row per run.
+
+    python3 scripts/bed_motion.py RUN --per-snapshot [--after T] [--until T]
+
+One row per snapshot of one run instead: the share not yet coated (coating exactly zero: a
+parcel that entered the coating zone took precursor there, open passes included), the mean
+coating per parcel and its CV (sample standard deviation), the pressure drop's mean over the time
+since the snapshot before, and the parcels faster than 5 mm/s with, of them, those 10-30 mm from
+the vertical axis (the ring around a central spout): when and where a fixed bed moves.
 """
 import argparse
 import csv
@@ -96,12 +104,51 @@ def row(run, after, until=None):
     }
 
 
+def per_snapshot(run, after, until):
+    snaps = [s for s in snapshots(run)
+             if (after is None or s[0] >= after - 1e-12) and (until is None or s[0] <= until + 1e-12)]
+    t_dp, dp = [], []
+    try:
+        for r in csv.DictReader(open(f"{run}/timeseries.csv")):
+            if r.get("pressure_drop") and np.isfinite(float(r["pressure_drop"])):
+                t_dp.append(float(r["time"]))
+                dp.append(float(r["pressure_drop"]))
+    except OSError:
+        pass
+    t_dp, dp = np.array(t_dp), np.array(dp)
+    print("| t [s] | not yet coated | mean [ng per parcel] | CV | pressure drop [Pa] | moving "
+          "| of them 10-30 mm from the axis |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    before = None
+    for t, g in snaps:
+        c = np.asarray(g["coating_mass"][:], dtype=float) if "coating_mass" in g else None
+        x = g["position"][:].reshape(-1, 3)
+        v = np.linalg.norm(g["velocity"][:].reshape(-1, 3), axis=1)
+        moving = v > 0.005
+        r = np.hypot(x[:, 0], x[:, 1])
+        ring = moving & (r >= 0.01) & (r < 0.03)
+        window = (t_dp > (before if before is not None else t - 0.1)) & (t_dp <= t + 1e-12)
+        p = f"{dp[window].mean():.1f}" if window.any() else "-"
+        if c is not None and c.mean() > 0:
+            coat = f"{100 * np.mean(c == 0):.2f} % | {1e12 * c.mean():.1f} | {c.std(ddof=1) / c.mean():.2f}"
+        else:
+            coat = "- | - | -"
+        print(f"| {t:.4g} | {coat} | {p} | {moving.sum():,} | {ring.sum():,} |")
+        before = t
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("runs", nargs="+")
     ap.add_argument("--after", type=float, help="start of the window [s] (default: skip the first quarter)")
     ap.add_argument("--until", type=float, help="end of the window [s] (default: the last snapshot)")
+    ap.add_argument("--per-snapshot", action="store_true", help="one row per snapshot of one run")
     a = ap.parse_args()
+    if a.per_snapshot:
+        if len(a.runs) != 1:
+            sys.exit("bed_motion: --per-snapshot reads one run")
+        per_snapshot(a.runs[0], a.after, a.until)
+        return
     rows = [row(r, a.after, a.until) for r in a.runs]
     keys = list(rows[0].keys())
     print("| " + " | ".join(keys) + " |")

@@ -613,6 +613,11 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
     } catch (const std::exception& e) {
       throw RunFailure("fluid", e.what());
     }
+    if (auto w = monitor_.checkPrecursorBounds(species.precursor_min(), species.precursor_max(),
+                                               step_, time_)) {
+      if (progress_) progress_->abort();
+      log_.show(*w);
+    }
   }
   if (fa.fluid().has_max_courant()) {
     try {

@@ -330,6 +330,22 @@ std::optional<std::string> StepMonitor::checkCourant(double co, std::uint64_t st
   return std::nullopt;
 }
 
+std::optional<std::string> StepMonitor::checkPrecursorBounds(double smallest, double largest,
+                                                             std::uint64_t step, double time) {
+  if (undershoot_warned_ || !(largest > 0) || !(smallest < -1e-6 * largest)) return std::nullopt;
+  undershoot_warned_ = true;
+  std::ostringstream os;
+  os << "warning: the precursor's mass fraction in the gas fell to " << smallest << " at step "
+     << step << " (t = " << time << " s; largest " << largest
+     << "): its transport undershoots zero in a few cells (explicit non-orthogonal correction "
+        "of the diffusion, or convection where the gas's flux and density disagree within the "
+        "step). Parcels there take up a negative amount, so a few may end with a slightly "
+        "negative coating; the precursor balance still closes. A more orthogonal mesh, or "
+        "`laplacian(Gamma,precursor) Gauss linear limited corrected 0.5` in the case's "
+        "system/fvSchemes, reduces it (docs/when-things-go-wrong.md)";
+  return os.str();
+}
+
 void StepMonitor::setHeldAtStart(double held) { baseline_ = {0.0, 0.0, held, 0.0}; }
 
 void StepMonitor::checkMassBalance(double in, double out, double held, double removed,

@@ -119,6 +119,11 @@ class StepMonitor {
   // Courant number reported by the fluid: warning once above 1, stop above checks.max_courant.
   // Returns a warning to show (once) or nullopt.
   std::optional<std::string> checkCourant(double courant, std::uint64_t step, double time);
+  // The precursor's smallest mass fraction in the gas: a warning (once a run piece) when it is
+  // negative beyond round-off (below -1e-6 of the largest), with where it comes from and what the
+  // parcels make of it; nullopt otherwise.
+  std::optional<std::string> checkPrecursorBounds(double smallest, double largest,
+                                                  std::uint64_t step, double time);
   // Precursor balance in - out - (held - held0) - removed, relative to what came in: stop when
   // it drifts above checks.mass_balance_tolerance.
   // Precursor the gas held at the start (the fluid's precursor_held_start): the balance then
@@ -141,6 +146,7 @@ class StepMonitor {
  private:
   const Scenario& sc_;
   bool courant_warned_ = false;
+  bool undershoot_warned_ = false;
   bool ledger_checked_ = false;  // the full id check ran once (later steps may take the fast path)
   std::optional<std::array<double, 4>> baseline_;
 };
