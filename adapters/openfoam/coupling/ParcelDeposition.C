@@ -9,6 +9,37 @@
 #include <thread>
 #include <vector>
 
+namespace
+{
+
+// To the master: the master's indices of the local parcels `parcels` and their `width` values
+// each (from `values`, `width` a parcel)
+template<class T>
+void sendToMaster
+(
+    const Foam::cosim::ParcelRouting& routing,
+    const Foam::labelList& parcels,
+    const Foam::UList<T>& values,
+    Foam::label width
+)
+{
+    Foam::labelList which(parcels.size());
+    Foam::List<T> part(parcels.size()*width);
+    forAll(parcels, k)
+    {
+        which[k] = routing.global(parcels[k]);
+        for (Foam::label j = 0; j < width; ++j)
+        {
+            part[k*width + j] = values[parcels[k]*width + j];
+        }
+    }
+    Foam::OPstream to(Foam::Pstream::commsTypes::scheduled, Foam::Pstream::masterNo());
+    to << which << part;
+}
+
+} // namespace
+
+
 Foam::cosim::ParcelDeposition::ParcelDeposition(const fvMesh& mesh, label divisions)
 :
     mesh_(mesh),
@@ -161,20 +192,7 @@ void Foam::cosim::ParcelDeposition::agreeOnShared
     }
     else
     {
-        labelList which(shared.size());
-        labelList values(shared.size()*width);
-        forAll(shared, k)
-        {
-            which[k] = routing_.global(shared[k]);
-            for (label j = 0; j < width; ++j)
-            {
-                values[k*width + j] = owner[shared[k]*width + j];
-            }
-        }
-        {
-            OPstream out(Pstream::commsTypes::scheduled, Pstream::masterNo());
-            out << which << values;
-        }
+        sendToMaster(routing_, shared, owner, width);
         IPstream in(Pstream::commsTypes::scheduled, Pstream::masterNo());
         labelList agreed;
         in >> agreed;
@@ -519,18 +537,7 @@ void Foam::cosim::ParcelDeposition::sumOnMaster(List<scalar>& values) const
     }
     else
     {
-        labelList which(held_.size());
-        List<scalar> part(held_.size()*width);
-        forAll(held_, k)
-        {
-            which[k] = routing_.global(held_[k]);
-            for (label j = 0; j < width; ++j)
-            {
-                part[k*width + j] = values[held_[k]*width + j];
-            }
-        }
-        OPstream to(Pstream::commsTypes::scheduled, Pstream::masterNo());
-        to << which << part;
+        sendToMaster(routing_, held_, values, width);
     }
 }
 
