@@ -340,9 +340,9 @@ std::optional<std::string> StepMonitor::checkPrecursorBounds(double smallest, do
      << "): its transport undershoots zero in a few cells (explicit non-orthogonal correction "
         "of the diffusion, or convection where the gas's flux and density disagree within the "
         "step). Parcels there take up a negative amount, so a few may end with a slightly "
-        "negative coating; the precursor balance still closes. A more orthogonal mesh, or "
-        "`laplacian(Gamma,precursor) Gauss linear limited corrected 0.5` in the case's "
-        "system/fvSchemes, reduces it (docs/when-things-go-wrong.md)";
+        "negative coating; the precursor balance still closes. A more orthogonal mesh reduces "
+        "it; so may `laplacian(Gamma,precursor) Gauss linear limited corrected 0.5` in the "
+        "case's system/fvSchemes (docs/when-things-go-wrong.md)";
   return os.str();
 }
 
