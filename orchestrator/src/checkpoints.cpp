@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "cosim/analysis/files.h"
+#include "cosim/link/zone_pass_tracker.h"
 #include "cosim/util/errors.h"
 
 namespace cosim::orchestrator {
@@ -56,6 +57,7 @@ Json toJson(const CoupledState& s) {
             {"compute", s.compute},
             {"scene", s.scene},
             {"particle_digest", s.particle_digest}};
+  if (s.clock) j["clock"] = {{"start", s.clock->start}, {"dt", s.clock->dt}};
   if (s.zone_passes) {
     Json open = Json::array();
     for (const auto& [id, p] : s.zone_passes->open)
@@ -79,6 +81,9 @@ CoupledState fromJson(const Json& j) {
   CoupledState s;
   s.step = j.at("step").get<std::uint64_t>();
   s.time = j.at("time").get<double>();
+  if (j.contains("clock"))
+    s.clock =
+        StepClock{j.at("clock").at("start").get<double>(), j.at("clock").at("dt").get<double>()};
   const Json& b = j.at("balance");
   s.balance.in = b.at("in");
   s.balance.out = b.at("out");
@@ -172,11 +177,13 @@ bool under(const std::string& key, const std::string& prefix) {
 }
 
 bool mayChange(const std::string& key) {
+  // coupling.dt and coupling.dem_steps: as refusedStepChange allows
   // coupling.scheme: the saved state is the same under either (the first interval after a
   // resume samples between the intervals anyway); coupling.cpus: where the processes run, not
   // what they compute (a bound run is the same to the bit)
-  for (const char* p : {"coupling.end_time", "coupling.scheme", "coupling.cpus", "output",
-                        "checkpoint", "transport", "checks", "observables", "description"}) {
+  for (const char* p : {"coupling.end_time", "coupling.scheme", "coupling.cpus", "coupling.dt",
+                        "coupling.dem_steps", "output", "checkpoint", "transport", "checks",
+                        "observables", "description"}) {
     if (under(key, p)) return true;
   }
   // participants.<name>.timeout, and how often the fluid's solver residuals are logged
@@ -198,7 +205,63 @@ bool sameNumber(const std::string& a, const std::string& b) {
 
 double timeOf(const fs::path& p) { return std::strtod(p.filename().c_str(), nullptr); }
 
+double numberAt(const YAML::Node& scene, const char* section, const char* key, double absent) {
+  const YAML::Node n = scene[section] ? scene[section][key] : YAML::Node();
+  return n && n.IsScalar() ? std::strtod(n.Scalar().c_str(), nullptr) : absent;
+}
+
+std::string textAt(const YAML::Node& scene, const char* section, const char* key,
+                   const char* absent) {
+  const YAML::Node n = scene[section] ? scene[section][key] : YAML::Node();
+  return n && n.IsScalar() ? n.Scalar() : absent;
+}
+
 }  // namespace
+
+double StepClock::time(std::uint64_t k) const { return link::stepTime(start, dt, k); }
+
+std::uint64_t StepClock::stepsTo(double end) const {
+  return static_cast<std::uint64_t>(std::llround((end - start) / dt));
+}
+
+StepClock clockOf(const CoupledState& saved) {
+  if (saved.clock) return *saved.clock;
+  const YAML::Node scene = YAML::Load(saved.scene);
+  return {numberAt(scene, "coupling", "start_time", 0.0), numberAt(scene, "coupling", "dt", 0.0)};
+}
+
+std::string refusedStepChange(const YAML::Node& saved, const YAML::Node& now) {
+  const double dt0 = numberAt(saved, "coupling", "dt", 0.0);
+  const double dt1 = numberAt(now, "coupling", "dt", 0.0);
+  const double n0 = numberAt(saved, "coupling", "dem_steps", 1.0);
+  const double n1 = numberAt(now, "coupling", "dem_steps", 1.0);
+  if (dt0 == dt1 && n0 == n1) return "";
+  const std::string change =
+      fmt::format("coupling.dt {} -> {} s, coupling.dem_steps {} -> {}",
+                  analysis::formatShortest(dt0), analysis::formatShortest(dt1), n0, n1);
+  const bool particles = now["participants"] && now["participants"]["particles"];
+  const double dem0 = dt0 / n0;
+  if (particles && std::abs(dt1 / n1 - dem0) > 1e-12 * dem0) {
+    const double n = dt1 / dem0;
+    const std::string hint = std::abs(n - std::round(n)) < 1e-9 * n && n >= 1
+                                 ? fmt::format(" (with coupling.dt={}: coupling.dem_steps={})",
+                                               analysis::formatShortest(dt1), std::llround(n))
+                                 : fmt::format(" (coupling.dt a whole multiple of {} s)",
+                                               analysis::formatShortest(dem0));
+    return change + ": the DEM step coupling.dt / coupling.dem_steps would change from " +
+           analysis::formatShortest(dem0) + " to " + analysis::formatShortest(dt1 / n1) +
+           " s, but the particle solver continues from its restart with the step its script "
+           "set; keep the DEM step" +
+           hint;
+  }
+  if (textAt(now, "coupling", "data_path", "central") == "peer" &&
+      textAt(now, "coupling", "scheme", "parallel") == "overlapped")
+    return change +
+           ": with coupling.data_path peer and coupling.scheme overlapped the particles hold "
+           "the gas sampled ahead over the old step in their checkpoint; resume with the step "
+           "it was written with";
+  return "";
+}
 
 CheckpointStore::CheckpointStore(const fs::path& run_folder) : dir_(run_folder / "checkpoints") {}
 

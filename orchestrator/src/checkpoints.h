@@ -22,9 +22,23 @@
 
 namespace cosim::orchestrator {
 
+// The run's clock: coupling step k ends at start + k dt (link::stepTime). `start` is
+// coupling.start_time until a resume changes coupling.dt: the steps done keep their numbers and
+// times, and `start` becomes where step 0 would lie at the new dt (the checkpoint's time minus
+// its steps times dt), so that the step numbers the participants check run on.
+struct StepClock {
+  double start = 0.0;  // [s]
+  double dt = 0.0;     // [s]
+  double time(std::uint64_t k) const;
+  std::uint64_t stepsTo(double end) const;  // the step that ends at `end`, rounded
+};
+
 struct CoupledState {
   std::uint64_t step = 0;  // coupling steps done
   double time = 0.0;       // [s]
+  // The clock the steps were counted on; absent in a checkpoint of an older cosim (then the
+  // scene's coupling.start_time and coupling.dt: clockOf)
+  std::optional<StepClock> clock;
   link::CoatingLedger::Balance balance;
   std::map<std::int64_t, double> pending;  // coating owed, by parcel id
   std::map<std::string, double> totals;
@@ -88,6 +102,15 @@ class CheckpointStore {
 };
 
 CoupledState readCoupledState(const std::filesystem::path& checkpoint);
+
+// The clock a checkpoint's steps were counted on.
+StepClock clockOf(const CoupledState& saved);
+
+// A resume may make the coupling step smaller (or larger), to go through a stiff stretch: the
+// DEM step coupling.dt / coupling.dem_steps must stay what the particle solver's script and
+// restart hold. The reason a change of coupling.dt or coupling.dem_steps cannot be honoured
+// ("" when it can, or when neither changed).
+std::string refusedStepChange(const YAML::Node& saved, const YAML::Node& now);
 
 // Keys of the scene whose values differ between a checkpoint's scene and the one to resume with,
 // as "key: old -> new", leaving out what a resumed run may change (end time, output, checkpoint,

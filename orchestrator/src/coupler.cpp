@@ -26,8 +26,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-using link::stepTime;  // the end of step k, as every record carries it
-
 // cosim bench measures and replays the central path's terms, so its runs take the central path.
 Plan planOf(const Scenario& sc, const models::SceneModels& m, const RunOptions& o) {
   Plan p = makePlan(sc, m);
@@ -84,6 +82,7 @@ RunResult Coupler::run() {
   RunResult result;
   wall0_ = Clock::now();
   time_ = sc_.coupling.start_time;
+  clock_ = {sc_.coupling.start_time, sc_.coupling.dt};
   nsteps_ = sc_.coupling.steps();
   result.folder =
       opt_.resume.empty() ? record_.open(opt_.output, opt_.overwrite) : record_.reopen(opt_.resume);
@@ -230,6 +229,34 @@ std::string Coupler::howToContinue(const std::string& status, std::uint64_t step
   return message;
 }
 
+// A scene the saved state cannot honour, a DEM step that would change, a wake history missing.
+void Coupler::refuseWhatItCannotHonour(const CoupledState& saved,
+                                       const std::filesystem::path& checkpoint) const {
+  const auto differences = sceneDifferences(YAML::Load(saved.scene), sc_.resolved);
+  if (!differences.empty()) {
+    std::string msg = "cannot resume from " + checkpoint.string() +
+                      ": the scene differs from the one the checkpoint was written with, in "
+                      "what the saved state cannot honour:";
+    for (const auto& d : differences) msg += "\n  - " + d;
+    msg +=
+        "\n  (only coupling.end_time, coupling.dt with coupling.dem_steps, coupling.scheme, "
+        "coupling.cpus, output, checkpoint, transport, checks, observables, timeouts and "
+        "solver_log_every may change; start a new run for anything else)";
+    throw RunFailure("", msg, ErrorKind::input);
+  }
+  if (const auto why = refusedStepChange(YAML::Load(saved.scene), sc_.resolved); !why.empty())
+    throw RunFailure("", "cannot resume from " + checkpoint.string() + ": " + why,
+                     ErrorKind::input);
+  if (models_.wake && !plan_.peer && !saved.wake) {
+    throw RunFailure("",
+                     "cannot resume from " + checkpoint.string() +
+                         ": it holds no wake history, which models.drag.undisturbed_velocity "
+                         "'self_disturbance_transient' needs (each parcel's force history); "
+                         "start a new run",
+                     ErrorKind::input);
+  }
+}
+
 std::uint64_t Coupler::resumeFromCheckpoint() {
   const auto checkpoint =
       opt_.resume_from ? checkpoints_->at(*opt_.resume_from) : checkpoints_->newest();
@@ -257,27 +284,14 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
     unreadable_checkpoint_ = true;
     throw RunFailure("", e.what(), ErrorKind::input);
   }
-  const auto differences = sceneDifferences(YAML::Load(saved.scene), sc_.resolved);
-  if (!differences.empty()) {
-    std::string msg = "cannot resume from " + checkpoint->string() +
-                      ": the scene differs from the one the checkpoint was written with, in "
-                      "what the saved state cannot honour:";
-    for (const auto& d : differences) msg += "\n  - " + d;
-    msg +=
-        "\n  (only coupling.end_time, coupling.scheme, coupling.cpus, output, checkpoint, "
-        "transport, checks, observables, timeouts and solver_log_every may change; start a new "
-        "run for anything "
-        "else)";
-    throw RunFailure("", msg, ErrorKind::input);
-  }
-  if (models_.wake && !plan_.peer && !saved.wake) {
-    throw RunFailure("",
-                     "cannot resume from " + checkpoint->string() +
-                         ": it holds no wake history, which models.drag.undisturbed_velocity "
-                         "'self_disturbance_transient' needs (each parcel's force history); "
-                         "start a new run",
-                     ErrorKind::input);
-  }
+  refuseWhatItCannotHonour(saved, *checkpoint);
+  const StepClock was = clockOf(saved);
+  const bool new_step = sc_.coupling.dt != was.dt;
+  // A new coupling step: the steps done keep their numbers and times, the next ones are dt long
+  clock_ = new_step ? StepClock{saved.time - static_cast<double>(saved.step) * sc_.coupling.dt,
+                                sc_.coupling.dt}
+                    : was;
+  nsteps_ = clock_.stepsTo(sc_.coupling.end_time);
   if (saved.step >= nsteps_) {
     throw RunFailure("",
                      "the run in " + record_.folder().string() +
@@ -302,6 +316,7 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
               std::string(analysis::kZonePassesFile) + " is not continued for this run");
   }
   participants_.resumeFrom(*checkpoint);
+  participants_.setClockStart(clock_.start);
   participants_.start(record_.folder());
   participants_.handshake();
 
@@ -324,7 +339,9 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   }
   ledger_.restore(saved.balance, saved.pending);
   if (models_.wake && saved.wake) models_.wake->restore(*saved.wake);
-  if (saved.sample_ahead) scheme_->resumeSamplingAt(std::move(*saved.sample_ahead));
+  // The gas sampled ahead is where the parcels would be after the old step: with a new one the
+  // first interval samples them where they are
+  if (saved.sample_ahead && !new_step) scheme_->resumeSamplingAt(std::move(*saved.sample_ahead));
   totals_ = saved.totals;
   monitor_.restore(saved.monitor);
   initial_count_ = saved.initial_count;
@@ -335,6 +352,15 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
   next_checkpoint_ = saved.time + sc_.checkpoint.interval;
   log_.show("resumed from " + checkpoint->string() + " (t = " +
             analysis::formatShortest(saved.time) + " s, step " + std::to_string(saved.step) + ")");
+  if (new_step) {
+    log_.show("the coupling step changes from " + analysis::formatShortest(was.dt) + " to " +
+              analysis::formatShortest(clock_.dt) + " s (" +
+              std::to_string(sc_.coupling.dem_steps) +
+              " DEM steps each) from t = " + analysis::formatShortest(saved.time) +
+              " s: " + std::to_string(nsteps_ - saved.step) + " steps to coupling.end_time");
+    // What the new step means for the bed as it is now (the Courant and relaxation checks)
+    refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_, reported_dt_over_rayleigh_));
+  }
   if (const auto free_now = freeBytes()) disk_ = {time_, *free_now};
   return saved.step;
 }
@@ -351,6 +377,7 @@ void Coupler::writeCheckpoint() {
   CoupledState s;
   s.step = step_;
   s.time = time_;
+  s.clock = clock_;
   s.balance = ledger_.balance();
   s.pending = ledger_.pending();
   s.totals = totals_;
@@ -412,7 +439,7 @@ void Coupler::reportInitialState() {
 
 void Coupler::beginStep(std::uint64_t k) {
   step_ = k + 1;
-  time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, k);
+  time_ = clock_.time(k);
   participants_.setClock(step_, time_);
   phases_.start();
 }
@@ -491,7 +518,7 @@ models::CouplingTerms Coupler::evaluateModels(const link::ParticleData& samples,
 AdvanceReplies Coupler::advanceBoth(const models::CouplingTerms& terms) {
   AdvanceReplies replies = scheme_->advance(participants_, state_, terms);
   phases_.lap("advance");
-  time_ = stepTime(sc_.coupling.start_time, sc_.coupling.dt, step_);
+  time_ = clock_.time(step_);
   participants_.setClock(step_, time_);
   return replies;
 }
@@ -777,7 +804,7 @@ void Coupler::closeZonePasses(std::uint64_t steps_done) {
               " (coupling.data_path: peer: the particles keep them, and the run did not end "
               "with them)");
   try {
-    passes_->close(stepTime(sc_.coupling.start_time, sc_.coupling.dt, steps_done));
+    passes_->close(clock_.time(steps_done));
     const double outside = plan_.peer ? peer_coating_outside_ : passes_->coatingOutsidePasses();
     if (outside != 0.0) {
       log_.warn("zone passes: " + analysis::formatShortest(outside) +

@@ -85,6 +85,8 @@ class Coupler {
   void reportInitialState();
   // Resume: the state of the newest checkpoint; returns the steps already done.
   std::uint64_t resumeFromCheckpoint();
+  void refuseWhatItCannotHonour(const CoupledState& saved,
+                                const std::filesystem::path& checkpoint) const;
   // Every participant's part and the coupler's own state, under checkpoints/<time>/.
   void writeCheckpoint();
   bool checkpointDue(bool last) const;
@@ -168,6 +170,7 @@ class Coupler {
   std::uint64_t resumed_step_ = 0;
   bool unreadable_checkpoint_ = false;  // its orchestrator.json could not be read
 
+  StepClock clock_;  // when each step ends (a resume may change the step)
   std::uint64_t nsteps_ = 0;
   std::uint64_t step_ = 0;
   double time_ = 0.0;

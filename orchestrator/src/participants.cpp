@@ -851,6 +851,7 @@ void Participants::welcome(const std::string& who, const wire::Envelope& env,
   *w.mutable_welcome() =
       welcomeFor(sc_, plan_, p.spec, p.workdir,
                  restart_from_.empty() ? fs::path() : restart_from_ / who, peer_);
+  if (clock_start_) w.mutable_welcome()->set_start_time(*clock_start_);
   if (h.own_folder()) {
     // No shared filesystem: the case files and the restart travel with the Welcome
     try {

@@ -69,6 +69,9 @@ class Participants {
   // Resume: the participants' folders are kept as they are, and each continues from its part
   // of `checkpoint` (Welcome.restart_from). Call before start().
   void resumeFrom(const std::filesystem::path& checkpoint) { restart_from_ = checkpoint; }
+  // Where step 0 lies on the run's clock when a resume changed the coupling step (StepClock):
+  // the Welcome's start_time, from which the participants count the times of steps.
+  void setClockStart(double start) { clock_start_ = start; }
   // Each participant writes its part of a checkpoint into `folder`/<name>.
   void checkpoint(const std::filesystem::path& folder);
   std::vector<std::string> names() const;
@@ -149,6 +152,7 @@ class Participants {
   std::string externalStart(const std::string& name) const;
 
   const Scenario& sc_;
+  std::optional<double> clock_start_;  // setClockStart
   const Plan& plan_;
   std::string run_id_;
   // The folder in /dev/shm that the ranks mpirun starts here keep Open MPI's backing files in

@@ -2,6 +2,7 @@
 // moment, or stopped with Ctrl-C, then `cosim resume`, must leave the same run folder as a run
 // that never stopped: the same time series (to the bit, wall times aside), the same particle
 // snapshots, the same summary totals. The analytic adapters make the solvers themselves exact.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
@@ -355,12 +356,12 @@ TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
   auto changed =
       start(w,
             {"resume", "r", "--quiet", "--set", "coupling.end_time=0.08", "--set",
-             "models.drag.law=stokes", "--set", "coupling.dt=2e-3", "--set", "coupling.cpus=auto"},
+             "models.drag.law=stokes", "--set", "constants.cg=2", "--set", "coupling.cpus=auto"},
             "changed.out");
   EXPECT_EQ(finish(changed), 1);  // an input error: the scene changed
   const std::string out = text(w.dir / "changed.out");
   EXPECT_NE(out.find("models.drag.law: schiller_naumann -> stokes"), std::string::npos) << out;
-  EXPECT_NE(out.find("coupling.dt: "), std::string::npos) << out;
+  EXPECT_NE(out.find("constants.cg: 1 -> 2"), std::string::npos) << out;
   EXPECT_EQ(out.find("- coupling.end_time"), std::string::npos) << "end time may change: " << out;
   EXPECT_EQ(out.find("- coupling.cpus"), std::string::npos) << "the binding may change: " << out;
   EXPECT_EQ(analysis::readJsonFile(w.dir / "r/summary.json").at("status"), "completed")
@@ -377,6 +378,77 @@ TEST(Restart, AChangeTheStateCannotHonourIsRefusedWithWhatDiffers) {
   EXPECT_NE(finish(nothing), 0);
   EXPECT_NE(text(w.dir / "nothing.out").find("not a run folder"), std::string::npos)
       << text(w.dir / "nothing.out");
+}
+
+// A stiff stretch gets a smaller coupling step from a checkpoint (docs/restarts.md): the steps done
+// keep their times, the next ones are the new step long, the step numbers the participants check
+// run on, and the DEM step (coupling.dt / coupling.dem_steps) stays what the particle solver's
+// restart holds. Run to 0.04 s at 1 ms (2 DEM steps each), resumed to 0.08 s at 0.5 ms (1 DEM
+// step).
+TEST(Restart, ASmallerCouplingStepFromACheckpointRunsOnTheRunsClock) {
+  Workspace w;
+  auto run = start(w,
+                   {"run", "scene.yaml", "-o", "a", "--quiet", "--set", "coupling.end_time=0.04",
+                    "--set", "coupling.dem_steps=2"},
+                   "a.out");
+  ASSERT_EQ(finish(run), 0) << text(w.dir / "a.out");
+  fs::copy(w.dir / "a", w.dir / "b", fs::copy_options::recursive);
+
+  // A new DEM step is refused, naming the dem_steps that keeps it; the folder is left as it was.
+  auto dem = start(
+      w, {"resume", "a", "--quiet", "--set", "coupling.end_time=0.08", "--set", "coupling.dt=5e-4"},
+      "dem.out");
+  EXPECT_EQ(finish(dem), 1);
+  EXPECT_NE(text(w.dir / "dem.out").find("coupling.dem_steps=1"), std::string::npos)
+      << text(w.dir / "dem.out");
+  EXPECT_EQ(analysis::readJsonFile(w.dir / "a/summary.json").at("steps"), 40);
+
+  auto finer = start(w,
+                     {"resume", "a", "--quiet", "--set", "coupling.end_time=0.08", "--set",
+                      "coupling.dt=5e-4", "--set", "coupling.dem_steps=1"},
+                     "finer.out");
+  ASSERT_EQ(finish(finer), 0) << text(w.dir / "finer.out");
+  const auto summary = analysis::readJsonFile(w.dir / "a/summary.json");
+  EXPECT_EQ(summary.at("steps"), 40 + 80);
+  // A row a step (output.interval 0.01 s records parcels; the series has every step): the 80
+  // after 0.04 s are 0.5 ms apart, as written (0.0405, not 0.040499999...)
+  const auto ts = analysis::readTimeSeries(w.dir / "a/timeseries.csv");
+  std::vector<double> after, expected;
+  for (double t : ts.at("time"))
+    if (t > 0.04) after.push_back(t);
+  for (int k = 1; k <= 80; ++k)
+    expected.push_back(std::stod(fmt::format("{:.12g}", 0.04 + k * 5e-4)));
+  EXPECT_EQ(after, expected);
+  EXPECT_TRUE(fs::exists(w.dir / "a/checkpoints/0.08/orchestrator.json"));
+  EXPECT_TRUE(fs::exists(w.dir / "a/checkpoints/0.06/orchestrator.json"));
+  // Zone passes after the change begin and end on the half-millisecond steps
+  int passes = 0;
+  for (const auto& p : analysis::readZonePasses(w.dir / "a/zone_passes.csv")) {
+    for (double t : {p.entry_time, p.exit_time}) {
+      if (t <= 0.04) continue;
+      EXPECT_NEAR(t / 5e-4, std::round(t / 5e-4), 1e-6) << "parcel " << p.parcel_id << " at " << t;
+      ++passes;
+    }
+  }
+  EXPECT_GT(passes, 0);
+  // The precursor balance closes across the change as across any resume
+  const auto& t = summary.at("headline");
+  const double in = t.at("precursor_in_kg");
+  EXPECT_NEAR(t.at("coating_credited_kg").get<double>(), t.at("precursor_removed_kg").get<double>(),
+              1e-12 * in);
+  EXPECT_NEAR(in - t.at("precursor_out_kg").get<double>() - t.at("precursor_held_kg").get<double>(),
+              t.at("precursor_removed_kg").get<double>(), 1e-9 * in);
+
+  // The clock is in the checkpoint: resumed at 0.5 ms to 0.06 s, then on (the scene of the run
+  // keeps the new step) to 0.08 s, the same run to the bit
+  auto part = start(w,
+                    {"resume", "b", "--quiet", "--set", "coupling.end_time=0.06", "--set",
+                     "coupling.dt=5e-4", "--set", "coupling.dem_steps=1"},
+                    "part.out");
+  ASSERT_EQ(finish(part), 0) << text(w.dir / "part.out");
+  auto rest = start(w, {"resume", "b", "--quiet", "--set", "coupling.end_time=0.08"}, "rest.out");
+  ASSERT_EQ(finish(rest), 0) << text(w.dir / "rest.out");
+  expectSameRun(w.dir / "a", w.dir / "b");
 }
 
 // A resume checks that the particles came back exactly as the checkpoint wrote them (a digest of

@@ -24,8 +24,9 @@ void addResumeCommand(CLI::App& app, Commands& commands) {
   resume->add_option("run", o->folder, "run folder")->required();
   resume
       ->add_option("--set", o->sets,
-                   "override a value as for run; only coupling.end_time, output, checkpoint, "
-                   "transport, checks and observables may differ from the checkpoint's scene")
+                   "override a value as for run; only coupling.end_time, coupling.dt with "
+                   "coupling.dem_steps (the DEM step kept), output, checkpoint, transport, checks "
+                   "and observables may differ from the checkpoint's scene")
       ->take_all();
   resume->add_flag("-q,--quiet", o->run.quiet, "no progress line");
   auto* from = resume->add_option(
