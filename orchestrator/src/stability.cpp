@@ -318,6 +318,15 @@ std::optional<std::string> StepMonitor::checkCourant(double co, std::uint64_t st
     os << "fluid: Courant number " << co << " at step " << step << " (t = " << time
        << " s) exceeds checks.max_courant = " << sc_.checks.max_courant
        << ": reduce coupling.dt to about " << sc_.coupling.dt * 0.5 / co << " s (Courant 0.5)";
+    // A growth that doubles every step is the coupled step going unstable in a stiff stretch: a
+    // run resumed from its newest checkpoint with half the step (the DEM step kept) goes on
+    const unsigned half = sc_.coupling.dem_steps / 2;
+    if (half >= 1) {
+      os << "; or go on from the newest checkpoint with a smaller step, the DEM step kept: cosim "
+            "resume RUN --set coupling.dt="
+         << sc_.coupling.dt / sc_.coupling.dem_steps * half << " --set coupling.dem_steps=" << half
+         << " (docs/restarts.md)";
+    }
     throw SolverError(os.str());
   }
   if (co > 1.0 && !courant_warned_) {

@@ -239,6 +239,17 @@ TEST(Monitor, CourantWarnsOnceThenStops) {
     // dt 1e-4 * 0.5 / 10 = 5e-6
     EXPECT_NE(std::string(e.what()).find("5e-06"), std::string::npos) << e.what();
   }
+  // With DEM steps to halve: the resume that goes on with half the coupling step
+  sc.coupling.dem_steps = 20;
+  StepMonitor twenty(sc);
+  try {
+    twenty.checkCourant(10.0, 4, 0.0);
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("--set coupling.dt=5e-05 --set coupling.dem_steps=10"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(Monitor, MassBalanceDriftStops) {
