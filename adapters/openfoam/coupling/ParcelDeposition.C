@@ -9,37 +9,6 @@
 #include <thread>
 #include <vector>
 
-namespace
-{
-
-// To the master: the master's indices of the local parcels `parcels` and their `width` values
-// each (from `values`, `width` a parcel)
-template<class T>
-void sendToMaster
-(
-    const Foam::cosim::ParcelRouting& routing,
-    const Foam::labelList& parcels,
-    const Foam::UList<T>& values,
-    Foam::label width
-)
-{
-    Foam::labelList which(parcels.size());
-    Foam::List<T> part(parcels.size()*width);
-    forAll(parcels, k)
-    {
-        which[k] = routing.global(parcels[k]);
-        for (Foam::label j = 0; j < width; ++j)
-        {
-            part[k*width + j] = values[parcels[k]*width + j];
-        }
-    }
-    Foam::OPstream to(Foam::Pstream::commsTypes::scheduled, Foam::Pstream::masterNo());
-    to << which << part;
-}
-
-} // namespace
-
-
 Foam::cosim::ParcelDeposition::ParcelDeposition(const fvMesh& mesh, label divisions)
 :
     mesh_(mesh),
@@ -77,7 +46,7 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
 
     if (Pstream::parRun())
     {
-        divideByProcessor(position, radius, out);
+        divideByProcessor(out);
     }
     locateCentres(ids, position, out);
 
@@ -112,36 +81,22 @@ Foam::cosim::ParcelDeposition::Placement Foam::cosim::ParcelDeposition::compute
 }
 
 
-void Foam::cosim::ParcelDeposition::divideByProcessor
-(
-    const std::vector<double>& position,
-    const std::vector<double>& radius,
-    Placement& out
-) const
+void Foam::cosim::ParcelDeposition::divideByProcessor(Placement& out) const
 {
-    const label n = out.n;
-    const label me = Pstream::myProcNo();
-    out.mayHold.setSize(n);
-    out.holder.setSize(n);
-    DynamicList<label> shared;
-    for (label i = 0; i < n; ++i)
+    // As the routing found them for the parcels it last sent or received: these
+    if (routing_.holders().size() != out.n)
     {
-        const point c(position[3*i], position[3*i + 1], position[3*i + 2]);
-        label holders = 0;
-        label holder = -1;
-        bool mine = false;
-        for (label proc = 0; proc < routing_.nProcs(); ++proc)
-        {
-            if (routing_.reaches(proc, c, radius[i]))
-            {
-                ++holders;
-                holder = proc;
-                mine = mine || proc == me;
-            }
-        }
-        out.mayHold[i] = mine;
-        out.holder[i] = holders > 1 ? label(-2) : holder;
-        if (holders > 1)
+        FatalErrorInFunction
+            << "placing " << out.n << " parcels on a decomposed mesh, but the last routing "
+            << "was of " << routing_.holders().size() << " (route them first)"
+            << abort(FatalError);
+    }
+    out.holder = routing_.holders();
+    out.mayHold = routing_.reachesThisProcessor();
+    DynamicList<label> shared;
+    forAll(out.holder, i)
+    {
+        if (out.holder[i] == -2)
         {
             shared.append(i);
         }
@@ -192,7 +147,7 @@ void Foam::cosim::ParcelDeposition::agreeOnShared
     }
     else
     {
-        sendToMaster(routing_, shared, owner, width);
+        routing_.sendToMaster(shared, owner, width);
         IPstream in(Pstream::commsTypes::scheduled, Pstream::masterNo());
         labelList agreed;
         in >> agreed;
@@ -537,7 +492,7 @@ void Foam::cosim::ParcelDeposition::sumOnMaster(List<scalar>& values) const
     }
     else
     {
-        sendToMaster(routing_, held_, values, width);
+        routing_.sendToMaster(held_, values, width);
     }
 }
 

@@ -7,24 +7,6 @@
 namespace
 {
 
-// The entries of `from` (width a parcel) of the parcels `which`
-template<class T>
-Foam::List<T> pick(const std::vector<T>& from, const Foam::labelList& which, Foam::label width)
-{
-    Foam::List<T> out(from.empty() ? 0 : which.size()*width);
-    if (!from.empty())
-    {
-        forAll(which, k)
-        {
-            for (Foam::label j = 0; j < width; ++j)
-            {
-                out[k*width + j] = from[which[k]*width + j];
-            }
-        }
-    }
-    return out;
-}
-
 template<class T>
 std::vector<T> toVector(const Foam::List<T>& list)
 {
@@ -63,16 +45,31 @@ void Foam::cosim::ParcelRouting::send
 {
     const label n = label(ids.size());
     List<DynamicList<label>> to(nProcs());
+    holder_.setSize(n);
+    reachesMe_.setSize(n);
     for (label i = 0; i < n; ++i)
     {
         const point c(position[3*i], position[3*i + 1], position[3*i + 2]);
-        for (label proc = 1; proc < nProcs(); ++proc)
+        label holders = 0;
+        label holder = -1;
+        reachesMe_[i] = false;
+        for (label proc = 0; proc < nProcs(); ++proc)
         {
             if (reaches(proc, c, radius[i]))
             {
-                to[proc].append(i);
+                ++holders;
+                holder = proc;
+                if (proc == Pstream::masterNo())
+                {
+                    reachesMe_[i] = true;  // its own box: it keeps the parcel
+                }
+                else
+                {
+                    to[proc].append(i);
+                }
             }
         }
+        holder_[i] = holders > 1 ? label(-2) : holder;
     }
     const std::vector<double> none;
     const std::vector<double>& v = velocity.size() == 3*ids.size() ? velocity : none;
@@ -83,7 +80,7 @@ void Foam::cosim::ParcelRouting::send
         const labelList& which = sent_[proc];
         OPstream out(Pstream::commsTypes::scheduled, proc);
         out << which << pick(ids, which, 1) << pick(position, which, 3)
-            << pick(radius, which, 1) << pick(v, which, 3);
+            << pick(radius, which, 1) << pick(v, which, 3) << pick(holder_, which, 1);
     }
 }
 
@@ -99,7 +96,9 @@ void Foam::cosim::ParcelRouting::receive
     IPstream in(Pstream::commsTypes::scheduled, Pstream::masterNo());
     List<std::int64_t> id;
     List<double> x, r, v;
-    in >> global_ >> id >> x >> r >> v;
+    in >> global_ >> id >> x >> r >> v >> holder_;
+    reachesMe_.setSize(holder_.size());
+    reachesMe_ = true;  // sent here because it reaches this processor's box
     ids = toVector(id);
     position = toVector(x);
     radius = toVector(r);
