@@ -13,6 +13,7 @@
 #include "cosim/analysis/files.h"
 #include "cosim/link/zone_pass_tracker.h"
 #include "cosim/util/errors.h"
+#include "cosim/util/format.h"
 
 namespace cosim::orchestrator {
 
@@ -261,6 +262,19 @@ std::string refusedStepChange(const YAML::Node& saved, const YAML::Node& now) {
            "the gas sampled ahead over the old step in their checkpoint; resume with the step "
            "it was written with";
   return "";
+}
+
+std::optional<std::string> offTheStepGrid(double start_time, double time, double dt) {
+  const double steps = (time - start_time) / dt;
+  const double off = std::abs(steps - std::round(steps)) * dt;
+  if (off <= 1e-6 * dt) return std::nullopt;
+  return "the resume continues from t = " + analysis::formatShortest(time) +
+         " s, which is not a whole number of the new coupling step " +
+         analysis::formatShortest(dt) + " s from coupling.start_time: the rows, snapshots and " +
+         "checkpoints from here on fall " + util::significant(off, 3) +
+         " s off the times a run at this step would write (e.g. its output.interval). To keep "
+         "them on it, go on at the old step to a time on the new step's grid first (--set "
+         "coupling.end_time=...), or resume from a checkpoint on it (cosim resume --from)";
 }
 
 CheckpointStore::CheckpointStore(const fs::path& run_folder) : dir_(run_folder / "checkpoints") {}

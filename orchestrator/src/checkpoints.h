@@ -112,6 +112,10 @@ StepClock clockOf(const CoupledState& saved);
 // ("" when it can, or when neither changed).
 std::string refusedStepChange(const YAML::Node& saved, const YAML::Node& now);
 
+// A new step from `time` whose steps do not fall on start_time + k dt: the records' times from
+// there on lie off the grid of the run's output times (a warning, with what keeps them on it).
+std::optional<std::string> offTheStepGrid(double start_time, double time, double dt);
+
 // Keys of the scene whose values differ between a checkpoint's scene and the one to resume with,
 // as "key: old -> new", leaving out what a resumed run may change (end time, output, checkpoint,
 // transport, checks, observables, description, timeouts).

@@ -360,6 +360,8 @@ std::uint64_t Coupler::resumeFromCheckpoint() {
               " s: " + std::to_string(nsteps_ - saved.step) + " steps to coupling.end_time");
     // What the new step means for the bed as it is now (the Courant and relaxation checks)
     refuseOrWarn(checkBeforeRun(sc_, models_, plan_, state_, reported_dt_over_rayleigh_));
+    if (const auto w = offTheStepGrid(sc_.coupling.start_time, saved.time, clock_.dt))
+      log_.warn(*w);
   }
   if (const auto free_now = freeBytes()) disk_ = {time_, *free_now};
   return saved.step;

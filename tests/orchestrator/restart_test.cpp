@@ -393,6 +393,7 @@ TEST(Restart, ASmallerCouplingStepFromACheckpointRunsOnTheRunsClock) {
                    "a.out");
   ASSERT_EQ(finish(run), 0) << text(w.dir / "a.out");
   fs::copy(w.dir / "a", w.dir / "b", fs::copy_options::recursive);
+  fs::copy(w.dir / "a", w.dir / "c", fs::copy_options::recursive);
 
   // A new DEM step is refused, naming the dem_steps that keeps it; the folder is left as it was.
   auto dem = start(
@@ -449,6 +450,18 @@ TEST(Restart, ASmallerCouplingStepFromACheckpointRunsOnTheRunsClock) {
   auto rest = start(w, {"resume", "b", "--quiet", "--set", "coupling.end_time=0.08"}, "rest.out");
   ASSERT_EQ(finish(rest), 0) << text(w.dir / "rest.out");
   expectSameRun(w.dir / "a", w.dir / "b");
+
+  // A step whose multiples from the start miss the checkpoint's time (0.04 s = 26.7 steps of
+  // 1.5 ms): the run goes on, warned that its times leave the grid of the output times
+  EXPECT_FALSE(text(w.dir / "finer.out").find("not a whole number") != std::string::npos);
+  auto odd = start(w,
+                   {"resume", "c", "--quiet", "--set", "coupling.end_time=0.05", "--set",
+                    "coupling.dt=1.5e-3", "--set", "coupling.dem_steps=3"},
+                   "odd.out");
+  ASSERT_EQ(finish(odd), 0) << text(w.dir / "odd.out");
+  EXPECT_NE(text(w.dir / "odd.out").find("not a whole number of the new coupling step 0.0015 s"),
+            std::string::npos)
+      << text(w.dir / "odd.out");
 }
 
 // A resume checks that the particles came back exactly as the checkpoint wrote them (a digest of
