@@ -167,6 +167,8 @@ RunResult Coupler::run() {
   closeZonePasses(result.steps);
   result.wall_seconds = wall_before_ + std::chrono::duration<double>(Clock::now() - wall0_).count();
   result.final_state = state_;
+  result.time = time_;
+  result.unstable_step = courant_stop_ && status == "failed";
   result.totals = totals_;
   result.phase_seconds = phases_.seconds;
   result.compute_seconds = participants_.computeSeconds();
@@ -655,6 +657,7 @@ void Coupler::takeFluidResults(const wire::Advanced& fa) {
         log_.show(*w);
       }
     } catch (const std::exception& e) {
+      courant_stop_ = true;
       throw RunFailure("fluid", e.what());
     }
   }

@@ -68,6 +68,8 @@ struct RunResult {
   std::map<std::string, double> phase_seconds;    // per phase of the step, after untimed_steps
   std::map<std::string, double> compute_seconds;  // per participant, after untimed_steps
   std::uint64_t timed_steps = 0;                  // steps the timings cover
+  double time = 0;                                // [s] the simulated time the run reached
+  bool unstable_step = false;                     // stopped by checks.max_courant (step_retreat.h)
 };
 
 class Coupler {
@@ -172,6 +174,7 @@ class Coupler {
 
   StepClock clock_;  // when each step ends (a resume may change the step)
   std::uint64_t nsteps_ = 0;
+  bool courant_stop_ = false;  // RunResult::unstable_step
   std::uint64_t step_ = 0;
   double time_ = 0.0;
   link::ParticleData state_;

@@ -27,7 +27,10 @@ bool isDeadSocket(const fs::path& path) {
   addr.sun_family = AF_UNIX;
   if (path.native().size() >= sizeof(addr.sun_path)) return false;
   std::memcpy(addr.sun_path, path.c_str(), path.native().size() + 1);
-  const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  // Without waiting: a run that is suspended (Ctrl-Z, a stopped job) accepts no connection,
+  // and once its backlog is full a blocking connect would wait for as long as it stays
+  // suspended (EAGAIN: alive)
+  const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
   if (fd < 0) return false;
   const bool refused = ::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0 &&
                        errno == ECONNREFUSED;

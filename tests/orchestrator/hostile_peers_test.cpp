@@ -13,6 +13,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -211,6 +212,38 @@ TEST(KilledOrchestrator, LocalParticipantsDieWithItAndItsSocketFileIsCleanedUpLa
   fs::last_write_time(socket, fs::file_time_type::clock::now() - std::chrono::minutes(2));
   privateSocketFolder();
   EXPECT_FALSE(fs::exists(fs::symlink_status(socket))) << socket << " left behind";
+}
+
+// A run that is suspended (Ctrl-Z, kill -STOP: its socket accepts nothing, its backlog fills up)
+// is alive: a new run's look through the socket folder says so at once instead of waiting for it
+// to accept (before, every run started beside a suspended one hung in connect()).
+TEST(KilledOrchestrator, ASuspendedRunsSocketIsAliveAndTheLookDoesNotWait) {
+  const fs::path path =  // short: a socket's path has room for 107 characters
+      fs::temp_directory_path() / ("cosim-suspended-" + std::to_string(getpid()) + ".ipc");
+  fs::remove(path);
+  const int listener = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  ASSERT_GE(listener, 0);
+  sockaddr_un addr{};
+  addr.sun_family = AF_UNIX;
+  std::strncpy(addr.sun_path, path.c_str(), sizeof(addr.sun_path) - 1);
+  ASSERT_EQ(::bind(listener, reinterpret_cast<const sockaddr*>(&addr), sizeof addr), 0);
+  ASSERT_EQ(::listen(listener, 1), 0);  // and never accepts, as a stopped process
+  std::vector<int> held;
+  for (int i = 0; i < 8; ++i) {  // fill the backlog
+    const int fd = ::socket(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    if (::connect(fd, reinterpret_cast<const sockaddr*>(&addr), sizeof addr) != 0) {
+      ::close(fd);
+      break;
+    }
+    held.push_back(fd);
+  }
+  const auto t0 = Clock::now();
+  EXPECT_FALSE(isDeadSocket(path));
+  EXPECT_LT(secondsSince(t0), 1.0) << "the look waited for the suspended run";
+  for (const int fd : held) ::close(fd);
+  ::close(listener);
+  EXPECT_TRUE(isDeadSocket(path)) << "nothing listens any more";
+  fs::remove(path);
 }
 
 // The same with the real DEM solver: an external cosim-liggghts stops within seconds, and a

@@ -37,6 +37,7 @@
 #include "coupler.h"
 #include "run_pack.h"
 #include "scenario.h"
+#include "step_retreat.h"
 
 using namespace cosim::orchestrator;
 namespace fs = std::filesystem;
@@ -515,6 +516,78 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   std::printf(
       "half the coupling step from 0.03 s vs the run at 0.1 ms: coated mass %.3g relative\n", df);
   EXPECT_LT(df, 1e-3) << "half the step moved the coated mass by 1.8e-4 (measured at commit time)";
+  fs::remove_all(base);
+}
+
+// checks.step_halvings with the real solvers (docs/restarts.md, "Through a stiff stretch by
+// itself"): the CI bed's gas runs at a Courant number of 0.1-0.2 at the scene's 0.1 ms (its jet
+// alone about 0.15), so a limit of 0.11 stops the 0.1 ms steps now and then and lets the 0.05 ms
+// ones through (as in a stiff stretch where half the step is enough). Resumed from 0.02 s to
+// 0.04 s, the run goes back to its newest checkpoint at each stop and on at 0.05 ms to the first
+// checkpoint half an interval past the stop, then at 0.1 ms again: it ends at 0.04 s with every
+// step after a stop at 0.05 ms, the balance closed. Far below the half step's Courant number
+// (0.03) one halving is not enough: the run stops, saying so and how to go on as the scene was.
+TEST(PlasmaCoatingCi, AStiffStretchIsGoneThroughWithHalfTheStepByItself) {
+  const fs::path base =
+      fs::temp_directory_path() / ("cosim-plasma-halve-" + std::to_string(getpid()));
+  fs::remove_all(base);
+  const fs::path scene = fs::path(COSIM_SOURCE_DIR) / "scenarios/plasma-coating-bed/ci.yaml";
+  RunOptions o;
+  o.quiet = true;
+  o.output = base / "run";
+  const RunResult first =
+      Coupler(loadScenario(scene, {"checkpoint.interval=0.01", "coupling.end_time=0.02"}), o).run();
+  ASSERT_EQ(first.exit_code, 0) << first.message;
+  fs::copy(base / "run", base / "too-stiff", fs::copy_options::recursive);
+
+  RunOptions ro;
+  ro.quiet = true;
+  ro.resume = base / "run";
+  const RunResult r = runThroughStiffStretches(
+      loadRunScene(base / "run",
+                   {"coupling.end_time=0.04", "checks.max_courant=0.11", "checks.step_halvings=1"}),
+      ro);
+  ASSERT_EQ(r.exit_code, 0) << r.message;
+  EXPECT_EQ(r.time, 0.04);
+  // A row a step: each at 0.1 ms or 0.05 ms after the one before, some at 0.05 ms, every one on
+  // the 0.05 ms grid, the steps those of the rows
+  const auto ts = cosim::analysis::readTimeSeries(base / "run/timeseries.csv");
+  std::size_t after = 0, half = 0;
+  double before = 0.02;
+  for (double t : ts.at("time")) {
+    if (t <= 0.02) continue;
+    ++after;
+    EXPECT_NEAR(t / 5e-5, std::round(t / 5e-5), 1e-6) << "a row at " << t;
+    const double step = t - before;
+    EXPECT_TRUE(std::fabs(step - 5e-5) < 1e-9 || std::fabs(step - 1e-4) < 1e-9)
+        << "a step of " << step << " s before " << t;
+    if (std::fabs(step - 5e-5) < 1e-9) ++half;
+    before = t;
+  }
+  EXPECT_EQ(r.steps, 200u + after);
+  EXPECT_GE(half, 100u) << "no stretch at half the step";
+  const auto& t = r.totals;
+  const double in = t.at("precursor_in_kg");
+  EXPECT_LT(std::fabs(t.at("precursor_removed_kg") - t.at("coating_credited_kg")), 1e-12 * in);
+  EXPECT_LT(std::fabs(t.at("coating_on_particles_kg") - t.at("coating_credited_kg")), 1e-12 * in);
+  EXPECT_LT(std::fabs(in - t.at("precursor_out_kg") - t.at("precursor_held_kg") -
+                      t.at("precursor_removed_kg")),
+            1e-4 * in);
+  EXPECT_EQ(cosim::analysis::readJsonFile(base / "run/summary.json").at("status"), "completed");
+
+  ro.resume = base / "too-stiff";
+  const RunResult stiff = runThroughStiffStretches(
+      loadRunScene(base / "too-stiff",
+                   {"coupling.end_time=0.04", "checks.max_courant=0.03", "checks.step_halvings=1"}),
+      ro);
+  EXPECT_NE(stiff.exit_code, 0);
+  EXPECT_NE(stiff.message.find("halved 1 times in a row and the run still stopped"),
+            std::string::npos)
+      << stiff.message;
+  EXPECT_NE(stiff.message.find("--set coupling.dt=0.0001 --set coupling.dem_steps=20 --set "
+                               "coupling.end_time=0.04"),
+            std::string::npos)
+      << stiff.message;
   fs::remove_all(base);
 }
 

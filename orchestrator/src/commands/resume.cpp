@@ -6,6 +6,7 @@
 #include "commands.h"
 #include "coupler.h"
 #include "scenario.h"
+#include "step_retreat.h"
 
 namespace cosim::orchestrator {
 
@@ -39,7 +40,7 @@ void addResumeCommand(CLI::App& app, Commands& commands) {
                         o->run.stop = &processStop();
                         o->run.resume = std::filesystem::absolute(o->folder);
                         if (from->count() > 0) o->run.resume_from = o->from;
-                        return reportRunEnd(Coupler(std::move(sc), o->run).run());
+                        return reportRunEnd(runThroughStiffStretches(std::move(sc), o->run));
                       }});
 }
 

@@ -5,6 +5,7 @@
 #include "commands.h"
 #include "coupler.h"
 #include "scenario.h"
+#include "step_retreat.h"
 
 namespace cosim::orchestrator {
 
@@ -30,7 +31,7 @@ void addRunCommand(CLI::App& app, Commands& commands) {
                         if (!o->output.empty()) o->run.output = o->output;
                         catchStopSignals();
                         o->run.stop = &processStop();
-                        return reportRunEnd(Coupler(std::move(sc), o->run).run());
+                        return reportRunEnd(runThroughStiffStretches(std::move(sc), o->run));
                       }});
 }
 
