@@ -29,8 +29,8 @@ RunResult resumeWith(const RunOptions& base, const std::filesystem::path& folder
 }  // namespace
 
 double stretchEnd(double checkpoint, double stopped, double interval, double end) {
-  const double k = std::max(1.0, std::ceil((stopped + 0.5 * interval - checkpoint) / interval -
-                                           1e-9));
+  const double k =
+      std::max(1.0, std::ceil((stopped + 0.5 * interval - checkpoint) / interval - 1e-9));
   return std::min(checkpoint + k * interval, end);
 }
 
@@ -77,10 +77,10 @@ RunResult runThroughStiffStretches(Scenario sc, RunOptions opt) {
               << " s; going on from the checkpoint at " << number(from) << " s with a coupling "
               << "step of " << number(small) << " s to " << number(until)
               << " s (checks.step_halvings: " << halvings << " of " << allowed << ")\n";
-    r = resumeWith(opt, r.folder,
-                   {"coupling.dt=" + number(small),
-                    "coupling.dem_steps=" + std::to_string(dem_steps / parts),
-                    "coupling.end_time=" + number(until)});
+    r = resumeWith(
+        opt, r.folder,
+        {"coupling.dt=" + number(small), "coupling.dem_steps=" + std::to_string(dem_steps / parts),
+         "coupling.end_time=" + number(until)});
     if (r.exit_code != 0 || until >= end) continue;  // a stop in the stretch halves again
     halvings = 0;
     std::cerr << "cosim: past the stiff stretch at t = " << number(r.time)
@@ -92,11 +92,12 @@ RunResult runThroughStiffStretches(Scenario sc, RunOptions opt) {
   }
   // Stopped (Ctrl-C, a failure) inside a stretch: its scene says the stretch's step and end
   if (changed && r.exit_code != 0 && !r.message.empty())
-    r.message += "\n  (the run folder's scene holds the smaller step's stretch; to go on as the "
-                 "scene was: cosim resume " +
-                 r.folder.string() + " --set coupling.dt=" + number(dt) +
-                 " --set coupling.dem_steps=" + std::to_string(dem_steps) +
-                 " --set coupling.end_time=" + number(end) + ")";
+    r.message +=
+        "\n  (the run folder's scene holds the smaller step's stretch; to go on as the "
+        "scene was: cosim resume " +
+        r.folder.string() + " --set coupling.dt=" + number(dt) +
+        " --set coupling.dem_steps=" + std::to_string(dem_steps) +
+        " --set coupling.end_time=" + number(end) + ")";
   return r;
 }
 

@@ -80,6 +80,17 @@ std::size_t rowAt(const cosim::analysis::TimeSeries& ts, double time) {
   return 0;
 }
 
+// The precursor's balance over a run (its totals): what the gas lost is what the parcels took and
+// hold, to round-off, and what came in went out, stayed or was taken, to the run's tolerance.
+void expectBalanceCloses(const std::map<std::string, double>& t) {
+  const double in = t.at("precursor_in_kg");
+  EXPECT_LT(std::fabs(t.at("precursor_removed_kg") - t.at("coating_credited_kg")), 1e-12 * in);
+  EXPECT_LT(std::fabs(t.at("coating_on_particles_kg") - t.at("coating_credited_kg")), 1e-12 * in);
+  EXPECT_LT(std::fabs(in - t.at("precursor_out_kg") - t.at("precursor_held_kg") -
+                      t.at("precursor_removed_kg")),
+            1e-4 * in);
+}
+
 // Waits (at most `seconds`) until the run in `run` writes a checkpoint while an earlier one is
 // complete: the moment to aim a kill or a Ctrl-C at. False if the run ended first.
 bool awaitCheckpointBeingWritten(const fs::path& run, cosim::util::ChildProcess& p,
@@ -420,12 +431,7 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   EXPECT_EQ(resumed.steps, full.steps);
 
   const auto& t = resumed.totals;
-  const double in = t.at("precursor_in_kg");
-  EXPECT_LT(std::fabs(t.at("precursor_removed_kg") - t.at("coating_credited_kg")), 1e-12 * in);
-  EXPECT_LT(std::fabs(t.at("coating_on_particles_kg") - t.at("coating_credited_kg")), 1e-12 * in);
-  EXPECT_LT(std::fabs(in - t.at("precursor_out_kg") - t.at("precursor_held_kg") -
-                      t.at("precursor_removed_kg")),
-            1e-4 * in);
+  expectBalanceCloses(t);
   const double coated = full.totals.at("coating_credited_kg");
   EXPECT_NEAR(t.at("coating_credited_kg"), coated, 2e-6 * coated);
 
@@ -500,11 +506,7 @@ TEST(PlasmaCoatingCi, ResumedFromACheckpointAgreesWithTheUninterruptedRun) {
   ASSERT_EQ(finer.exit_code, 0) << finer.message;
   EXPECT_EQ(finer.steps, 300u + 400u);
   const auto& f = finer.totals;
-  EXPECT_LT(std::fabs(f.at("precursor_removed_kg") - f.at("coating_credited_kg")), 1e-12 * in);
-  EXPECT_LT(std::fabs(f.at("coating_on_particles_kg") - f.at("coating_credited_kg")), 1e-12 * in);
-  EXPECT_LT(std::fabs(f.at("precursor_in_kg") - f.at("precursor_out_kg") -
-                      f.at("precursor_held_kg") - f.at("precursor_removed_kg")),
-            1e-4 * f.at("precursor_in_kg"));
+  expectBalanceCloses(f);
   const auto tf = cosim::analysis::readTimeSeries(base / "finer/timeseries.csv");
   EXPECT_EQ(tf.at("time")[rowAt(tf, 0.03005)], 0.03005);
   EXPECT_EQ(tf.at("time").back(), 0.05);
@@ -566,13 +568,7 @@ TEST(PlasmaCoatingCi, AStiffStretchIsGoneThroughWithHalfTheStepByItself) {
   }
   EXPECT_EQ(r.steps, 200u + after);
   EXPECT_GE(half, 100u) << "no stretch at half the step";
-  const auto& t = r.totals;
-  const double in = t.at("precursor_in_kg");
-  EXPECT_LT(std::fabs(t.at("precursor_removed_kg") - t.at("coating_credited_kg")), 1e-12 * in);
-  EXPECT_LT(std::fabs(t.at("coating_on_particles_kg") - t.at("coating_credited_kg")), 1e-12 * in);
-  EXPECT_LT(std::fabs(in - t.at("precursor_out_kg") - t.at("precursor_held_kg") -
-                      t.at("precursor_removed_kg")),
-            1e-4 * in);
+  expectBalanceCloses(r.totals);
   EXPECT_EQ(cosim::analysis::readJsonFile(base / "run/summary.json").at("status"), "completed");
 
   ro.resume = base / "too-stiff";
