@@ -307,7 +307,13 @@ bool RunRecord::snapshotDue(double time, bool force) const {
 void RunRecord::snapshot(double time, const link::ParticleData& held, bool force) {
   if (!snapshotDue(time, force)) return;
   particles_->write(time, held);
-  next_output_ = time + sc_.output.interval;
+  // The next time on the grid start_time + k interval: a snapshot forced off the grid (a run's
+  // end, a stop) or a step that does not divide the interval does not shift the ones after it
+  const double start = sc_.coupling.start_time;
+  const double interval = sc_.output.interval;
+  next_output_ = interval > 0
+                     ? start + (std::floor((time - start) / interval + 1e-9) + 1.0) * interval
+                     : time;  // every step
 }
 
 std::vector<ObservableValue> RunRecord::observables(

@@ -292,6 +292,25 @@ TEST(Restart, AFinishedRunIsMadeLongerAndEqualsTheLongerRun) {
   expectSameRun(w.dir / "long", w.dir / "ext");
 }
 
+// A finished run whose end lies off the grid of its snapshots (0.125 s, every 0.01 s) made longer:
+// its snapshots go on on the grid (0.13, 0.14, ...), not 0.01 s after the end's (0.135, ...); the
+// end's own snapshot goes as the records are cut back to the checkpoint, as the longer run has
+// none.
+TEST(Restart, AFinishedRunOffTheSnapshotGridIsMadeLongerOnTheGrid) {
+  Workspace w;
+  auto first = start(
+      w, {"run", "scene.yaml", "-o", "r", "--quiet", "--set", "coupling.end_time=0.125"}, "r.out");
+  ASSERT_EQ(finish(first), 0) << text(w.dir / "r.out");
+  auto longer =
+      start(w, {"resume", "r", "--quiet", "--set", "coupling.end_time=0.16"}, "longer.out");
+  ASSERT_EQ(finish(longer), 0) << text(w.dir / "longer.out");
+  std::vector<double> after;
+  const analysis::ParticleFile pf(w.dir / "r/particles.h5");
+  for (const auto& snap : pf.snapshots())
+    if (snap.time > 0.1) after.push_back(snap.time);
+  EXPECT_EQ(after, (std::vector<double>{0.11, 0.12, 0.13, 0.14, 0.15, 0.16}));
+}
+
 // A run folder moved elsewhere (scratch to project space, another node's disk, a renamed
 // study) resumes in its new place: nothing in it points back to where it was run.
 TEST(Restart, AMovedRunFolderResumesWhereItNowIs) {
