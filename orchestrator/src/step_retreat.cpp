@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iostream>
 #include <string>
 #include <vector>
 
 #include "checkpoints.h"
 #include "cosim/analysis/files.h"
+#include "run_log.h"
 
 namespace cosim::orchestrator {
 
@@ -41,6 +41,7 @@ RunResult runThroughStiffStretches(Scenario sc, RunOptions opt) {
   const double end = sc.coupling.end_time;
   const double interval = sc.checkpoint.interval;
   RunResult r = Coupler(std::move(sc), opt).run();
+  RunLog log(opt.quiet);  // the changes of step, on the console and in the run's cosim.log
   unsigned halvings = 0;  // in a row, in the stretch being gone through
   bool changed = false;   // the run folder's scene holds a stretch's step and end
   while (r.unstable_step && allowed > 0) {
@@ -73,18 +74,19 @@ RunResult runThroughStiffStretches(Scenario sc, RunOptions opt) {
     const double from = std::strtod(newest->filename().c_str(), nullptr);
     const double until = stretchEnd(from, r.time, interval, end);
     const double small = dt / parts;
-    std::cerr << "cosim: the Courant check stopped the run at t = " << number(r.time)
-              << " s; going on from the checkpoint at " << number(from) << " s with a coupling "
-              << "step of " << number(small) << " s to " << number(until)
-              << " s (checks.step_halvings: " << halvings << " of " << allowed << ")\n";
+    log.open(r.folder / "cosim.log");  // appended to, as the runs' own lines
+    log.warn("the Courant check stopped the run at t = " + number(r.time) +
+             " s; going on from the checkpoint at " + number(from) + " s with a coupling step of " +
+             number(small) + " s to " + number(until) + " s (checks.step_halvings: " +
+             std::to_string(halvings) + " of " + std::to_string(allowed) + ")");
     r = resumeWith(
         opt, r.folder,
         {"coupling.dt=" + number(small), "coupling.dem_steps=" + std::to_string(dem_steps / parts),
          "coupling.end_time=" + number(until)});
     if (r.exit_code != 0 || until >= end) continue;  // a stop in the stretch halves again
     halvings = 0;
-    std::cerr << "cosim: past the stiff stretch at t = " << number(r.time)
-              << " s: on with the coupling step of " << number(dt) << " s\n";
+    log.show("past the stiff stretch at t = " + number(r.time) +
+             " s: on with the coupling step of " + number(dt) + " s");
     r = resumeWith(opt, r.folder,
                    {"coupling.dt=" + number(dt), "coupling.dem_steps=" + std::to_string(dem_steps),
                     "coupling.end_time=" + number(end)});

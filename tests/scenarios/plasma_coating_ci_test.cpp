@@ -570,6 +570,11 @@ TEST(PlasmaCoatingCi, AStiffStretchIsGoneThroughWithHalfTheStepByItself) {
   EXPECT_GE(half, 100u) << "no stretch at half the step";
   expectBalanceCloses(r.totals);
   EXPECT_EQ(cosim::analysis::readJsonFile(base / "run/summary.json").at("status"), "completed");
+  {  // each change of step is in the run's log
+    std::ifstream in(base / "run/cosim.log");
+    const std::string log((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(log.find("with a coupling step of 5e-05 s to"), std::string::npos) << log;
+  }
 
   ro.resume = base / "too-stiff";
   const RunResult stiff = runThroughStiffStretches(
